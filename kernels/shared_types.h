@@ -1,0 +1,159 @@
+/* shared_types.h: the one definition of every struct that crosses the host/device boundary.
+ *
+ * Included by OpenCL C kernels and by C++ host code (inside namespace clppm::dev). Scalar fields
+ * only: float3/float4 differ in size and alignment between host and device, so vectors are
+ * spelled as float arrays. Host-side static_asserts in src/shared_types_check.cpp pin every
+ * size and offset. */
+#ifndef CLPPM_SHARED_TYPES_H
+#define CLPPM_SHARED_TYPES_H
+
+#ifdef __OPENCL_VERSION__
+typedef uint u32;
+typedef int i32;
+typedef ulong u64;
+typedef long i64;
+#else
+#include <cstdint>
+namespace clppm {
+namespace dev {
+typedef uint32_t u32;
+typedef int32_t i32;
+typedef uint64_t u64;
+typedef int64_t i64;
+#endif
+
+/* ---- geometry ------------------------------------------------------------------------------ */
+
+/* Per-triangle shading attributes, indexed by triangle id (BVH leaf order). */
+typedef struct {
+    float n0[3], n1[3], n2[3]; /* shading normals at the three vertices (unit, world space) */
+    float uv0[2], uv1[2], uv2[2];
+    u32 material;
+} TriShading; /* 64 bytes */
+
+/* BVH node: see kernels/bvh_traverse.cl for the traversal and src/bvh_build.cpp for the build.
+ * A 4-wide node: child bounds stored as SoA so one node test is four slab tests. */
+typedef struct {
+    float bmin_x[4], bmin_y[4], bmin_z[4];
+    float bmax_x[4], bmax_y[4], bmax_z[4];
+    /* child[i] >= 0: inner node index; child[i] < 0: leaf, ~child[i] = first triangle,
+     * count[i] triangles; count[i] == 0 and child[i] == -1 (i.e. ~0): empty slot. */
+    i32 child[4];
+    u32 count[4];
+} BvhNode; /* 128 bytes */
+
+/* ---- materials and textures ---------------------------------------------------------------- */
+
+#define MATERIAL_DIFFUSE 0u    /* Lambertian, albedo = base colour */
+#define MATERIAL_MIRROR 1u     /* perfect mirror tinted by base colour */
+#define MATERIAL_DIELECTRIC 2u /* smooth dielectric: Fresnel, refraction by ior */
+#define MATERIAL_METAL_MIX 3u  /* 0 < metallic < 1: mirror with probability metallic, else diffuse */
+
+#define MATERIAL_FLAG_DOUBLE_SIDED 1u
+
+typedef struct {
+    float base_color[4]; /* linear RGB; [3] unused */
+    float emission[4];   /* emitted radiance, emissiveFactor * emissive_strength; [3] unused */
+    float metallic, roughness, transmission, ior;
+    i32 base_color_tex; /* index into Texture array, -1 when none */
+    u32 flags;          /* MATERIAL_FLAG_* */
+    u32 kind;           /* MATERIAL_* derived on the host from the glTF parameters */
+    u32 pad0;
+} Material; /* 64 bytes */
+
+typedef struct {
+    u32 offset; /* first texel in the texel buffer (float4 linear RGBA) */
+    u32 width, height;
+    u32 wrap; /* bit 0: clamp s, bit 1: clamp t (default repeat) */
+} Texture;    /* 16 bytes */
+
+/* ---- lights -------------------------------------------------------------------------------- */
+
+#define LIGHT_TRIANGLE 0u    /* an emissive triangle: radiance = material emission */
+#define LIGHT_POINT 1u       /* KHR_lights_punctual point: intensity in W/sr */
+#define LIGHT_SPOT 2u        /* KHR_lights_punctual spot */
+#define LIGHT_DIRECTIONAL 3u /* KHR_lights_punctual directional: irradiance in W/m^2 */
+
+typedef struct {
+    u32 type;
+    u32 prim;       /* LIGHT_TRIANGLE: triangle id */
+    u32 two_sided;  /* LIGHT_TRIANGLE: emits from both faces */
+    float power;    /* scalar power (mean over RGB), W: drives photon emission probability */
+    float position[4];
+    float direction[4]; /* spot, directional: unit direction the light travels */
+    float radiance[4];  /* triangle: Le; point/spot: intensity I; directional: irradiance E */
+    float cos_inner, cos_outer, area, pad0;
+} Light; /* 80 bytes */
+
+/* ---- camera and scene constants ------------------------------------------------------------ */
+
+typedef struct {
+    float origin[4];
+    float forward[4];  /* unit view direction */
+    float right[4];    /* right * tan(xfov/2): screen x in [-1,1] maps onto it */
+    float up[4];       /* up * tan(yfov/2) */
+    u32 width, height;
+    float lens_radius;    /* 0: pinhole */
+    float focus_distance; /* along forward */
+} Camera; /* 80 bytes */
+
+typedef struct {
+    float center[4];     /* bounding sphere of the scene */
+    float radius;        /* bounding sphere radius */
+    float ray_eps;       /* origin offset along the normal, relative to the scene size */
+    float total_power;   /* sum of Light.power: every photon leaves a light carrying this (RGB-scaled) */
+    u32 num_lights;
+    u32 num_tris;
+    u32 num_emissive_tris;
+    u32 max_bounces;     /* eye and photon path depth limit */
+    u32 pad0;
+} SceneInfo; /* 48 bytes */
+
+/* ---- progressive photon mapping -------------------------------------------------------------- */
+
+/* A hit point from the eye pass (Hachisuka et al. 2008, Sec. 4.1): where the eye path first
+ * meets a non-specular surface. Statistics (R, N, tau) live apart in HitStats. */
+typedef struct {
+    float pos[3];
+    u32 pixel;        /* y * width + x */
+    float normal[3];  /* shading normal, flipped to the side the eye path arrives from */
+    u32 valid;        /* 0: unused slot */
+    float weight[3];  /* path throughput times the Lambertian BRDF (albedo / pi) */
+    float footprint;  /* pixel footprint at the hit, world units (initial radius heuristic) */
+} HitPoint; /* 48 bytes */
+
+/* Per hit point statistics of Sec. 4.2, in double: N beyond 2^24 and tau over millions of
+ * passes keep their precision (float would stop counting at N = 2^24). */
+typedef struct {
+    double r2;      /* R(x)^2 */
+    double n;       /* N(x): accumulated (alpha-discounted) photon count */
+    double tau[3];  /* unnormalised flux, in units of SceneInfo.total_power */
+    double direct[3]; /* explicit direct lighting: running sum over passes */
+} HitStats; /* 64 bytes */
+
+/* A photon hit on a non-specular surface. */
+typedef struct {
+    float pos[3];
+    u32 normal_oct;  /* surface normal, octahedral 2x16 bits */
+    float flux[3];   /* in units of SceneInfo.total_power */
+    u32 wi_oct;      /* unit direction towards where the photon came from, octahedral 2x16 */
+} Photon; /* 32 bytes */
+
+/* The uniform hashed grid over this pass's photons (Sec. 4.3). */
+typedef struct {
+    float origin[4];  /* bounds minimum */
+    float inv_cell;   /* 1 / cell size */
+    u32 table_size;   /* power of two */
+    u32 num_photons;
+    u32 pad0;
+} GridInfo; /* 32 bytes */
+
+/* Fixed point used for per-pass flux sums: exact, so the sum is the same in any order. */
+#define FLUX_FIXED_SCALE 4294967296.0 /* 2^32 */
+
+#ifndef __OPENCL_VERSION__
+} // namespace dev
+} // namespace clppm
+#endif
+
+#endif

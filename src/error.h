@@ -1,0 +1,13 @@
+// The one exception type for user-facing failures: its message is a single line that names the
+// file or option at fault; main() prints it and exits non-zero.
+#pragma once
+#include <stdexcept>
+#include <string>
+
+namespace clppm {
+
+struct Error : std::runtime_error {
+    explicit Error(const std::string& msg) : std::runtime_error(msg) {}
+};
+
+} // namespace clppm

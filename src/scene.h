@@ -1,0 +1,47 @@
+// The renderer's scene: flat triangle arrays, materials, textures, lights and cameras, in world
+// space, ready to be flattened into device buffers. Built by the glTF loader (gltf_load.cpp).
+#pragma once
+#include <array>
+#include <string>
+#include <vector>
+
+#include "shared_types.h"
+
+namespace clppm {
+
+struct Vec3 {
+    float x = 0, y = 0, z = 0;
+};
+
+struct CameraDesc {
+    std::string name;
+    float position[3] = {0, 0, 0};
+    float forward[3] = {0, 0, -1}; // unit
+    float up[3] = {0, 1, 0};       // unit, orthogonal to forward
+    float yfov = 0.8f;             // radians
+    float aspect = 0.f;            // 0: unknown (glTF aspectRatio absent) -> take the image's
+    float aperture_radius = 0.f;   // thin lens (extras), 0 = pinhole
+    float focus_distance = 0.f;    // extras, 0 = unset
+};
+
+struct Scene {
+    // Triangles: three world-space positions each (p[3*i+k]), and shading attributes.
+    std::vector<Vec3> positions;       // 3 per triangle
+    std::vector<dev::TriShading> shading; // 1 per triangle (material index inside)
+    std::vector<dev::Material> materials;
+    std::vector<dev::Texture> textures;
+    std::vector<std::array<float, 4>> texels; // linear RGBA, all textures back to back
+    // Punctual lights (KHR_lights_punctual); emissive triangles are found from materials by the
+    // renderer, not listed here. type is LIGHT_POINT/SPOT/DIRECTIONAL; prim/area unused.
+    std::vector<dev::Light> punctual_lights;
+    std::vector<CameraDesc> cameras; // empty: no camera in the file
+    // Diagnostics from loading, reported by the CLI.
+    size_t degenerate_triangles_skipped = 0;
+    size_t meshes_without_normals = 0;
+    std::vector<std::string> warnings;
+    std::string source; // file name or "<default scene>"
+
+    size_t num_triangles() const { return shading.size(); }
+};
+
+} // namespace clppm

@@ -1,0 +1,63 @@
+// Host-side proof that shared_types.h lays out every struct the same way the OpenCL C compiler
+// does: explicit sizes and offsets, scalar fields only (STYLE.md, "Host and kernels share one truth").
+#include <cstddef>
+
+#include "shared_types.h"
+
+namespace clppm::dev {
+
+#define CLPPM_CHECK_SIZE(T, n) static_assert(sizeof(T) == (n), #T " size differs from the kernel's")
+#define CLPPM_CHECK_OFFSET(T, f, n) static_assert(offsetof(T, f) == (n), #T "." #f " offset differs")
+
+CLPPM_CHECK_SIZE(TriShading, 64);
+CLPPM_CHECK_OFFSET(TriShading, uv0, 36);
+CLPPM_CHECK_OFFSET(TriShading, material, 60);
+
+CLPPM_CHECK_SIZE(BvhNode, 128);
+CLPPM_CHECK_OFFSET(BvhNode, bmax_x, 48);
+CLPPM_CHECK_OFFSET(BvhNode, child, 96);
+CLPPM_CHECK_OFFSET(BvhNode, count, 112);
+
+CLPPM_CHECK_SIZE(Material, 64);
+CLPPM_CHECK_OFFSET(Material, emission, 16);
+CLPPM_CHECK_OFFSET(Material, metallic, 32);
+CLPPM_CHECK_OFFSET(Material, base_color_tex, 48);
+CLPPM_CHECK_OFFSET(Material, kind, 56);
+
+CLPPM_CHECK_SIZE(Texture, 16);
+
+CLPPM_CHECK_SIZE(Light, 80);
+CLPPM_CHECK_OFFSET(Light, power, 12);
+CLPPM_CHECK_OFFSET(Light, position, 16);
+CLPPM_CHECK_OFFSET(Light, radiance, 48);
+CLPPM_CHECK_OFFSET(Light, cos_inner, 64);
+
+CLPPM_CHECK_SIZE(Camera, 80);
+CLPPM_CHECK_OFFSET(Camera, width, 64);
+CLPPM_CHECK_OFFSET(Camera, focus_distance, 76);
+
+CLPPM_CHECK_SIZE(SceneInfo, 48);
+CLPPM_CHECK_OFFSET(SceneInfo, radius, 16);
+CLPPM_CHECK_OFFSET(SceneInfo, num_lights, 28);
+CLPPM_CHECK_OFFSET(SceneInfo, max_bounces, 40);
+
+CLPPM_CHECK_SIZE(HitPoint, 48);
+CLPPM_CHECK_OFFSET(HitPoint, pixel, 12);
+CLPPM_CHECK_OFFSET(HitPoint, normal, 16);
+CLPPM_CHECK_OFFSET(HitPoint, weight, 32);
+CLPPM_CHECK_OFFSET(HitPoint, footprint, 44);
+
+CLPPM_CHECK_SIZE(HitStats, 64);
+CLPPM_CHECK_OFFSET(HitStats, n, 8);
+CLPPM_CHECK_OFFSET(HitStats, tau, 16);
+CLPPM_CHECK_OFFSET(HitStats, direct, 40);
+
+CLPPM_CHECK_SIZE(Photon, 32);
+CLPPM_CHECK_OFFSET(Photon, normal_oct, 12);
+CLPPM_CHECK_OFFSET(Photon, flux, 16);
+CLPPM_CHECK_OFFSET(Photon, wi_oct, 28);
+
+CLPPM_CHECK_SIZE(GridInfo, 32);
+CLPPM_CHECK_OFFSET(GridInfo, inv_cell, 16);
+
+} // namespace clppm::dev

@@ -1,0 +1,47 @@
+#include "test_util.h"
+
+#include <array>
+#include <cstdio>
+#include <cstdlib>
+#include <stdexcept>
+#include <sys/wait.h>
+#include <unistd.h>
+
+namespace clppm::test {
+
+const DeviceInfo& test_device() {
+    static std::vector<DeviceInfo> devices = list_devices();
+    if (devices.empty()) throw std::runtime_error("no OpenCL device for tests");
+    if (const char* spec = std::getenv("CLPPM_TEST_DEVICE"); spec && *spec) return select_device(devices, spec);
+    for (const DeviceInfo& d : devices)
+        if (d.type & CL_DEVICE_TYPE_CPU) return d;
+    return devices[0];
+}
+
+std::string make_temp_dir(const std::string& tag) {
+    const char* base = std::getenv("TMPDIR");
+    std::string tmpl = std::string(base && *base ? base : "/tmp") + "/clppm_test_" + tag + "_XXXXXX";
+    std::vector<char> buf(tmpl.begin(), tmpl.end());
+    buf.push_back('\0');
+    if (!mkdtemp(buf.data())) throw std::runtime_error("mkdtemp failed for " + tmpl);
+    return buf.data();
+}
+
+int run_command(const std::string& cmd, std::string* output) {
+    std::string full = cmd + " 2>&1";
+    FILE* p = popen(full.c_str(), "r");
+    if (!p) return -1;
+    std::array<char, 4096> buf;
+    std::string out;
+    size_t n;
+    while ((n = fread(buf.data(), 1, buf.size(), p)) > 0) out.append(buf.data(), n);
+    int status = pclose(p);
+    if (output) *output = out;
+    if (WIFEXITED(status)) return WEXITSTATUS(status);
+    if (WIFSIGNALED(status)) return 128 + WTERMSIG(status);
+    return -1;
+}
+
+std::string clppm_binary() { return CLPPM_BINARY; }
+
+} // namespace clppm::test
