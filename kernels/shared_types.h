@@ -8,6 +8,7 @@
 #define CLPPM_SHARED_TYPES_H
 
 #ifdef __OPENCL_VERSION__
+#pragma OPENCL EXTENSION cl_khr_fp64 : enable
 typedef uint u32;
 typedef int i32;
 typedef ulong u64;
@@ -41,6 +42,10 @@ typedef struct {
     i32 child[4];
     u32 count[4];
 } BvhNode; /* 128 bytes */
+
+/* The builder guarantees no leaf lies deeper than this (root = depth 1), so a traversal stack of
+ * 3 * BVH_MAX_DEPTH + 1 entries cannot overflow: each level pushes at most three siblings. */
+#define BVH_MAX_DEPTH 24
 
 /* ---- materials and textures ---------------------------------------------------------------- */
 
@@ -115,12 +120,22 @@ typedef struct {
  * meets a non-specular surface. Statistics (R, N, tau) live apart in HitStats. */
 typedef struct {
     float pos[3];
-    u32 pixel;        /* y * width + x */
+    u32 pixel;        /* y * width + x; HITPOINT_NONE marks an unused slot */
     float normal[3];  /* shading normal, flipped to the side the eye path arrives from */
-    u32 valid;        /* 0: unused slot */
+    u32 ng_oct;       /* geometric normal, same side, octahedral 2x16 (shadow-ray offsets) */
     float weight[3];  /* path throughput times the Lambertian BRDF (albedo / pi) */
     float footprint;  /* pixel footprint at the hit, world units (initial radius heuristic) */
 } HitPoint; /* 48 bytes */
+
+#define HITPOINT_NONE 0xffffffffu
+
+/* What one pass's gather found for one hit point: M and the sum of photon flux, in fixed point
+ * (FLUX_FIXED_SCALE) so that the sum does not depend on the order photons are visited in. */
+typedef struct {
+    i64 flux[3];
+    u32 m;
+    u32 pad0;
+} PassFlux; /* 32 bytes */
 
 /* Per hit point statistics of Sec. 4.2, in double: N beyond 2^24 and tau over millions of
  * passes keep their precision (float would stop counting at N = 2^24). */

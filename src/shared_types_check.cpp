@@ -52,6 +52,9 @@ CLPPM_CHECK_OFFSET(HitStats, n, 8);
 CLPPM_CHECK_OFFSET(HitStats, tau, 16);
 CLPPM_CHECK_OFFSET(HitStats, direct, 40);
 
+CLPPM_CHECK_SIZE(PassFlux, 32);
+CLPPM_CHECK_OFFSET(PassFlux, m, 24);
+
 CLPPM_CHECK_SIZE(Photon, 32);
 CLPPM_CHECK_OFFSET(Photon, normal_oct, 12);
 CLPPM_CHECK_OFFSET(Photon, flux, 16);

@@ -45,3 +45,35 @@ int run_command(const std::string& cmd, std::string* output) {
 std::string clppm_binary() { return CLPPM_BINARY; }
 
 } // namespace clppm::test
+
+#include "kernel_program.h"
+#include "render_scene.h"
+
+namespace clppm::test {
+
+Image render_passes(Scene scene, const RenderSettings& settings, uint64_t passes, IntegratorStats* stats) {
+    DeviceContext dc(test_device());
+    DeviceScene ds = upload_scene(dc, scene, settings);
+    cl::Program program = build_program(dc, integrator_program_file(settings), integrator_build_options(settings, dc.info));
+    std::unique_ptr<IntegratorBase> integ = make_integrator(dc, ds, settings, program);
+    integ->prepare();
+    for (uint64_t p = 0; p < passes; ++p) integ->run_pass();
+    Image img = integ->image();
+    if (stats) *stats = integ->stats();
+    return img;
+}
+
+double region_mean(const Image& img, int x0, int y0, int x1, int y1, int c) {
+    double sum = 0;
+    size_t n = 0;
+    for (int y = y0; y < y1; ++y)
+        for (int x = x0; x < x1; ++x)
+            for (int k = 0; k < 3; ++k) {
+                if (c >= 0 && k != c) continue;
+                sum += img.rgb[3 * (size_t(y) * img.width + x) + k];
+                ++n;
+            }
+    return n ? sum / double(n) : 0.0;
+}
+
+} // namespace clppm::test

@@ -20,3 +20,18 @@ int run_command(const std::string& cmd, std::string* output);
 std::string clppm_binary();
 
 } // namespace clppm::test
+
+#include "image_io.h"
+#include "integrator.h"
+#include "render_settings.h"
+#include "scene.h"
+
+namespace clppm::test {
+
+// Renders `scene` in this process on test_device() for `passes` passes and returns the image.
+Image render_passes(Scene scene, const RenderSettings& settings, uint64_t passes, IntegratorStats* stats = nullptr);
+
+// Mean of channel c (or of all channels when c < 0) over the pixel rectangle [x0,x1) x [y0,y1).
+double region_mean(const Image& img, int x0, int y0, int x1, int y1, int c = -1);
+
+} // namespace clppm::test

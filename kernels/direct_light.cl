@@ -1,0 +1,25 @@
+/* direct_light.cl: explicit direct lighting at the hit points, one light sample per hit point per
+ * pass, averaged over passes (used with --direct sample; photons then carry indirect light and
+ * caustics only). */
+#include "rng.cl"
+#include "lights.cl"
+
+__kernel void direct_light(SCENE_PARAMS, ulong seed, ulong pass, __global const HitPoint* hitpoints,
+                           __global HitStats* stats, uint num_hitpoints) {
+    uint i = get_global_id(0);
+    if (i >= num_hitpoints) return;
+    __global const HitPoint* hp = &hitpoints[i];
+    Rng rng = rng_make(seed, pass, i, RNG_DIRECT);
+    float3 x = load3g(hp->pos), n = load3g(hp->normal), ng = oct_decode(hp->ng_oct);
+    float3 wi, contrib;
+    float dist;
+    if (!sample_light(SCENE_ARGS, x, &rng, &wi, &dist, &contrib)) return;
+    float cos_x = dot(wi, n);
+    if (cos_x <= 0.0f || dot(wi, ng) <= 0.0f) return;
+    float3 org = offset_origin(SCENE_ARGS, x, ng);
+    if (trace_occluded(SCENE_ARGS, org, wi, dist)) return;
+    float3 L = load3g(hp->weight) * contrib * cos_x; /* weight already holds throughput * albedo / pi */
+    stats[i].direct[0] += L.x;
+    stats[i].direct[1] += L.y;
+    stats[i].direct[2] += L.z;
+}

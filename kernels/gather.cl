@@ -1,0 +1,45 @@
+/* gather.cl: each hit point collects this pass's photons within its radius R(x) from the grid
+ * cells its sphere overlaps (Hachisuka et al. 2008, Sec. 4.2: M(x) and Phi_M). One work item
+ * writes one hit point: no atomics. Photons arriving from behind the surface, or lying on a
+ * surface that faces the other way, are rejected. */
+#include "hash_grid.cl"
+
+__kernel void gather(__constant GridInfo* g, __global const Photon* sorted, __global const uint* starts,
+                     __global const HitPoint* hitpoints, __global const HitStats* stats, uint num_hitpoints,
+                     __global PassFlux* out) {
+    uint i = get_global_id(0);
+    if (i >= num_hitpoints) return;
+    __global const HitPoint* hp = &hitpoints[i];
+    float3 x = load3g(hp->pos), n = load3g(hp->normal);
+    float r2 = (float)stats[i].r2;
+    float r = sqrt(r2);
+    int3 c0 = grid_cell(g, x - r), c1 = grid_cell(g, x + r);
+    long acc0 = 0, acc1 = 0, acc2 = 0;
+    uint m = 0;
+    for (int cz = c0.z; cz <= c1.z; ++cz)
+        for (int cy = c0.y; cy <= c1.y; ++cy)
+            for (int cx = c0.x; cx <= c1.x; ++cx) {
+                int3 cell = (int3)(cx, cy, cz);
+                uint b = grid_bucket(g, cell);
+                uint end = starts[b + 1];
+                for (uint k = starts[b]; k < end; ++k) {
+                    __global const Photon* ph = &sorted[k];
+                    float3 p = load3g(ph->pos);
+                    float3 d = p - x;
+                    if (dot(d, d) > r2) continue;
+                    /* A bucket holds other cells too: count each photon only from its own cell. */
+                    int3 pc = grid_cell(g, p);
+                    if (pc.x != cx || pc.y != cy || pc.z != cz) continue;
+                    if (dot(n, oct_decode(ph->wi_oct)) <= 0.0f) continue;
+                    if (dot(n, oct_decode(ph->normal_oct)) <= 0.0f) continue;
+                    acc0 += convert_long_rte((double)ph->flux[0] * FLUX_FIXED_SCALE);
+                    acc1 += convert_long_rte((double)ph->flux[1] * FLUX_FIXED_SCALE);
+                    acc2 += convert_long_rte((double)ph->flux[2] * FLUX_FIXED_SCALE);
+                    ++m;
+                }
+            }
+    out[i].flux[0] = acc0;
+    out[i].flux[1] = acc1;
+    out[i].flux[2] = acc2;
+    out[i].m = m;
+}

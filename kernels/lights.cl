@@ -1,0 +1,125 @@
+/* lights.cl: choosing a light in proportion to power, emitting photons from it, and sampling it
+ * for direct lighting. Photon flux is expressed in units of SceneInfo.total_power: a photon that
+ * picks light l with probability power_l / P carries P * (Le / mean(Le)) for uniform emitters. */
+#ifndef CLPPM_LIGHTS_CL
+#define CLPPM_LIGHTS_CL
+
+#include "scene.cl"
+
+/* light_cdf holds num_lights + 1 increasing values from 0 to 1. */
+uint pick_light(SCENE_PARAMS, float u) {
+    uint lo = 0, hi = info->num_lights; /* invariant: cdf[lo] <= u < cdf[hi] */
+    while (hi - lo > 1) {
+        uint mid = (lo + hi) >> 1;
+        if (light_cdf[mid] <= u) lo = mid;
+        else hi = mid;
+    }
+    return lo;
+}
+
+float light_pick_pdf(SCENE_PARAMS, uint l) { return lights[l].power / info->total_power; }
+
+/* glTF KHR_lights_punctual spot attenuation: a squared linear ramp in cos between the cones. */
+float spot_falloff(__global const Light* L, float cos_theta) {
+    float scale = 1.0f / fmax(1e-3f, L->cos_inner - L->cos_outer);
+    float a = clamp((cos_theta - L->cos_outer) * scale, 0.0f, 1.0f);
+    return a * a;
+}
+
+/* Emits one photon: origin, direction, flux (units of total power) and, for area lights, the
+ * normal of the emitting side (zero for punctual lights). */
+void emit_photon(SCENE_PARAMS, Rng* rng, float3* org, float3* dir, float3* flux) {
+    uint l = pick_light(SCENE_ARGS, rng_float(rng));
+    __global const Light* L = &lights[l];
+    float pick = light_pick_pdf(SCENE_ARGS, l);
+    float3 rad = load3g(L->radiance);
+    if (L->type == LIGHT_TRIANGLE) {
+        float3 v0 = tris[3 * L->prim].xyz, e1 = tris[3 * L->prim + 1].xyz, e2 = tris[3 * L->prim + 2].xyz;
+        float2 b = sample_triangle(rng_float(rng), rng_float(rng));
+        float3 n = normalize(cross(e1, e2));
+        float sides = 1.0f;
+        if (L->two_sided) {
+            sides = 2.0f;
+            if (rng_float(rng) < 0.5f) n = -n;
+        }
+        float3 p = v0 + e1 * b.x + e2 * b.y;
+        *dir = sample_cosine_hemisphere(n, rng_float(rng), rng_float(rng));
+        *org = offset_origin(SCENE_ARGS, p, n);
+        /* Le cos / (pick * (1/A) * (1/sides) * cos/pi) = Le A pi sides / pick */
+        *flux = rad * (L->area * PI_F * sides / (pick * info->total_power));
+    } else if (L->type == LIGHT_POINT) {
+        float z = 1.0f - 2.0f * rng_float(rng);
+        float r = sqrt(fmax(0.0f, 1.0f - z * z));
+        float phi = 2.0f * PI_F * rng_float(rng);
+        *org = load3g(L->position);
+        *dir = (float3)(r * cos(phi), r * sin(phi), z);
+        *flux = rad * (4.0f * PI_F / (pick * info->total_power)); /* I / (pick / 4pi) */
+    } else if (L->type == LIGHT_SPOT) {
+        float3 axis = load3g(L->direction);
+        *org = load3g(L->position);
+        *dir = sample_cone(axis, L->cos_outer, rng_float(rng), rng_float(rng));
+        float solid_angle = 2.0f * PI_F * (1.0f - L->cos_outer);
+        *flux = rad * (spot_falloff(L, dot(*dir, axis)) * solid_angle / (pick * info->total_power));
+    } else { /* LIGHT_DIRECTIONAL: a disc covering the scene's bounding sphere, outside it */
+        float3 d = load3g(L->direction);
+        float3 t, b;
+        make_frame(d, &t, &b);
+        float2 disc;
+        float r = sqrt(rng_float(rng)) * info->radius, phi = 2.0f * PI_F * rng_float(rng);
+        disc = (float2)(r * cos(phi), r * sin(phi));
+        *org = load3c(info->center) - d * (1.01f * info->radius) + t * disc.x + b * disc.y;
+        *dir = d;
+        float area = PI_F * info->radius * info->radius;
+        *flux = rad * (area / (pick * info->total_power)); /* E / (pick / area) */
+    }
+}
+
+/* One light sample for direct lighting at x (normal n on the side of interest): the direction
+ * to the light, the distance to shadow-test, and Le G / pdf without the cosine at x. Returns
+ * false when the sample contributes nothing. */
+bool sample_light(SCENE_PARAMS, float3 x, Rng* rng, float3* wi, float* dist, float3* contrib) {
+    if (info->num_lights == 0) return false;
+    uint l = pick_light(SCENE_ARGS, rng_float(rng));
+    __global const Light* L = &lights[l];
+    float pick = light_pick_pdf(SCENE_ARGS, l);
+    float3 rad = load3g(L->radiance);
+    if (L->type == LIGHT_TRIANGLE) {
+        float3 v0 = tris[3 * L->prim].xyz, e1 = tris[3 * L->prim + 1].xyz, e2 = tris[3 * L->prim + 2].xyz;
+        float2 b = sample_triangle(rng_float(rng), rng_float(rng));
+        float3 y = v0 + e1 * b.x + e2 * b.y;
+        float3 ny = normalize(cross(e1, e2));
+        float3 d = y - x;
+        float d2 = dot(d, d);
+        if (!(d2 > 0.0f)) return false;
+        float len = sqrt(d2);
+        *wi = d / len;
+        float cos_y = -dot(*wi, ny); /* > 0: x sees the front face */
+        if (L->two_sided) cos_y = fabs(cos_y);
+        if (cos_y <= 0.0f) return false;
+        /* Le cos_y / d^2 / (pick / A): area sampling (Veach 1997, Eq. 8.10) */
+        *contrib = rad * (cos_y * L->area / (d2 * pick));
+        /* Stop the shadow ray short of the light's own surface. */
+        float m = fmax(fabs(y.x), fmax(fabs(y.y), fabs(y.z)));
+        *dist = len - 2.0f * (info->ray_eps + 4e-6f * m);
+        return *dist > 0.0f;
+    }
+    if (L->type == LIGHT_DIRECTIONAL) {
+        *wi = -load3g(L->direction);
+        *dist = 4.0f * info->radius + length(x - load3c(info->center));
+        *contrib = rad / pick;
+        return true;
+    }
+    float3 d = load3g(L->position) - x;
+    float d2 = dot(d, d);
+    if (!(d2 > 0.0f)) return false;
+    float len = sqrt(d2);
+    *wi = d / len;
+    float falloff = 1.0f;
+    if (L->type == LIGHT_SPOT) falloff = spot_falloff(L, -dot(*wi, load3g(L->direction)));
+    if (falloff <= 0.0f) return false;
+    *dist = len;
+    *contrib = rad * (falloff / (d2 * pick)); /* I / d^2 */
+    return true;
+}
+
+#endif

@@ -1,0 +1,8 @@
+/* ppm_program.cl: the kernels of one progressive photon mapping render, built as one program. */
+#include "eye_pass.cl"
+#include "photon_trace.cl"
+#include "hash_grid.cl"
+#include "gather.cl"
+#include "direct_light.cl"
+#include "ppm_update.cl"
+#include "film.cl"

@@ -1,0 +1,43 @@
+/* ppm_update.cl: the progressive radius and flux update (Hachisuka et al. 2008, Eqs. 7-10):
+ *   N' = N + alpha M,  R'^2 = R^2 (N + alpha M) / (N + M),  tau' = (tau + tau_M) (N + alpha M) / (N + M)
+ * in double precision. tau_M = f * Phi_M, where f (the hit point weight: path throughput times
+ * the Lambertian BRDF) is constant over the gather disc. The host twin is src/ppm_stats.h. */
+#include "shared_types.h"
+
+void ppm_update_stats(__global HitStats* s, double M, double3 tau_M, double alpha) {
+    if (M <= 0.0) return; /* no photon: nothing changes (Eq. 7 with M = 0) */
+    double N = s->n;
+    double ratio = (N + alpha * M) / (N + M);
+    s->n = N + alpha * M;
+    s->r2 *= ratio;
+    s->tau[0] = (s->tau[0] + tau_M.x) * ratio;
+    s->tau[1] = (s->tau[1] + tau_M.y) * ratio;
+    s->tau[2] = (s->tau[2] + tau_M.z) * ratio;
+}
+
+/* Also reduces sum and max of R per work-group into radius_partials (for the next grid's cell
+ * size; the image does not depend on it). Launched with local size PPM_UPDATE_WG. */
+#define PPM_UPDATE_WG 64
+__kernel __attribute__((reqd_work_group_size(PPM_UPDATE_WG, 1, 1))) void ppm_update(
+    __global const PassFlux* pass, __global const HitPoint* hitpoints, __global HitStats* stats, uint num_hitpoints,
+    double alpha, __global float2* radius_partials) {
+    __local float2 part[PPM_UPDATE_WG];
+    uint i = get_global_id(0), lid = get_local_id(0);
+    float2 mine = (float2)(0.0f);
+    if (i < num_hitpoints) {
+        __global const PassFlux* pf = &pass[i];
+        __global const HitPoint* hp = &hitpoints[i];
+        double3 phi = (double3)((double)pf->flux[0], (double)pf->flux[1], (double)pf->flux[2]) / FLUX_FIXED_SCALE;
+        double3 f = (double3)(hp->weight[0], hp->weight[1], hp->weight[2]);
+        ppm_update_stats(&stats[i], (double)pf->m, f * phi, alpha);
+        float r = (float)sqrt(stats[i].r2);
+        mine = (float2)(r, r);
+    }
+    part[lid] = mine;
+    barrier(CLK_LOCAL_MEM_FENCE);
+    for (uint stride = PPM_UPDATE_WG / 2; stride > 0; stride >>= 1) {
+        if (lid < stride) part[lid] = (float2)(part[lid].x + part[lid + stride].x, fmax(part[lid].y, part[lid + stride].y));
+        barrier(CLK_LOCAL_MEM_FENCE);
+    }
+    if (lid == 0) radius_partials[get_group_id(0)] = part[0];
+}

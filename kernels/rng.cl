@@ -1,0 +1,48 @@
+/* rng.cl: PCG32 (O'Neill 2014) with streams derived by SplitMix64 from (seed, pass, index, purpose),
+ * so every pass and every work item draws from its own stream and the image does not depend on
+ * the work-group size or the order work items run in. The host twin is src/rng.h. */
+#ifndef CLPPM_RNG_CL
+#define CLPPM_RNG_CL
+
+typedef struct {
+    ulong state;
+    ulong inc;
+} Rng;
+
+ulong splitmix64(ulong x) {
+    x += 0x9E3779B97F4A7C15UL;
+    x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9UL;
+    x = (x ^ (x >> 27)) * 0x94D049BB133111EBUL;
+    return x ^ (x >> 31);
+}
+
+uint rng_next(Rng* r) {
+    ulong old = r->state;
+    r->state = old * 6364136223846793005UL + r->inc;
+    uint xorshifted = (uint)(((old >> 18) ^ old) >> 27);
+    uint rot = (uint)(old >> 59);
+    return (xorshifted >> rot) | (xorshifted << ((0u - rot) & 31u));
+}
+
+/* Uniform in [0, 1): 24 random bits, exactly representable. */
+float rng_float(Rng* r) { return (float)(rng_next(r) >> 8) * (1.0f / 16777216.0f); }
+
+/* purpose separates the streams of different kernels that share (pass, index). */
+Rng rng_make(ulong seed, ulong pass, ulong index, uint purpose) {
+    Rng r;
+    ulong a = splitmix64(seed ^ splitmix64(pass * 0x100000001B3UL + purpose));
+    ulong b = splitmix64(a ^ splitmix64(index));
+    r.state = 0;
+    r.inc = (b << 1) | 1UL;
+    rng_next(&r);
+    r.state += splitmix64(b);
+    rng_next(&r);
+    return r;
+}
+
+#define RNG_EYE 1u
+#define RNG_PHOTON 2u
+#define RNG_DIRECT 3u
+#define RNG_PATH 4u
+
+#endif

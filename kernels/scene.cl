@@ -1,0 +1,108 @@
+/* scene.cl: the scene buffers every kernel receives, and what a ray hit means: the surface
+ * (position, normals, texture coordinates, material) and the material's colours there. */
+#ifndef CLPPM_SCENE_CL
+#define CLPPM_SCENE_CL
+
+#include "shared_types.h"
+#include "sampling.cl"
+#include "bvh_traverse.cl"
+
+/* One spelling of the scene arguments for kernels and the functions they call. */
+#define SCENE_PARAMS                                                                              \
+    __global const BvhNode *bvh_nodes, __global const float4 *tris,                               \
+        __global const TriShading *shading, __global const Material *materials,                   \
+        __global const Texture *textures, __global const float4 *texels,                          \
+        __global const Light *lights, __global const float *light_cdf, __constant SceneInfo *info
+#define SCENE_ARGS bvh_nodes, tris, shading, materials, textures, texels, lights, light_cdf, info
+
+typedef struct {
+    float3 p;
+    float3 ng;  /* geometric normal, on the side the ray came from */
+    float3 ns;  /* shading normal, on the same side */
+    float2 uv;
+    uint material;
+    uint prim;
+    bool front; /* the ray arrived on the side the winding (glTF counter-clockwise) normal faces */
+    float t;
+} Surface;
+
+bool trace_closest(SCENE_PARAMS, float3 org, float3 dir, float tmax, Hit* hit) {
+    return bvh_intersect(bvh_nodes, tris, org, dir, tmax, false, hit);
+}
+
+bool trace_occluded(SCENE_PARAMS, float3 org, float3 dir, float tmax) {
+    Hit hit;
+    return bvh_intersect(bvh_nodes, tris, org, dir, tmax, true, &hit);
+}
+
+/* Offset along the normal on the side the next ray leaves from, scaled with the scene and with
+ * the magnitude of the position (float spacing grows with |p|). */
+float3 offset_origin(SCENE_PARAMS, float3 p, float3 n_side) {
+    float m = fmax(fabs(p.x), fmax(fabs(p.y), fabs(p.z)));
+    return p + n_side * (info->ray_eps + 4e-6f * m);
+}
+
+Surface make_surface(SCENE_PARAMS, float3 dir, const Hit* h) {
+    Surface s;
+    uint prim = h->prim;
+    float3 v0 = tris[3 * prim].xyz, e1 = tris[3 * prim + 1].xyz, e2 = tris[3 * prim + 2].xyz;
+    float b1 = h->u, b2 = h->v, b0 = 1.0f - b1 - b2;
+    s.p = v0 + e1 * b1 + e2 * b2;
+    s.t = h->t;
+    s.prim = prim;
+    float3 ng = normalize(cross(e1, e2));
+    __global const TriShading* sh = &shading[prim];
+    float3 ns = load3g(sh->n0) * b0 + load3g(sh->n1) * b1 + load3g(sh->n2) * b2;
+    float len = length(ns);
+    ns = (len > 1e-12f && isfinite(len)) ? ns / len : ng;
+    s.uv = (float2)(sh->uv0[0], sh->uv0[1]) * b0 + (float2)(sh->uv1[0], sh->uv1[1]) * b1 +
+           (float2)(sh->uv2[0], sh->uv2[1]) * b2;
+    s.material = sh->material;
+    s.front = dot(ng, dir) < 0.0f;
+    if (!s.front) {
+        ng = -ng;
+        ns = -ns;
+    }
+    /* An interpolated normal facing away from the ray would make shading inconsistent. */
+    if (dot(ns, dir) >= 0.0f) ns = ng;
+    s.ng = ng;
+    s.ns = ns;
+    return s;
+}
+
+float3 texture_lookup(SCENE_PARAMS, int index, float2 uv) {
+    __global const Texture* tex = &textures[index];
+    float w = (float)tex->width, hgt = (float)tex->height;
+    float x = uv.x * w - 0.5f, y = uv.y * hgt - 0.5f;
+    float fx = floor(x), fy = floor(y);
+    float ax = x - fx, ay = y - fy;
+    int ix = (int)fx, iy = (int)fy;
+    float3 acc = (float3)(0.0f);
+    for (int k = 0; k < 4; ++k) {
+        int px = ix + (k & 1), py = iy + (k >> 1);
+        if (tex->wrap & 1u) px = clamp(px, 0, (int)tex->width - 1);
+        else px = ((px % (int)tex->width) + (int)tex->width) % (int)tex->width;
+        if (tex->wrap & 2u) py = clamp(py, 0, (int)tex->height - 1);
+        else py = ((py % (int)tex->height) + (int)tex->height) % (int)tex->height;
+        float wx = (k & 1) ? ax : 1.0f - ax, wy = (k >> 1) ? ay : 1.0f - ay;
+        acc += texels[tex->offset + (uint)py * tex->width + (uint)px].xyz * (wx * wy);
+    }
+    return acc;
+}
+
+/* Base colour at the surface: factor times texture (linear). */
+float3 surface_base_color(SCENE_PARAMS, const Surface* s) {
+    __global const Material* m = &materials[s->material];
+    float3 c = load3g(m->base_color);
+    if (m->base_color_tex >= 0) c *= texture_lookup(SCENE_ARGS, m->base_color_tex, s->uv);
+    return c;
+}
+
+/* Emitted radiance towards the ray: from the front face, or both faces when double-sided. */
+float3 surface_emission(SCENE_PARAMS, const Surface* s) {
+    __global const Material* m = &materials[s->material];
+    if (!s->front && !(m->flags & MATERIAL_FLAG_DOUBLE_SIDED)) return (float3)(0.0f);
+    return load3g(m->emission);
+}
+
+#endif

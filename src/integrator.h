@@ -1,0 +1,52 @@
+// The interface every integrator offers the render loop: a pass is the unit of work
+// (SmallVCM's RunIteration), and the image can be taken at any pass boundary.
+#pragma once
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <string>
+
+#include "cl.h"
+#include "device.h"
+#include "image_io.h"
+#include "render_scene.h"
+#include "render_settings.h"
+
+namespace clppm {
+
+struct IntegratorStats {
+    uint64_t passes = 0;
+    uint64_t photons_emitted = 0;      // total N_emitted
+    uint64_t photons_stored = 0;       // total photon hits stored over all passes
+    uint64_t hitpoints = 0;
+    double initial_radius = 0;
+    double mean_radius = 0;            // current mean R over hit points (PPM)
+    std::map<std::string, double> phase_seconds; // device time per phase, from profiling events
+    size_t device_bytes = 0;           // integrator buffers (scene buffers are counted apart)
+};
+
+class IntegratorBase {
+public:
+    virtual ~IntegratorBase() = default;
+    virtual std::string name() const = 0;
+    // Everything before the first refinement pass (PPM: the eye pass).
+    virtual void prepare() = 0;
+    virtual void run_pass() = 0;
+    virtual Image image() = 0;
+    const IntegratorStats& stats() const { return stats_; }
+
+protected:
+    IntegratorStats stats_;
+};
+
+std::unique_ptr<IntegratorBase> make_integrator(const DeviceContext& dc, const DeviceScene& scene,
+                                                const RenderSettings& settings, const cl::Program& program);
+
+// The kernel program an integrator needs, with its build options.
+std::string integrator_program_file(const RenderSettings& settings);
+std::string integrator_build_options(const RenderSettings& settings, const DeviceInfo& device);
+
+// Adds the device time of a finished event to phase_seconds[phase].
+void add_event_time(IntegratorStats& stats, const std::string& phase, const cl::Event& ev);
+
+} // namespace clppm

@@ -1,0 +1,52 @@
+#include "pt_integrator.h"
+
+namespace clppm {
+
+PtIntegrator::PtIntegrator(const DeviceContext& dc, const DeviceScene& scene, const RenderSettings& settings,
+                           const cl::Program& program)
+    : dc_(dc), scene_(scene), settings_(settings) {
+    k_trace_ = cl::Kernel(program, "path_trace");
+    k_film_ = cl::Kernel(program, "pt_film");
+    num_pixels_ = scene.camera.width * scene.camera.height;
+}
+
+void PtIntegrator::prepare() {
+    size_t bytes = size_t(num_pixels_) * 3 * sizeof(cl_double);
+    accum_ = cl::Buffer(dc_.context, CL_MEM_READ_WRITE, bytes);
+    dc_.queue.enqueueFillBuffer(accum_, cl_double(0), 0, bytes);
+    image_buf_ = cl::Buffer(dc_.context, CL_MEM_WRITE_ONLY, size_t(num_pixels_) * sizeof(cl_float4));
+    stats_.device_bytes = bytes + size_t(num_pixels_) * sizeof(cl_float4);
+}
+
+void PtIntegrator::run_pass() {
+    int a = scene_.set_scene_args(k_trace_);
+    k_trace_.setArg(a++, scene_.camera_buf);
+    k_trace_.setArg(a++, cl_ulong(settings_.seed));
+    k_trace_.setArg(a++, cl_ulong(stats_.passes + 1));
+    k_trace_.setArg(a++, cl_uint(num_pixels_));
+    k_trace_.setArg(a++, accum_);
+    cl::Event ev;
+    dc_.queue.enqueueNDRangeKernel(k_trace_, cl::NullRange, cl::NDRange(num_pixels_), cl::NullRange, nullptr, &ev);
+    ev.wait();
+    add_event_time(stats_, "path_trace", ev);
+    stats_.passes += 1;
+}
+
+Image PtIntegrator::image() {
+    k_film_.setArg(0, accum_);
+    k_film_.setArg(1, cl_uint(num_pixels_));
+    k_film_.setArg(2, cl_double(double(stats_.passes)));
+    k_film_.setArg(3, image_buf_);
+    dc_.queue.enqueueNDRangeKernel(k_film_, cl::NullRange, cl::NDRange(num_pixels_), cl::NullRange);
+    std::vector<cl_float4> px(num_pixels_);
+    dc_.queue.enqueueReadBuffer(image_buf_, CL_TRUE, 0, px.size() * sizeof(cl_float4), px.data());
+    Image img;
+    img.width = int(scene_.camera.width);
+    img.height = int(scene_.camera.height);
+    img.rgb.resize(size_t(num_pixels_) * 3);
+    for (size_t i = 0; i < px.size(); ++i)
+        for (int c = 0; c < 3; ++c) img.rgb[3 * i + c] = px[i].s[c];
+    return img;
+}
+
+} // namespace clppm

@@ -1,0 +1,152 @@
+// Scenes built in code for the tests: quads, boxes and spheres with exactly known materials,
+// lights and cameras, so that expected radiance values can be written down analytically.
+#pragma once
+#include <cmath>
+#include <vector>
+
+#include "scene.h"
+#include "shared_types.h"
+
+namespace clppm::test {
+
+inline uint32_t add_material(Scene& s, float r, float g, float b, float emission = 0.f, bool double_sided = false,
+                             uint32_t kind = MATERIAL_DIFFUSE, float ior = 1.5f) {
+    dev::Material m{};
+    m.base_color[0] = r, m.base_color[1] = g, m.base_color[2] = b, m.base_color[3] = 1;
+    m.emission[0] = m.emission[1] = m.emission[2] = emission;
+    m.roughness = 1;
+    m.ior = ior;
+    m.metallic = kind == MATERIAL_MIRROR ? 1.f : 0.f;
+    m.transmission = kind == MATERIAL_DIELECTRIC ? 1.f : 0.f;
+    m.base_color_tex = -1;
+    m.flags = double_sided ? MATERIAL_FLAG_DOUBLE_SIDED : 0u;
+    m.kind = kind;
+    s.materials.push_back(m);
+    return uint32_t(s.materials.size() - 1);
+}
+
+inline void add_triangle(Scene& s, Vec3 a, Vec3 b, Vec3 c, uint32_t material) {
+    s.positions.push_back(a), s.positions.push_back(b), s.positions.push_back(c);
+    float e1[3] = {b.x - a.x, b.y - a.y, b.z - a.z}, e2[3] = {c.x - a.x, c.y - a.y, c.z - a.z};
+    float n[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
+    float l = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    dev::TriShading sh{};
+    for (int k = 0; k < 3; ++k) sh.n0[k] = sh.n1[k] = sh.n2[k] = n[k] / l;
+    sh.material = material;
+    s.shading.push_back(sh);
+}
+
+// A quad a-b-c-d (counter-clockwise seen from the side its normal faces).
+inline void add_quad(Scene& s, Vec3 a, Vec3 b, Vec3 c, Vec3 d, uint32_t material) {
+    add_triangle(s, a, b, c, material);
+    add_triangle(s, a, c, d, material);
+}
+
+// A UV sphere; normals point outwards unless `inward`. Flat triangle normals replaced by smooth ones.
+inline void add_sphere(Scene& s, Vec3 c, float r, int rings, int segments, uint32_t material, bool inward = false) {
+    auto point = [&](int i, int j) {
+        double th = M_PI * i / rings, ph = 2 * M_PI * j / segments;
+        return Vec3{float(c.x + r * std::sin(th) * std::cos(ph)), float(c.y + r * std::cos(th)),
+                    float(c.z + r * std::sin(th) * std::sin(ph))};
+    };
+    for (int i = 0; i < rings; ++i)
+        for (int j = 0; j < segments; ++j) {
+            Vec3 p00 = point(i, j), p01 = point(i, j + 1), p10 = point(i + 1, j), p11 = point(i + 1, j + 1);
+            // Outward winding: (p00, p01, p11) seen from outside is counter-clockwise.
+            Vec3 tri[2][3] = {{p00, p01, p11}, {p00, p11, p10}};
+            for (auto& t : tri) {
+                if (inward) std::swap(t[1], t[2]);
+                size_t before = s.shading.size();
+                add_triangle(s, t[0], t[1], t[2], material);
+                if (s.shading.size() == before) continue;
+                dev::TriShading& sh = s.shading.back();
+                float* ns[3] = {sh.n0, sh.n1, sh.n2};
+                for (int k = 0; k < 3; ++k) {
+                    float d[3] = {t[k].x - c.x, t[k].y - c.y, t[k].z - c.z};
+                    float l = std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) * (inward ? -1.f : 1.f);
+                    for (int q = 0; q < 3; ++q) ns[k][q] = d[q] / l;
+                }
+            }
+        }
+    // Drop the zero-area triangles at the poles.
+    for (size_t t = 0; t < s.shading.size();) {
+        const Vec3 &a = s.positions[3 * t], &b = s.positions[3 * t + 1], &cc = s.positions[3 * t + 2];
+        float e1[3] = {b.x - a.x, b.y - a.y, b.z - a.z}, e2[3] = {cc.x - a.x, cc.y - a.y, cc.z - a.z};
+        float n[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
+        if (n[0] * n[0] + n[1] * n[1] + n[2] * n[2] < 1e-20f) {
+            s.positions.erase(s.positions.begin() + 3 * t, s.positions.begin() + 3 * t + 3);
+            s.shading.erase(s.shading.begin() + t);
+        } else {
+            ++t;
+        }
+    }
+}
+
+inline void add_camera(Scene& s, Vec3 pos, Vec3 forward, Vec3 up, float yfov) {
+    CameraDesc c;
+    c.position[0] = pos.x, c.position[1] = pos.y, c.position[2] = pos.z;
+    c.forward[0] = forward.x, c.forward[1] = forward.y, c.forward[2] = forward.z;
+    c.up[0] = up.x, c.up[1] = up.y, c.up[2] = up.z;
+    c.yfov = yfov;
+    c.aspect = 1;
+    s.cameras.push_back(c);
+}
+
+inline void add_point_light(Scene& s, Vec3 pos, float intensity) {
+    dev::Light l{};
+    l.type = LIGHT_POINT;
+    l.position[0] = pos.x, l.position[1] = pos.y, l.position[2] = pos.z;
+    l.radiance[0] = l.radiance[1] = l.radiance[2] = intensity;
+    s.punctual_lights.push_back(l);
+}
+
+// A diffuse plane y = 0 of half-size `half`, albedo rho, seen from straight above.
+inline Scene plane_under_point_light(float rho, float intensity, float light_height, float half = 4.f) {
+    Scene s;
+    s.source = "<plane under point light>";
+    uint32_t m = add_material(s, rho, rho, rho);
+    add_quad(s, {-half, 0, -half}, {-half, 0, half}, {half, 0, half}, {half, 0, -half}, m);
+    add_point_light(s, {0, light_height, 0}, intensity);
+    add_camera(s, {0, 3, 0}, {0, -1, 0}, {0, 0, -1}, 0.6f);
+    return s;
+}
+
+// The white furnace: a closed sphere, albedo rho, emitting Le from both sides; the camera inside.
+// Radiance everywhere is Le / (1 - rho).
+inline Scene furnace(float rho, float le) {
+    Scene s;
+    s.source = "<furnace>";
+    uint32_t m = add_material(s, rho, rho, rho, le, true);
+    add_sphere(s, {0, 0, 0}, 1.f, 24, 48, m, true);
+    add_camera(s, {0, 0, 0.2f}, {0, 0, -1}, {0, 1, 0}, 1.0f);
+    return s;
+}
+
+// A closed diffuse box with coloured walls and a square ceiling light: the diffuse-only scene PPM
+// and path tracing must agree on.
+inline Scene diffuse_box(bool with_blocks = true) {
+    Scene s;
+    s.source = "<diffuse box>";
+    uint32_t white = add_material(s, 0.7f, 0.7f, 0.7f), red = add_material(s, 0.7f, 0.1f, 0.1f),
+             green = add_material(s, 0.1f, 0.7f, 0.1f), light = add_material(s, 0.f, 0.f, 0.f, 12.f);
+    add_quad(s, {-1, -1, -1}, {-1, -1, 1}, {1, -1, 1}, {1, -1, -1}, white);  // floor, up
+    add_quad(s, {-1, 1, -1}, {1, 1, -1}, {1, 1, 1}, {-1, 1, 1}, white);      // ceiling, down
+    add_quad(s, {-1, -1, -1}, {1, -1, -1}, {1, 1, -1}, {-1, 1, -1}, white);  // back, +z
+    add_quad(s, {-1, -1, 1}, {-1, 1, 1}, {1, 1, 1}, {1, -1, 1}, white);      // front, -z
+    add_quad(s, {-1, -1, -1}, {-1, 1, -1}, {-1, 1, 1}, {-1, -1, 1}, red);    // left, +x
+    add_quad(s, {1, -1, -1}, {1, -1, 1}, {1, 1, 1}, {1, 1, -1}, green);      // right, -x
+    add_quad(s, {-0.3f, 0.99f, -0.3f}, {0.3f, 0.99f, -0.3f}, {0.3f, 0.99f, 0.3f}, {-0.3f, 0.99f, 0.3f}, light);
+    if (with_blocks) {
+        // A box standing on the floor (top and four sides).
+        float x0 = -0.6f, x1 = 0.0f, z0 = -0.5f, z1 = 0.1f, y1 = -0.2f;
+        add_quad(s, {x0, y1, z0}, {x0, y1, z1}, {x1, y1, z1}, {x1, y1, z0}, white);
+        add_quad(s, {x0, -1, z1}, {x1, -1, z1}, {x1, y1, z1}, {x0, y1, z1}, white);
+        add_quad(s, {x0, -1, z0}, {x0, y1, z0}, {x1, y1, z0}, {x1, -1, z0}, white);
+        add_quad(s, {x0, -1, z0}, {x0, -1, z1}, {x0, y1, z1}, {x0, y1, z0}, white);
+        add_quad(s, {x1, -1, z0}, {x1, y1, z0}, {x1, y1, z1}, {x1, -1, z1}, white);
+    }
+    add_camera(s, {0, 0, 0.95f}, {0, 0, -1}, {0, 1, 0}, 1.3f);
+    return s;
+}
+
+} // namespace clppm::test
