@@ -1,0 +1,55 @@
+// The clppm command line: what the user asked for, parsed and range-checked in one place so that
+// the renderer only ever sees valid values. Errors are one line naming the option and its range.
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace clppm {
+
+enum class Integrator { PPM, PT };           // --integrator ppm|pt
+enum class DirectLighting { Photons, Sample }; // --direct photons|sample
+
+const char* to_string(Integrator integrator);  // "ppm", "pt"
+const char* to_string(DirectLighting direct);  // "photons", "sample"
+
+struct Options {
+    std::string scene;                  // .gltf/.glb; empty = the embedded Cornell box
+    std::string output = "clppm.exr";   // -o/--output, always ends in .exr
+    bool write_png = true;              // false with --no-png
+    int width = 0;                      // 1..16384; 0 = from the camera
+    int height = 0;                     // 1..16384; 0 = from the camera
+    uint64_t passes = 64;               // 0 = unlimited (only with --time); 64 when neither is given
+    double time_limit = 0.0;            // --time seconds; 0 = none
+    uint32_t photons_per_pass = 200000; // --photons, 1..2^31-1
+    double alpha = 0.7;                 // in (0, 1]
+    double radius = 0.0;                // initial radius R0; 0 = heuristic
+    uint64_t seed = 1;
+    bool list_devices = false;
+    std::vector<std::string> devices;   // --device, repeatable, in the order given
+    int camera = 0;                     // glTF camera index
+    bool quiet = false;
+    std::string stats_json;             // --stats-json FILE; empty = none
+    Integrator integrator = Integrator::PPM;
+    DirectLighting direct = DirectLighting::Sample;
+    int spp = 1;                        // PPM hit points (samples) per pixel, 1..256
+    int max_bounces = 16;               // 1..1024
+    uint64_t progressive_output = 0;    // save every K passes; 0 = off
+    std::string kernel_dir;             // load kernels from here instead of the embedded copies
+    std::string dump_kernel_source;     // write the assembled kernel source and build options here
+    bool help = false;                  // -h/--help: print usage() and exit
+    bool version = false;               // --version: print the version and exit
+};
+
+// Parses argv[1..argc-1]. Both "--opt value" and "--opt=value" are accepted. Parsing stops at
+// -h/--help or --version (the flag is set, the rest is ignored). Throws clppm::Error with one line
+// such as "--alpha 1.5: must be in (0, 1]" or "unknown option --foo (see --help)".
+Options parse_options(int argc, char** argv);
+
+// The same on already split arguments (without the program name); used by the tests.
+Options parse_options(const std::vector<std::string>& args);
+
+// Usage text listing every option with its range and default.
+std::string usage();
+
+} // namespace clppm

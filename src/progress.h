@@ -1,0 +1,70 @@
+// Render progress on stderr. On a terminal: one line redrawn in place (at most ~10 times a
+// second) with a bar when a pass or time limit is known. Otherwise (a log, CI): plain lines, at
+// most one every few seconds, so logs stay short. --quiet prints nothing.
+#pragma once
+#include <cstdint>
+#include <cstdio>
+#include <string>
+
+namespace clppm {
+
+struct ProgressInfo {
+    uint64_t pass = 0;        // passes completed
+    uint64_t pass_limit = 0;  // 0 = none
+    double time_limit = 0.0;  // seconds; 0 = none
+    uint64_t photons = 0;     // photons traced so far
+    double radius = 0.0;      // current gather radius (whatever the caller reports)
+    double elapsed_s = 0.0;
+    bool finished = false;    // the final line: "done" instead of an ETA
+};
+
+// One progress line without any terminal control characters, e.g.
+// "[#########-----------]  45% pass 29/64  5.80M photons  r 0.0123  3.10 pass/s  9s  ETA 11s".
+// `with_bar` adds the bar (only drawn when a limit is known).
+std::string format_progress_line(const ProgressInfo& info, bool with_bar);
+
+// Completed fraction in [0, 1] of whichever limit is closer; negative when there is no limit.
+double progress_fraction(const ProgressInfo& info);
+
+// Seconds left until the nearer limit; negative when unknown (no limit, or no pass done yet).
+double progress_eta(const ProgressInfo& info);
+
+// 950 -> "950", 12345 -> "12.3k", 5400000 -> "5.40M", 2e9 -> "2.00G".
+std::string format_count(uint64_t n);
+
+// 42.4 -> "42s", 185 -> "3m05s", 3725 -> "1h02m".
+std::string format_duration(double seconds);
+
+class Progress {
+public:
+    // Reports to stderr, redrawing in place if stderr is a terminal.
+    Progress(bool quiet, uint64_t pass_limit, double time_limit);
+    // Reports to `out`, as a terminal or not; for tests.
+    Progress(std::FILE* out, bool terminal, bool quiet, uint64_t pass_limit, double time_limit);
+    // Ends a half-drawn terminal line, so that an error printed after an aborted render starts on
+    // a line of its own.
+    ~Progress();
+    Progress(const Progress&) = delete;
+    Progress& operator=(const Progress&) = delete;
+
+    // Call after each pass; draws only if enough time has passed since the last line.
+    void update(uint64_t pass, uint64_t photons, double radius, double elapsed_s);
+    // Draws the final line unconditionally (and ends it on a terminal).
+    void finish(uint64_t pass, uint64_t photons, double radius, double elapsed_s);
+
+private:
+    ProgressInfo info(uint64_t pass, uint64_t photons, double radius, double elapsed_s) const;
+    void draw(const ProgressInfo& info);
+
+    std::FILE* out_;
+    bool terminal_;
+    bool quiet_;
+    uint64_t pass_limit_;
+    double time_limit_;
+    bool drawn_ = false;      // a line has been drawn
+    double last_draw_s_ = 0.0;
+    size_t last_length_ = 0;  // of the terminal line, to blank out leftovers of a longer one
+    bool line_open_ = false;  // a terminal line without its newline yet
+};
+
+} // namespace clppm

@@ -1,0 +1,242 @@
+// options: every option in both spellings, the defaults, and the exact one-line errors.
+#include "options.h"
+
+#include <gtest/gtest.h>
+
+#include "error.h"
+
+namespace clppm {
+namespace {
+
+using Args = std::vector<std::string>;
+
+std::string error_of(const Args& args) {
+    try {
+        parse_options(args);
+    } catch (const Error& e) {
+        return e.what();
+    }
+    return "(no error)";
+}
+
+TEST(Options, Defaults) {
+    Options o = parse_options(Args{});
+    EXPECT_EQ(o.scene, "");
+    EXPECT_EQ(o.output, "clppm.exr");
+    EXPECT_TRUE(o.write_png);
+    EXPECT_EQ(o.width, 0);
+    EXPECT_EQ(o.height, 0);
+    EXPECT_EQ(o.passes, 64u);
+    EXPECT_EQ(o.time_limit, 0.0);
+    EXPECT_EQ(o.photons_per_pass, 200000u);
+    EXPECT_EQ(o.alpha, 0.7);
+    EXPECT_EQ(o.radius, 0.0);
+    EXPECT_EQ(o.seed, 1u);
+    EXPECT_FALSE(o.list_devices);
+    EXPECT_TRUE(o.devices.empty());
+    EXPECT_EQ(o.camera, 0);
+    EXPECT_FALSE(o.quiet);
+    EXPECT_EQ(o.stats_json, "");
+    EXPECT_EQ(o.integrator, Integrator::PPM);
+    EXPECT_EQ(o.direct, DirectLighting::Sample);
+    EXPECT_EQ(o.spp, 1);
+    EXPECT_EQ(o.max_bounces, 16);
+    EXPECT_EQ(o.progressive_output, 0u);
+    EXPECT_EQ(o.kernel_dir, "");
+    EXPECT_EQ(o.dump_kernel_source, "");
+    EXPECT_FALSE(o.help);
+    EXPECT_FALSE(o.version);
+}
+
+// Every valued option, once as "--opt value" and once as "--opt=value".
+class BothForms : public ::testing::TestWithParam<bool> {
+protected:
+    Options parse(const Args& pairs) {
+        Args args;
+        for (size_t i = 0; i + 1 < pairs.size(); i += 2) {
+            if (GetParam()) {
+                args.push_back(pairs[i] + "=" + pairs[i + 1]);
+            } else {
+                args.push_back(pairs[i]);
+                args.push_back(pairs[i + 1]);
+            }
+        }
+        return parse_options(args);
+    }
+};
+
+TEST_P(BothForms, EveryValuedOption) {
+    Options o = parse({"--output", "r/x.exr", "--width", "640", "--height", "480", "--passes", "10", "--time", "2.5",
+                       "--photons", "1000", "--alpha", "0.5", "--radius", "0.25", "--seed", "18446744073709551615",
+                       "--device", "gpu", "--device", "1", "--camera", "2", "--stats-json", "s.json",
+                       "--integrator", "pt", "--direct", "photons", "--spp", "256", "--max-bounces", "1024",
+                       "--progressive-output", "8", "--kernel-dir", "kernels", "--dump-kernel-source", "k.cl"});
+    EXPECT_EQ(o.output, "r/x.exr");
+    EXPECT_EQ(o.width, 640);
+    EXPECT_EQ(o.height, 480);
+    EXPECT_EQ(o.passes, 10u);
+    EXPECT_EQ(o.time_limit, 2.5);
+    EXPECT_EQ(o.photons_per_pass, 1000u);
+    EXPECT_EQ(o.alpha, 0.5);
+    EXPECT_EQ(o.radius, 0.25);
+    EXPECT_EQ(o.seed, UINT64_MAX);
+    EXPECT_EQ(o.devices, (std::vector<std::string>{"gpu", "1"}));
+    EXPECT_EQ(o.camera, 2);
+    EXPECT_EQ(o.stats_json, "s.json");
+    EXPECT_EQ(o.integrator, Integrator::PT);
+    EXPECT_EQ(o.direct, DirectLighting::Photons);
+    EXPECT_EQ(o.spp, 256);
+    EXPECT_EQ(o.max_bounces, 1024);
+    EXPECT_EQ(o.progressive_output, 8u);
+    EXPECT_EQ(o.kernel_dir, "kernels");
+    EXPECT_EQ(o.dump_kernel_source, "k.cl");
+}
+
+TEST_P(BothForms, RangeEnds) {
+    Options o = parse({"--width", "16384", "--height", "1", "--photons", "2147483647", "--alpha", "1",
+                       "--seed", "0", "--integrator", "ppm", "--direct", "sample", "--spp", "1",
+                       "--max-bounces", "1"});
+    EXPECT_EQ(o.width, 16384);
+    EXPECT_EQ(o.height, 1);
+    EXPECT_EQ(o.photons_per_pass, 2147483647u);
+    EXPECT_EQ(o.alpha, 1.0);
+    EXPECT_EQ(o.seed, 0u);
+    EXPECT_EQ(o.integrator, Integrator::PPM);
+    EXPECT_EQ(o.direct, DirectLighting::Sample);
+    EXPECT_EQ(o.spp, 1);
+    EXPECT_EQ(o.max_bounces, 1);
+}
+
+INSTANTIATE_TEST_SUITE_P(Options, BothForms, ::testing::Values(false, true),
+                         [](const auto& info) { return info.param ? "Equals" : "Separate"; });
+
+TEST(Options, FlagsAndShortForms) {
+    Options o = parse_options(Args{"-o", "a.exr", "--no-png", "--list-devices", "--quiet", "scene.glb"});
+    EXPECT_EQ(o.output, "a.exr");
+    EXPECT_FALSE(o.write_png);
+    EXPECT_TRUE(o.list_devices);
+    EXPECT_TRUE(o.quiet);
+    EXPECT_EQ(o.scene, "scene.glb");
+    EXPECT_TRUE(parse_options(Args{"-h"}).help);
+    EXPECT_TRUE(parse_options(Args{"--help", "--bogus"}).help); // help wins over what follows
+    EXPECT_TRUE(parse_options(Args{"--version"}).version);
+}
+
+TEST(Options, ScenePositional) {
+    EXPECT_EQ(parse_options(Args{"a/b/Box.GLTF"}).scene, "a/b/Box.GLTF");
+    EXPECT_EQ(parse_options(Args{"--passes", "3", "x.gltf", "--quiet"}).scene, "x.gltf");
+    EXPECT_EQ(parse_options(Args{"--", "-odd.gltf"}).scene, "-odd.gltf");
+    EXPECT_EQ(error_of({"a.gltf", "b.glb"}), "unexpected second scene file b.glb (already given a.gltf)");
+    EXPECT_EQ(error_of({"scene.obj"}), "scene file scene.obj: must be a .gltf or .glb file");
+    EXPECT_EQ(error_of({"gltf"}), "scene file gltf: must be a .gltf or .glb file");
+}
+
+TEST(Options, PassesAndTime) {
+    EXPECT_EQ(parse_options(Args{"--time", "10"}).passes, 0u); // unlimited, the time bounds it
+    Options o = parse_options(Args{"--time", "10", "--passes", "5"});
+    EXPECT_EQ(o.passes, 5u);
+    EXPECT_EQ(o.time_limit, 10.0);
+    o = parse_options(Args{"--passes", "0", "--time", "0.5"});
+    EXPECT_EQ(o.passes, 0u);
+    EXPECT_EQ(o.time_limit, 0.5);
+    EXPECT_EQ(error_of({"--passes", "0"}), "--passes 0: unlimited passes need --time");
+}
+
+TEST(Options, UnknownMissingAndStrayValues) {
+    EXPECT_EQ(error_of({"--foo"}), "unknown option --foo (see --help)");
+    EXPECT_EQ(error_of({"--foo=3"}), "unknown option --foo (see --help)");
+    EXPECT_EQ(error_of({"-x"}), "unknown option -x (see --help)");
+    EXPECT_EQ(error_of({"--alpha"}), "--alpha: missing value A (must be in (0, 1])");
+    EXPECT_EQ(error_of({"-o"}), "-o: missing value FILE (must be a file name ending in .exr)");
+    EXPECT_EQ(error_of({"--quiet=yes"}), "--quiet takes no value");
+}
+
+struct BadValue {
+    Args args;
+    std::string message;
+};
+
+class BadValues : public ::testing::TestWithParam<BadValue> {};
+
+TEST_P(BadValues, NameTheOptionAndRange) { EXPECT_EQ(error_of(GetParam().args), GetParam().message); }
+
+const std::string kSize = ": must be an integer in 0..16384 (0 = from the camera)";
+
+INSTANTIATE_TEST_SUITE_P(
+    Options, BadValues,
+    ::testing::Values(
+        BadValue{{"--output", "x.png"}, "--output x.png: must be a file name ending in .exr"},
+        BadValue{{"-o", ".exr"}, "-o .exr: must be a file name ending in .exr"},
+        BadValue{{"--width", "16385"}, "--width 16385" + kSize},
+        BadValue{{"--width", "-1"}, "--width -1" + kSize},
+        BadValue{{"--width", "12.5"}, "--width 12.5" + kSize},
+        BadValue{{"--height=abc"}, "--height abc" + kSize},
+        BadValue{{"--height="}, "--height ''" + kSize},
+        BadValue{{"--passes", "-3"}, "--passes -3: must be an integer >= 1 (0 = unlimited, with --time)"},
+        BadValue{{"--passes", "99999999999999999999"},
+                 "--passes 99999999999999999999: must be an integer >= 1 (0 = unlimited, with --time)"},
+        BadValue{{"--time", "0"}, "--time 0: must be a number of seconds > 0"},
+        BadValue{{"--time", "inf"}, "--time inf: must be a number of seconds > 0"},
+        BadValue{{"--time", "1s"}, "--time 1s: must be a number of seconds > 0"},
+        BadValue{{"--photons", "0"}, "--photons 0: must be an integer in 1..2147483647"},
+        BadValue{{"--photons", "2147483648"}, "--photons 2147483648: must be an integer in 1..2147483647"},
+        BadValue{{"--alpha", "1.5"}, "--alpha 1.5: must be in (0, 1]"},
+        BadValue{{"--alpha", "0"}, "--alpha 0: must be in (0, 1]"},
+        BadValue{{"--alpha", "nan"}, "--alpha nan: must be in (0, 1]"},
+        BadValue{{"--radius", "-0.1"}, "--radius -0.1: must be a finite number >= 0 (0 = heuristic)"},
+        BadValue{{"--radius", "1e999"}, "--radius 1e999: must be a finite number >= 0 (0 = heuristic)"},
+        BadValue{{"--seed", "-1"}, "--seed -1: must be an integer in 0..18446744073709551615"},
+        BadValue{{"--seed", "18446744073709551616"},
+                 "--seed 18446744073709551616: must be an integer in 0..18446744073709551615"},
+        BadValue{{"--device", ""}, "--device '': must be a device index, cpu, gpu or part of a device name"},
+        BadValue{{"--camera", "-1"}, "--camera -1: must be an integer >= 0"},
+        BadValue{{"--stats-json="}, "--stats-json '': must be a file name"},
+        BadValue{{"--integrator", "bdpt"}, "--integrator bdpt: must be ppm or pt"},
+        BadValue{{"--direct", "both"}, "--direct both: must be photons or sample"},
+        BadValue{{"--spp", "0"}, "--spp 0: must be an integer in 1..256"},
+        BadValue{{"--spp", "257"}, "--spp 257: must be an integer in 1..256"},
+        BadValue{{"--max-bounces", "0"}, "--max-bounces 0: must be an integer in 1..1024"},
+        BadValue{{"--max-bounces", "1025"}, "--max-bounces 1025: must be an integer in 1..1024"},
+        BadValue{{"--progressive-output", "-1"}, "--progressive-output -1: must be an integer >= 0 (0 = off)"},
+        BadValue{{"--kernel-dir="}, "--kernel-dir '': must be a directory"},
+        BadValue{{"--dump-kernel-source="}, "--dump-kernel-source '': must be a file name"}));
+
+TEST(Options, ArgcArgv) {
+    const char* argv[] = {"clppm", "--passes=3", "box.glb"};
+    Options o = parse_options(3, const_cast<char**>(argv));
+    EXPECT_EQ(o.passes, 3u);
+    EXPECT_EQ(o.scene, "box.glb");
+}
+
+// usage() with line wrapping undone, so that a fragment may span a wrapped line.
+std::string unwrapped_usage() {
+    std::string text;
+    for (char c : usage()) {
+        if (c == ' ' && !text.empty() && text.back() == ' ') continue;
+        text += c == '\n' ? ' ' : c;
+    }
+    return text;
+}
+
+TEST(Options, UsageListsEveryOptionWithDefaultAndRange) {
+    std::string text = unwrapped_usage();
+    for (const char* name : {"-o, --output FILE", "--no-png", "--width N", "--height N", "--passes N", "--time SECONDS",
+                             "--photons N", "--alpha A", "--radius R", "--seed S", "--list-devices", "--device SPEC",
+                             "--camera N", "--quiet", "--stats-json FILE", "--integrator NAME", "--direct MODE",
+                             "--spp N", "--max-bounces N", "--progressive-output K", "--kernel-dir DIR",
+                             "--dump-kernel-source FILE", "-h, --help", "--version"})
+        EXPECT_NE(text.find(name), std::string::npos) << name;
+    for (const char* fragment : {"Default: clppm.exr", "Default: 0.7", "in (0, 1]", "Default: 200000", "Default: 16",
+                                 "1..256", "Default: ppm", "Default: sample", "Default: 64"})
+        EXPECT_NE(text.find(fragment), std::string::npos) << fragment;
+}
+
+TEST(Options, EnumNames) {
+    EXPECT_STREQ(to_string(Integrator::PPM), "ppm");
+    EXPECT_STREQ(to_string(Integrator::PT), "pt");
+    EXPECT_STREQ(to_string(DirectLighting::Photons), "photons");
+    EXPECT_STREQ(to_string(DirectLighting::Sample), "sample");
+}
+
+} // namespace
+} // namespace clppm
