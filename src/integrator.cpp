@@ -1,5 +1,8 @@
 #include "integrator.h"
 
+#include <algorithm>
+#include <cstdlib>
+
 #include "error.h"
 #include "ppm_integrator.h"
 #include "pt_integrator.h"
@@ -22,6 +25,20 @@ std::string integrator_build_options(const RenderSettings& settings, const Devic
                     " lacks double precision (cl_khr_fp64), which clppm's hit point statistics need; pick another "
                     "with --device");
     return "";
+}
+
+void enqueue_1d(const cl::CommandQueue& queue, const cl::Kernel& kernel, size_t n, cl::Event* event) {
+    static const size_t local = [] {
+        const char* e = std::getenv("CLPPM_LOCAL_SIZE");
+        return e && *e ? size_t(std::strtoul(e, nullptr, 10)) : size_t(0);
+    }();
+    n = std::max<size_t>(n, 1);
+    if (local > 0) {
+        size_t global = (n + local - 1) / local * local;
+        queue.enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(global), cl::NDRange(local), nullptr, event);
+    } else {
+        queue.enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(n), cl::NullRange, nullptr, event);
+    }
 }
 
 void add_event_time(IntegratorStats& stats, const std::string& phase, const cl::Event& ev) {

@@ -46,6 +46,11 @@ std::unique_ptr<IntegratorBase> make_integrator(const DeviceContext& dc, const D
 std::string integrator_program_file(const RenderSettings& settings);
 std::string integrator_build_options(const RenderSettings& settings, const DeviceInfo& device);
 
+// Launches a 1-D kernel over n work items (the kernel ignores ids >= n). The work-group size is
+// the driver's choice unless CLPPM_LOCAL_SIZE is set, which the tests use to show that images do
+// not depend on it.
+void enqueue_1d(const cl::CommandQueue& queue, const cl::Kernel& kernel, size_t n, cl::Event* event = nullptr);
+
 // Adds the device time of a finished event to phase_seconds[phase].
 void add_event_time(IntegratorStats& stats, const std::string& phase, const cl::Event& ev);
 

@@ -77,7 +77,7 @@ void PpmIntegrator::eye_pass() {
         k_eye_.setArg(a++, slots);
         k_eye_.setArg(a++, sample_emission);
         cl::Event ev;
-        dc_.queue.enqueueNDRangeKernel(k_eye_, cl::NullRange, global_for(n), cl::NullRange, nullptr, &ev);
+        enqueue_1d(dc_.queue, k_eye_, n, &ev);
         dc_.queue.enqueueReadBuffer(slots, CL_FALSE, 0, size_t(n) * kEyeSlots * sizeof(dev::HitPoint), host_slots.data());
         dc_.queue.enqueueReadBuffer(sample_emission, CL_TRUE, 0, size_t(n) * sizeof(cl_float4), host_emission.data());
         add_event_time(stats_, "eye_pass", ev);
@@ -147,7 +147,7 @@ void PpmIntegrator::trace_photons() {
         k_photon_.setArg(a++, cl_uint(photon_capacity_));
         k_photon_.setArg(a++, counter_);
         cl::Event ev;
-        dc_.queue.enqueueNDRangeKernel(k_photon_, cl::NullRange, global_for(M), cl::NullRange, nullptr, &ev);
+        enqueue_1d(dc_.queue, k_photon_, M, &ev);
         cl_uint stored = 0;
         dc_.queue.enqueueReadBuffer(counter_, CL_TRUE, 0, sizeof(cl_uint), &stored);
         add_event_time(stats_, "photon_trace", ev);
@@ -184,7 +184,7 @@ void PpmIntegrator::build_grid() {
     k_count_.setArg(0, grid_info_);
     k_count_.setArg(1, photons_);
     k_count_.setArg(2, counts_);
-    dc_.queue.enqueueNDRangeKernel(k_count_, cl::NullRange, global_for(n), cl::NullRange, nullptr, &e1);
+    enqueue_1d(dc_.queue, k_count_, n, &e1);
     k_scan_.setArg(0, counts_);
     k_scan_.setArg(1, starts_);
     k_scan_.setArg(2, cl_uint(table));
@@ -194,7 +194,7 @@ void PpmIntegrator::build_grid() {
     k_scatter_.setArg(2, starts_);
     k_scatter_.setArg(3, counts_);
     k_scatter_.setArg(4, sorted_);
-    dc_.queue.enqueueNDRangeKernel(k_scatter_, cl::NullRange, global_for(n), cl::NullRange, nullptr, &e3);
+    enqueue_1d(dc_.queue, k_scatter_, n, &e3);
     e3.wait();
     add_event_time(stats_, "grid_build", e1);
     add_event_time(stats_, "grid_build", e2);
@@ -212,7 +212,7 @@ void PpmIntegrator::gather_and_update() {
     k_gather_.setArg(4, stats_buf_);
     k_gather_.setArg(5, cl_uint(n));
     k_gather_.setArg(6, passflux_);
-    dc_.queue.enqueueNDRangeKernel(k_gather_, cl::NullRange, global_for(n), cl::NullRange, nullptr, &eg);
+    enqueue_1d(dc_.queue, k_gather_, n, &eg);
     if (settings_.direct == DirectLighting::Sample) {
         int a = scene_.set_scene_args(k_direct_);
         k_direct_.setArg(a++, cl_ulong(settings_.seed));
@@ -220,7 +220,7 @@ void PpmIntegrator::gather_and_update() {
         k_direct_.setArg(a++, hitpoints_);
         k_direct_.setArg(a++, stats_buf_);
         k_direct_.setArg(a++, cl_uint(n));
-        dc_.queue.enqueueNDRangeKernel(k_direct_, cl::NullRange, global_for(n), cl::NullRange, nullptr, &ed);
+        enqueue_1d(dc_.queue, k_direct_, n, &ed);
     }
     k_update_.setArg(0, passflux_);
     k_update_.setArg(1, hitpoints_);
@@ -262,7 +262,7 @@ Image PpmIntegrator::image() {
     k_film_.setArg(6, cl_double(double(stats_.photons_emitted)));
     k_film_.setArg(7, cl_double(double(settings_.direct == DirectLighting::Sample ? stats_.passes : 0)));
     k_film_.setArg(8, image_buf_);
-    dc_.queue.enqueueNDRangeKernel(k_film_, cl::NullRange, global_for(num_pixels_), cl::NullRange);
+    enqueue_1d(dc_.queue, k_film_, num_pixels_);
     std::vector<cl_float4> px(num_pixels_);
     dc_.queue.enqueueReadBuffer(image_buf_, CL_TRUE, 0, px.size() * sizeof(cl_float4), px.data());
     Image img;

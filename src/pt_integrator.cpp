@@ -26,7 +26,7 @@ void PtIntegrator::run_pass() {
     k_trace_.setArg(a++, cl_uint(num_pixels_));
     k_trace_.setArg(a++, accum_);
     cl::Event ev;
-    dc_.queue.enqueueNDRangeKernel(k_trace_, cl::NullRange, cl::NDRange(num_pixels_), cl::NullRange, nullptr, &ev);
+    enqueue_1d(dc_.queue, k_trace_, num_pixels_, &ev);
     ev.wait();
     add_event_time(stats_, "path_trace", ev);
     stats_.passes += 1;
@@ -37,7 +37,7 @@ Image PtIntegrator::image() {
     k_film_.setArg(1, cl_uint(num_pixels_));
     k_film_.setArg(2, cl_double(double(stats_.passes)));
     k_film_.setArg(3, image_buf_);
-    dc_.queue.enqueueNDRangeKernel(k_film_, cl::NullRange, cl::NDRange(num_pixels_), cl::NullRange);
+    enqueue_1d(dc_.queue, k_film_, num_pixels_);
     std::vector<cl_float4> px(num_pixels_);
     dc_.queue.enqueueReadBuffer(image_buf_, CL_TRUE, 0, px.size() * sizeof(cl_float4), px.data());
     Image img;

@@ -92,3 +92,25 @@ TEST(Ppm, SameSeedGivesTheSameImageBitForBit) {
     Image c = render_passes(diffuse_box(), s, 3);
     EXPECT_NE(0, std::memcmp(a.rgb.data(), c.rgb.data(), a.rgb.size() * sizeof(float)));
 }
+
+// Hachisuka et al. 2008, Fig. 7 in miniature: with pure photon estimation, the error against a
+// converged path-traced reference falls as passes (and so photons) grow.
+TEST(Ppm, ErrorFallsAsPassesGrow) {
+    RenderSettings pt = small(24, 24, 0, DirectLighting::Photons);
+    pt.integrator = Integrator::PT;
+    Image ref = render_passes(diffuse_box(), pt, 4096);
+    auto rel_rmse = [&](const Image& img) {
+        double se = 0, mean = mean_radiance(ref);
+        for (size_t i = 0; i < img.rgb.size(); ++i) se += std::pow(double(img.rgb[i]) - ref.rgb[i], 2);
+        return std::sqrt(se / double(img.rgb.size())) / mean;
+    };
+    RenderSettings s = small(24, 24, 20000, DirectLighting::Photons);
+    s.radius = 0.05; // below the 24-pixel footprint, so that noise, not blur, dominates early
+    std::vector<double> errors;
+    for (uint64_t passes : {1, 4, 16, 64}) errors.push_back(rel_rmse(render_passes(diffuse_box(), s, passes)));
+    for (size_t i = 1; i < errors.size(); ++i)
+        EXPECT_LT(errors[i], errors[i - 1]) << "error did not fall from " << errors[i - 1] << " to " << errors[i];
+    EXPECT_LT(errors.back(), 0.5 * errors.front());
+    ::testing::Test::RecordProperty("relative_rmse_64_passes", std::to_string(errors.back()));
+    std::printf("relative RMSE after 1, 4, 16, 64 passes: %.4f %.4f %.4f %.4f\n", errors[0], errors[1], errors[2], errors[3]);
+}

@@ -1,0 +1,139 @@
+// The clppm command as a user meets it: exit codes, one-line errors that name the file or
+// option, the files a render writes, and images that do not depend on the work-group size.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <sys/stat.h>
+
+#include "image_io.h"
+#include "test_util.h"
+
+using namespace clppm;
+using namespace clppm::test;
+
+namespace {
+
+std::string data(const std::string& name) { return std::string(CLPPM_TEST_DATA) + "/" + name; }
+
+bool exists(const std::string& path) {
+    struct stat st;
+    return ::stat(path.c_str(), &st) == 0;
+}
+
+int run_clppm(const std::string& args, std::string* out) { return run_command(clppm_binary() + " " + args, out); }
+
+// The message a failing clppm prints: exactly one line starting with "clppm: error: ".
+void expect_one_line_error(const std::string& out, const std::string& must_contain) {
+    EXPECT_EQ(out.rfind("clppm: error: ", 0), 0u) << out;
+    EXPECT_NE(out.find(must_contain), std::string::npos) << out;
+    EXPECT_EQ(out.find('\n'), out.size() - 1) << "more than one line:\n" << out;
+}
+
+const char* kSmall = " --width 24 --height 24 --passes 2 --photons 5000 --quiet";
+
+} // namespace
+
+TEST(Cli, RendersTheDefaultSceneToExrAndPng) {
+    std::string dir = make_temp_dir("cli"), out;
+    ASSERT_EQ(run_clppm("-o " + dir + "/c.exr --stats-json " + dir + "/s.json" + kSmall, &out), 0) << out;
+    ASSERT_TRUE(exists(dir + "/c.exr"));
+    ASSERT_TRUE(exists(dir + "/c.png"));
+    Image img = read_exr(dir + "/c.exr");
+    EXPECT_EQ(img.width, 24);
+    EXPECT_EQ(img.height, 24);
+    EXPECT_EQ(count_nonfinite(img), 0u);
+    EXPECT_GT(mean_radiance(img), 0.01);
+    std::ifstream js(dir + "/s.json");
+    std::string json((std::istreambuf_iterator<char>(js)), std::istreambuf_iterator<char>());
+    for (const char* key : {"\"passes\": 2", "\"passes_per_second\"", "\"phase_seconds\"", "\"device\"", "\"bvh\""})
+        EXPECT_NE(json.find(key), std::string::npos) << key << " missing in\n" << json;
+}
+
+TEST(Cli, NoPngWritesOnlyTheExr) {
+    std::string dir = make_temp_dir("cli"), out;
+    ASSERT_EQ(run_clppm("-o " + dir + "/c.exr --no-png" + std::string(kSmall), &out), 0) << out;
+    EXPECT_TRUE(exists(dir + "/c.exr"));
+    EXPECT_FALSE(exists(dir + "/c.png"));
+}
+
+TEST(Cli, ImageDoesNotDependOnWorkGroupSize) {
+    std::string dir = make_temp_dir("cli"), out;
+    const std::string args = std::string(kSmall) + " --no-png --seed 7";
+    ASSERT_EQ(run_command("CLPPM_LOCAL_SIZE=1 " + clppm_binary() + " -o " + dir + "/a.exr" + args, &out), 0) << out;
+    ASSERT_EQ(run_command("CLPPM_LOCAL_SIZE=64 " + clppm_binary() + " -o " + dir + "/b.exr" + args, &out), 0) << out;
+    ASSERT_EQ(run_clppm("-o " + dir + "/c.exr" + args, &out), 0) << out;
+    Image a = read_exr(dir + "/a.exr"), b = read_exr(dir + "/b.exr"), c = read_exr(dir + "/c.exr");
+    ASSERT_EQ(a.rgb.size(), b.rgb.size());
+    EXPECT_EQ(a.rgb, b.rgb);
+    EXPECT_EQ(a.rgb, c.rgb);
+}
+
+TEST(Cli, PathTracerRendersToo) {
+    std::string dir = make_temp_dir("cli"), out;
+    ASSERT_EQ(run_clppm("-o " + dir + "/p.exr --integrator pt" + std::string(kSmall), &out), 0) << out;
+    Image img = read_exr(dir + "/p.exr");
+    EXPECT_EQ(count_nonfinite(img), 0u);
+    EXPECT_GT(mean_radiance(img), 0.01);
+}
+
+TEST(Cli, ListDevicesShowsTheDevice) {
+    std::string out;
+    ASSERT_EQ(run_clppm("--list-devices", &out), 0) << out;
+    EXPECT_NE(out.find("[0] "), std::string::npos) << out;
+    EXPECT_NE(out.find("compute units"), std::string::npos) << out;
+    EXPECT_NE(out.find("fp64"), std::string::npos) << out;
+    EXPECT_NE(out.find("OpenCL C"), std::string::npos) << out;
+}
+
+TEST(Cli, MissingSceneIsAOneLineErrorNamingTheFile) {
+    std::string out;
+    EXPECT_EQ(run_clppm("/nonexistent/scene.gltf -o /tmp/x.exr", &out), 1);
+    expect_one_line_error(out, "/nonexistent/scene.gltf");
+}
+
+TEST(Cli, MalformedGltfIsAOneLineError) {
+    std::string out;
+    EXPECT_EQ(run_clppm(data("malformed.gltf") + " -o /tmp/x.exr", &out), 1);
+    expect_one_line_error(out, "malformed.gltf");
+}
+
+TEST(Cli, SceneWithoutLightsIsAnError) {
+    std::string dir = make_temp_dir("cli"), out;
+    EXPECT_EQ(run_clppm(data("embedded.gltf") + " -o " + dir + "/x.exr", &out), 1);
+    expect_one_line_error(out, "no lights");
+    EXPECT_FALSE(exists(dir + "/x.exr"));
+}
+
+TEST(Cli, UnknownDeviceListsWhatExists) {
+    std::string out;
+    EXPECT_EQ(run_clppm("--device no-such-device -o /tmp/x.exr", &out), 1);
+    expect_one_line_error(out, "--device no-such-device");
+    EXPECT_NE(out.find("[0]"), std::string::npos) << out;
+    EXPECT_EQ(run_clppm("--device 99 -o /tmp/x.exr", &out), 1);
+    expect_one_line_error(out, "no device with index 99");
+}
+
+TEST(Cli, UnwritableOutputFailsBeforeRendering) {
+    std::string out;
+    EXPECT_EQ(run_clppm("-o /nonexistent-dir/x.exr --passes 1000000", &out), 1);
+    expect_one_line_error(out, "/nonexistent-dir/x.exr");
+}
+
+TEST(Cli, BadOptionValuesNameTheOptionAndRange) {
+    std::string out;
+    EXPECT_EQ(run_clppm("--alpha 1.5", &out), 1);
+    expect_one_line_error(out, "--alpha");
+    EXPECT_EQ(run_clppm("--bogus", &out), 1);
+    expect_one_line_error(out, "--bogus");
+    EXPECT_EQ(run_clppm("--camera 3 -o /tmp/x.exr --passes 1", &out), 1);
+    expect_one_line_error(out, "--camera 3");
+}
+
+TEST(Cli, KernelBuildFailurePrintsTheBuildLog) {
+    std::string dir = make_temp_dir("kernels"), out;
+    ASSERT_EQ(run_command("cp " + std::string(CLPPM_SOURCE_DIR) + "/kernels/* " + dir, &out), 0) << out;
+    { std::ofstream(dir + "/gather.cl", std::ios::app) << "\nvoid broken(void) { this_is_not_opencl_c = 1; }\n"; }
+    EXPECT_EQ(run_clppm("--kernel-dir " + dir + " -o " + dir + "/x.exr --passes 1", &out), 1);
+    EXPECT_NE(out.find("kernel build failed"), std::string::npos) << out;
+    EXPECT_NE(out.find("this_is_not_opencl_c"), std::string::npos) << "no build log:\n" << out;
+}

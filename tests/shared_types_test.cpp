@@ -1,0 +1,68 @@
+// The device compiler must lay out every shared struct exactly as the host does: sizes and field
+// offsets measured by a kernel on the test device, compared with the host's sizeof/offsetof.
+#include <gtest/gtest.h>
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "kernel_program.h"
+#include "shared_types.h"
+#include "test_util.h"
+
+using namespace clppm;
+using namespace clppm::dev;
+
+namespace {
+
+#define LAYOUT_FIELDS(X)                                                                            \
+    X(sizeof(TriShading)) X(offsetof(TriShading, uv0)) X(offsetof(TriShading, material))            \
+    X(sizeof(BvhNode)) X(offsetof(BvhNode, bmax_x)) X(offsetof(BvhNode, child)) X(offsetof(BvhNode, count)) \
+    X(sizeof(Material)) X(offsetof(Material, emission)) X(offsetof(Material, metallic))                \
+    X(offsetof(Material, base_color_tex)) X(offsetof(Material, kind))                                 \
+    X(sizeof(Texture)) X(offsetof(Texture, wrap))                                                     \
+    X(sizeof(Light)) X(offsetof(Light, power)) X(offsetof(Light, position)) X(offsetof(Light, radiance)) \
+    X(offsetof(Light, cos_inner)) X(offsetof(Light, area))                                            \
+    X(sizeof(Camera)) X(offsetof(Camera, width)) X(offsetof(Camera, focus_distance))                  \
+    X(sizeof(SceneInfo)) X(offsetof(SceneInfo, radius)) X(offsetof(SceneInfo, total_power))           \
+    X(offsetof(SceneInfo, max_bounces))                                                               \
+    X(sizeof(HitPoint)) X(offsetof(HitPoint, normal)) X(offsetof(HitPoint, weight)) X(offsetof(HitPoint, footprint)) \
+    X(sizeof(PassFlux)) X(offsetof(PassFlux, m))                                                      \
+    X(sizeof(HitStats)) X(offsetof(HitStats, n)) X(offsetof(HitStats, tau)) X(offsetof(HitStats, direct)) \
+    X(sizeof(Photon)) X(offsetof(Photon, flux)) X(offsetof(Photon, wi_oct))                           \
+    X(sizeof(GridInfo)) X(offsetof(GridInfo, inv_cell)) X(offsetof(GridInfo, num_photons))
+
+#define STR(x) #x ","
+#define VAL(x) static_cast<unsigned>(x),
+
+} // namespace
+
+TEST(SharedTypes, DeviceLayoutMatchesHost) {
+    const std::vector<unsigned> host = {LAYOUT_FIELDS(VAL)};
+    std::string exprs = LAYOUT_FIELDS(STR);
+    std::string body;
+    size_t i = 0, start = 0;
+    for (size_t p = 0; p < exprs.size(); ++p)
+        if (exprs[p] == ',' && (p + 1 == exprs.size() || exprs[p + 1] == 's' || exprs[p + 1] == 'o')) {
+            body += "    out[" + std::to_string(i++) + "] = (uint)(" + exprs.substr(start, p - start) + ");\n";
+            start = p + 1;
+        }
+    ASSERT_EQ(i, host.size());
+    std::string src = assemble_kernel_source("shared_types.h") +
+                      "\n#define offsetof(T, f) ((size_t)&(((T*)0)->f))\n__kernel void layout(__global uint* out) {\n" +
+                      body + "}\n";
+    DeviceContext dc(test::test_device());
+    cl::Program program(dc.context, src);
+    try {
+        program.build({dc.info.device}, "-cl-std=CL1.2");
+    } catch (const cl::Error&) {
+        FAIL() << program.getBuildInfo<CL_PROGRAM_BUILD_LOG>(dc.info.device);
+    }
+    cl::Buffer out(dc.context, CL_MEM_WRITE_ONLY, host.size() * sizeof(cl_uint));
+    cl::Kernel k(program, "layout");
+    k.setArg(0, out);
+    dc.queue.enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(1));
+    std::vector<cl_uint> device(host.size());
+    dc.queue.enqueueReadBuffer(out, CL_TRUE, 0, device.size() * sizeof(cl_uint), device.data());
+    for (size_t k2 = 0; k2 < host.size(); ++k2) EXPECT_EQ(device[k2], host[k2]) << "layout entry " << k2;
+}
