@@ -8,6 +8,7 @@
 #include "device.h"
 #include "error.h"
 #include "gltf_load.h"
+#include "image_compare.h"
 #include "image_io.h"
 #include "integrator.h"
 #include "kernel_program.h"
@@ -173,6 +174,7 @@ int render(const Options& opt) {
 
 int main(int argc, char** argv) {
     try {
+        if (argc >= 2 && std::string(argv[1]) == "compare") return compare_command(argc - 2, argv + 2);
         Options opt = parse_options(argc, argv);
         if (opt.help) {
             std::fputs(usage().c_str(), stdout);

@@ -63,6 +63,35 @@ TEST(Ppm, PlaneUnderPointLightMatchesAnalyticIrradiance) {
     }
 }
 
+// Inside its inner cone a spot light is a point light; a directional light gives rho/pi E cos.
+TEST(Ppm, SpotAndDirectionalLightsMatchAnalyticRadiance) {
+    const float rho = 0.5f, I = 10.f, h = 1.f;
+    for (DirectLighting direct : {DirectLighting::Photons, DirectLighting::Sample}) {
+        Scene spot = plane_under_point_light(rho, I, h);
+        spot.punctual_lights.clear();
+        add_spot_light(spot, {0, h, 0}, I, 1.2f, 1.3f); // the inner cone covers the centre region
+        RenderSettings s = small(32, 32, 100000, direct);
+        float bmin[3] = {-4, 0, -4}, bmax[3] = {4, 0, 4};
+        dev::Camera cam = make_camera(spot, s, bmin, bmax, nullptr);
+        Image img = render_passes(spot, s, 16);
+        double err = 0, ref = 0;
+        for (int y = 8; y < 24; ++y)
+            for (int x = 8; x < 24; ++x) {
+                double expect = plane_radiance(cam, x + 0.5, y + 0.5, rho, I, h);
+                err += std::fabs(img.rgb[3 * (y * 32 + x)] - expect);
+                ref += expect;
+            }
+        EXPECT_LT(err / ref, 0.04) << "spot, direct=" << to_string(direct);
+
+        Scene sun = plane_under_point_light(rho, I, h);
+        sun.punctual_lights.clear();
+        const float E = 3.f, c = std::cos(0.5f);
+        add_directional_light(sun, {std::sin(0.5f), -c, 0}, E);
+        Image lit = render_passes(sun, small(32, 32, 100000, direct), 16);
+        EXPECT_NEAR(region_mean(lit, 8, 8, 24, 24) / (rho / M_PI * E * c), 1.0, 0.03) << "directional, direct=" << to_string(direct);
+    }
+}
+
 TEST(Ppm, AgreesWithPathTracerOnDiffuseBox) {
     RenderSettings s = small(32, 32, 100000, DirectLighting::Sample);
     // A radius well below the 32-pixel footprint keeps PPM's boundary bias in the corners small.

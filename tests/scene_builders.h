@@ -100,6 +100,24 @@ inline void add_point_light(Scene& s, Vec3 pos, float intensity) {
     s.punctual_lights.push_back(l);
 }
 
+// A spot light at pos pointing straight down, cones given as half-angles in radians.
+inline void add_spot_light(Scene& s, Vec3 pos, float intensity, float inner, float outer) {
+    add_point_light(s, pos, intensity);
+    dev::Light& l = s.punctual_lights.back();
+    l.type = LIGHT_SPOT;
+    l.direction[0] = 0, l.direction[1] = -1, l.direction[2] = 0;
+    l.cos_inner = std::cos(inner), l.cos_outer = std::cos(outer);
+}
+
+// A directional light travelling along unit direction d with irradiance E.
+inline void add_directional_light(Scene& s, Vec3 d, float irradiance) {
+    dev::Light l{};
+    l.type = LIGHT_DIRECTIONAL;
+    l.direction[0] = d.x, l.direction[1] = d.y, l.direction[2] = d.z;
+    l.radiance[0] = l.radiance[1] = l.radiance[2] = irradiance;
+    s.punctual_lights.push_back(l);
+}
+
 // A diffuse plane y = 0 of half-size `half`, albedo rho, seen from straight above.
 inline Scene plane_under_point_light(float rho, float intensity, float light_height, float half = 4.f) {
     Scene s;
