@@ -1,0 +1,162 @@
+// The hashed-grid gather (kernels/hash_grid.cl, kernels/gather.cl) against a brute-force gather
+// over all photons: the same photons counted, the same flux sums to the last fixed-point unit,
+// for radii smaller than, equal to and larger than a cell, and hit points on cell boundaries.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "kernel_program.h"
+#include "shared_types.h"
+#include "test_util.h"
+
+using namespace clppm;
+
+namespace {
+
+// Octahedral encoding as in kernels/sampling.cl (the grid test needs encoded photon normals).
+uint32_t oct(float x, float y, float z) {
+    float l1 = std::fabs(x) + std::fabs(y) + std::fabs(z);
+    float px = x / l1, py = y / l1;
+    if (z < 0) {
+        float ox = (1 - std::fabs(py)) * (px >= 0 ? 1.f : -1.f), oy = (1 - std::fabs(px)) * (py >= 0 ? 1.f : -1.f);
+        px = ox, py = oy;
+    }
+    auto q = [](float v) { return uint32_t(std::lround(std::clamp((v * 0.5f + 0.5f) * 65535.f, 0.f, 65535.f))); };
+    return q(px) | (q(py) << 16);
+}
+
+struct GatherCase {
+    std::vector<dev::Photon> photons;
+    std::vector<dev::HitPoint> hitpoints;
+    std::vector<dev::HitStats> stats;
+    dev::GridInfo grid{};
+};
+
+// Photons and hit points on the plane y = 0 (normal +y) and on its underside; some photons
+// arrive from below (rejected by direction), some lie on the downward face (rejected by normal).
+GatherCase make_case(float cell, float radius, uint32_t n_photons, uint32_t n_hit, bool on_boundaries, uint32_t seed) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> u(-1.f, 1.f), u01(0.f, 1.f);
+    GatherCase c;
+    for (uint32_t i = 0; i < n_photons; ++i) {
+        dev::Photon p{};
+        p.pos[0] = u(rng), p.pos[1] = 0.002f * u(rng), p.pos[2] = u(rng);
+        bool down = u01(rng) < 0.2f, from_below = u01(rng) < 0.2f;
+        p.normal_oct = oct(0, down ? -1.f : 1.f, 0);
+        float wx = u(rng) * 0.5f, wz = u(rng) * 0.5f, wy = (from_below ? -1.f : 1.f) * (0.3f + u01(rng));
+        float l = std::sqrt(wx * wx + wy * wy + wz * wz);
+        p.wi_oct = oct(wx / l, wy / l, wz / l);
+        for (int k = 0; k < 3; ++k) p.flux[k] = 0.1f + 2.f * u01(rng);
+        c.photons.push_back(p);
+    }
+    for (uint32_t i = 0; i < n_hit; ++i) {
+        dev::HitPoint h{};
+        float x = u(rng) * 0.9f, z = u(rng) * 0.9f;
+        if (on_boundaries) { // exactly on cell faces of the grid (origin -1.25)
+            x = -1.25f + cell * std::round((x + 1.25f) / cell);
+            if (i % 2) z = -1.25f + cell * std::round((z + 1.25f) / cell);
+        }
+        h.pos[0] = x, h.pos[1] = 0, h.pos[2] = z;
+        h.normal[1] = 1;
+        h.pixel = i;
+        c.hitpoints.push_back(h);
+        float r = radius * (0.5f + u01(rng)); // radii vary around the nominal one
+        c.stats.push_back(dev::HitStats{double(r) * r, 0, {0, 0, 0}, {0, 0, 0}});
+    }
+    c.grid.origin[0] = c.grid.origin[1] = c.grid.origin[2] = -1.25f;
+    c.grid.inv_cell = 1.f / cell;
+    c.grid.num_photons = n_photons;
+    c.grid.table_size = 1024;
+    while (c.grid.table_size < n_photons) c.grid.table_size <<= 1;
+    return c;
+}
+
+// Brute force: every photon against every hit point, the rules written out plainly.
+std::vector<dev::PassFlux> brute_force(const GatherCase& c) {
+    std::vector<dev::PassFlux> out(c.hitpoints.size());
+    for (size_t i = 0; i < c.hitpoints.size(); ++i) {
+        const dev::HitPoint& h = c.hitpoints[i];
+        float r2 = float(c.stats[i].r2);
+        for (const dev::Photon& p : c.photons) {
+            float dx = p.pos[0] - h.pos[0], dy = p.pos[1] - h.pos[1], dz = p.pos[2] - h.pos[2];
+            if (dx * dx + dy * dy + dz * dz > r2) continue;
+            // Accepted photons arrive from above (wi.y > 0) on an upward face (normal.y > 0): the
+            // encodings put y in the upper 16 bits, above the midpoint for positive y.
+            bool wi_up = (p.wi_oct >> 16) > 32768, n_up = (p.normal_oct >> 16) > 32768;
+            if (!wi_up || !n_up) continue;
+            for (int k = 0; k < 3; ++k) out[i].flux[k] += std::llrint(double(p.flux[k]) * FLUX_FIXED_SCALE);
+            out[i].m += 1;
+        }
+    }
+    return out;
+}
+
+std::vector<dev::PassFlux> device_gather(const GatherCase& c) {
+    DeviceContext dc(test::test_device());
+    cl::Program program(dc.context, assemble_kernel_source("gather.cl"));
+    program.build({dc.info.device}, "-cl-std=CL1.2");
+    const cl::Context& ctx = dc.context;
+    auto buf = [&](const void* data, size_t bytes) {
+        return cl::Buffer(ctx, CL_MEM_READ_WRITE | CL_MEM_COPY_HOST_PTR, bytes, const_cast<void*>(data));
+    };
+    cl::Buffer grid = buf(&c.grid, sizeof c.grid);
+    cl::Buffer photons = buf(c.photons.data(), c.photons.size() * sizeof(dev::Photon));
+    cl::Buffer sorted(ctx, CL_MEM_READ_WRITE, c.photons.size() * sizeof(dev::Photon));
+    std::vector<cl_uint> zeros(c.grid.table_size, 0);
+    cl::Buffer counts = buf(zeros.data(), zeros.size() * sizeof(cl_uint));
+    cl::Buffer starts(ctx, CL_MEM_READ_WRITE, (zeros.size() + 1) * sizeof(cl_uint));
+    cl::Buffer hps = buf(c.hitpoints.data(), c.hitpoints.size() * sizeof(dev::HitPoint));
+    cl::Buffer stats = buf(c.stats.data(), c.stats.size() * sizeof(dev::HitStats));
+    cl::Buffer out(ctx, CL_MEM_READ_WRITE, c.hitpoints.size() * sizeof(dev::PassFlux));
+    cl::Kernel count(program, "grid_count"), scan(program, "grid_scan"), scatter(program, "grid_scatter"),
+        gather(program, "gather");
+    count.setArg(0, grid), count.setArg(1, photons), count.setArg(2, counts);
+    scan.setArg(0, counts), scan.setArg(1, starts), scan.setArg(2, cl_uint(c.grid.table_size));
+    scatter.setArg(0, grid), scatter.setArg(1, photons), scatter.setArg(2, starts), scatter.setArg(3, counts);
+    scatter.setArg(4, sorted);
+    gather.setArg(0, grid), gather.setArg(1, sorted), gather.setArg(2, starts), gather.setArg(3, hps);
+    gather.setArg(4, stats), gather.setArg(5, cl_uint(c.hitpoints.size())), gather.setArg(6, out);
+    dc.queue.enqueueNDRangeKernel(count, cl::NullRange, cl::NDRange(c.photons.size()));
+    dc.queue.enqueueNDRangeKernel(scan, cl::NullRange, cl::NDRange(256), cl::NDRange(256));
+    dc.queue.enqueueNDRangeKernel(scatter, cl::NullRange, cl::NDRange(c.photons.size()));
+    dc.queue.enqueueNDRangeKernel(gather, cl::NullRange, cl::NDRange(c.hitpoints.size()));
+    std::vector<dev::PassFlux> result(c.hitpoints.size());
+    dc.queue.enqueueReadBuffer(out, CL_TRUE, 0, result.size() * sizeof(dev::PassFlux), result.data());
+    return result;
+}
+
+void expect_same(const GatherCase& c, const char* what) {
+    std::vector<dev::PassFlux> got = device_gather(c), want = brute_force(c);
+    uint64_t total = 0;
+    for (size_t i = 0; i < want.size(); ++i) {
+        total += want[i].m;
+        ASSERT_EQ(got[i].m, want[i].m) << what << ", hit point " << i;
+        for (int k = 0; k < 3; ++k) ASSERT_EQ(got[i].flux[k], want[i].flux[k]) << what << ", hit point " << i;
+    }
+    EXPECT_GT(total, want.size()) << what << ": the case must actually gather photons";
+}
+
+} // namespace
+
+TEST(Gather, MatchesBruteForceForRadiiAroundTheCellSize) {
+    const float cell = 0.05f;
+    expect_same(make_case(cell, 0.3f * cell, 20000, 500, false, 1), "radius 0.3 cell");
+    expect_same(make_case(cell, 0.5f * cell, 20000, 500, false, 2), "radius = half cell");
+    expect_same(make_case(cell, 1.0f * cell, 20000, 500, false, 3), "radius = cell");
+    expect_same(make_case(cell, 3.0f * cell, 20000, 500, false, 4), "radius 3 cells");
+}
+
+TEST(Gather, HitPointsOnCellBoundaries) {
+    const float cell = 0.05f;
+    expect_same(make_case(cell, 0.5f * cell, 20000, 500, true, 5), "boundaries, half cell");
+    expect_same(make_case(cell, 2.0f * cell, 20000, 500, true, 6), "boundaries, two cells");
+}
+
+TEST(Gather, CrowdedHashTableStillCountsEachPhotonOnce) {
+    // A tiny table (1024 buckets for 20k photons in thousands of cells) forces many cells into
+    // each bucket: a photon must be counted only from its own cell.
+    GatherCase c = make_case(0.02f, 0.05f, 20000, 300, false, 7);
+    c.grid.table_size = 1024;
+    expect_same(c, "crowded table");
+}
