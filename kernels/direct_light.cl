@@ -9,6 +9,7 @@ __kernel void direct_light(SCENE_PARAMS, ulong seed, ulong pass, __global const 
     uint i = get_global_id(0);
     if (i >= num_hitpoints) return;
     __global const HitPoint* hp = &hitpoints[i];
+    if (hp->pixel == HITPOINT_NONE) return;
     Rng rng = rng_make(seed, pass, i, RNG_DIRECT);
     float3 x = load3g(hp->pos), n = load3g(hp->normal), ng = oct_decode(hp->ng_oct);
     float3 wi, contrib;

@@ -4,7 +4,9 @@
  * both branches are followed with their Fresnel / metallic weights while slots remain
  * (EYE_SLOTS per sample), so the stored set of hit points carries no sampling noise from those
  * choices; beyond that one branch is chosen at random with the same expected value.
- * Emission met on the way is added to the sample's radiance directly. */
+ * Emission met on the way is added to the sample's radiance directly.
+ * Stochastic PPM and PPPM build this with EYE_SLOTS 1 and run it every pass with a new `pass`:
+ * one visible point per pixel, every choice sampled, new jitter and lens position each pass. */
 #include "rng.cl"
 #include "camera.cl"
 #include "bsdf.cl"
@@ -21,13 +23,13 @@ typedef struct {
     uint depth;
 } EyeRay;
 
-__kernel void eye_pass(SCENE_PARAMS, __constant Camera* cam, ulong seed, uint first_sample, uint num_samples,
+__kernel void eye_pass(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong pass, uint first_sample, uint num_samples,
                        uint spp, __global HitPoint* hitpoints, __global float4* sample_emission) {
     uint i = get_global_id(0);
     if (i >= num_samples) return;
     uint gsample = first_sample + i;
     uint pixel = gsample / spp, s = gsample % spp;
-    Rng rng = rng_make(seed, 0, gsample, RNG_EYE);
+    Rng rng = rng_make(seed, pass, gsample, RNG_EYE);
 
     float2 off = pixel_sample_offset(s, spp, &rng);
     float2 lens = (float2)(rng_float(&rng), rng_float(&rng));

@@ -1,17 +1,23 @@
 /* gather.cl: each hit point collects this pass's photons within its radius R(x) from the grid
  * cells its sphere overlaps (Hachisuka et al. 2008, Sec. 4.2: M(x) and Phi_M). One work item
- * writes one hit point: no atomics. Photons arriving from behind the surface, or lying on a
+ * writes one hit point: no atomics. PPPM passes one global radius instead (global_r2 > 0). Photons arriving from behind the surface, or lying on a
  * surface that faces the other way, are rejected. */
 #include "hash_grid.cl"
 
 __kernel void gather(__constant GridInfo* g, __global const Photon* sorted, __global const uint* starts,
                      __global const HitPoint* hitpoints, __global const HitStats* stats, uint num_hitpoints,
-                     __global PassFlux* out) {
+                     float global_r2, __global PassFlux* out) {
     uint i = get_global_id(0);
     if (i >= num_hitpoints) return;
     __global const HitPoint* hp = &hitpoints[i];
+    if (hp->pixel == HITPOINT_NONE) { /* SPPM/PPPM: this pixel's eye path found no surface */
+        out[i].flux[0] = out[i].flux[1] = out[i].flux[2] = 0;
+        out[i].m = 0;
+        return;
+    }
     float3 x = load3g(hp->pos), n = load3g(hp->normal);
-    float r2 = (float)stats[i].r2;
+    /* PPPM: one radius for every hit point this pass; (S)PPM: each hit point's own R(x). */
+    float r2 = global_r2 > 0.0f ? global_r2 : (float)stats[i].r2;
     float r = sqrt(r2);
     int3 c0 = grid_cell(g, x - r), c1 = grid_cell(g, x + r);
     long acc0 = 0, acc1 = 0, acc2 = 0;

@@ -6,17 +6,25 @@
 #include "error.h"
 #include "ppm_integrator.h"
 #include "pt_integrator.h"
+#include "sppm_integrator.h"
 
 namespace clppm {
 
 std::unique_ptr<IntegratorBase> make_integrator(const DeviceContext& dc, const DeviceScene& scene,
                                                 const RenderSettings& settings, const cl::Program& program) {
     if (settings.integrator == Integrator::PT) return std::make_unique<PtIntegrator>(dc, scene, settings, program);
+    if (settings.integrator == Integrator::SPPM || settings.integrator == Integrator::PPPM)
+        return std::make_unique<SppmIntegrator>(dc, scene, settings, program);
     return std::make_unique<PpmIntegrator>(dc, scene, settings, program);
 }
 
 std::string integrator_program_file(const RenderSettings& settings) {
-    return settings.integrator == Integrator::PT ? "path_trace.cl" : "ppm_program.cl";
+    switch (settings.integrator) {
+    case Integrator::PT: return "path_trace.cl";
+    case Integrator::SPPM:
+    case Integrator::PPPM: return "sppm_program.cl";
+    default: return "ppm_program.cl";
+    }
 }
 
 std::string integrator_build_options(const RenderSettings& settings, const DeviceInfo& device) {
@@ -24,7 +32,9 @@ std::string integrator_build_options(const RenderSettings& settings, const Devic
         throw Error("device " + device.name +
                     " lacks double precision (cl_khr_fp64), which clppm's hit point statistics need; pick another "
                     "with --device");
-    return "";
+    // SPPM and PPPM keep one visible point per pixel and pass; PPM splits into up to four.
+    if (settings.integrator == Integrator::SPPM || settings.integrator == Integrator::PPPM) return "-DEYE_SLOTS=1";
+    return "-DEYE_SLOTS=4";
 }
 
 void enqueue_1d(const cl::CommandQueue& queue, const cl::Kernel& kernel, size_t n, cl::Event* event) {
@@ -42,13 +52,21 @@ void enqueue_1d(const cl::CommandQueue& queue, const cl::Kernel& kernel, size_t 
 }
 
 void add_event_time(IntegratorStats& stats, const std::string& phase, const cl::Event& ev) {
-    try {
-        cl_ulong t0 = ev.getProfilingInfo<CL_PROFILING_COMMAND_START>();
-        cl_ulong t1 = ev.getProfilingInfo<CL_PROFILING_COMMAND_END>();
-        stats.phase_seconds[phase] += double(t1 - t0) * 1e-9;
-    } catch (const cl::Error&) {
-        // Profiling unavailable for this event: the phase time stays as it was.
+    stats.pending_events.emplace_back(phase, ev);
+}
+
+void collect_event_times(IntegratorStats& stats) {
+    for (auto& [phase, ev] : stats.pending_events) {
+        try {
+            ev.wait();
+            cl_ulong t0 = ev.getProfilingInfo<CL_PROFILING_COMMAND_START>();
+            cl_ulong t1 = ev.getProfilingInfo<CL_PROFILING_COMMAND_END>();
+            stats.phase_seconds[phase] += double(t1 - t0) * 1e-9;
+        } catch (const cl::Error&) {
+            // Profiling unavailable for this event: the phase time stays as it was.
+        }
     }
+    stats.pending_events.clear();
 }
 
 } // namespace clppm

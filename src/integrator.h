@@ -5,6 +5,8 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "cl.h"
 #include "device.h"
@@ -23,6 +25,9 @@ struct IntegratorStats {
     double mean_radius = 0;            // current mean R over hit points (PPM)
     std::map<std::string, double> phase_seconds; // device time per phase, from profiling events
     size_t device_bytes = 0;           // integrator buffers (scene buffers are counted apart)
+    // Kernel events of the current pass, resolved into phase_seconds at the pass's end so that
+    // timing never adds a synchronisation point inside the pass.
+    std::vector<std::pair<std::string, cl::Event>> pending_events;
 };
 
 class IntegratorBase {
@@ -51,7 +56,9 @@ std::string integrator_build_options(const RenderSettings& settings, const Devic
 // not depend on it.
 void enqueue_1d(const cl::CommandQueue& queue, const cl::Kernel& kernel, size_t n, cl::Event* event = nullptr);
 
-// Adds the device time of a finished event to phase_seconds[phase].
+// Records a kernel event of phase `phase`; collect_event_times() adds its device time to
+// phase_seconds once the pass has finished.
 void add_event_time(IntegratorStats& stats, const std::string& phase, const cl::Event& ev);
+void collect_event_times(IntegratorStats& stats);
 
 } // namespace clppm

@@ -45,6 +45,8 @@ RenderSettings settings_from(const Options& o) {
     s.radius = o.radius;
     s.seed = o.seed;
     s.max_bounces = unsigned(o.max_bounces);
+    s.aperture = o.aperture;
+    s.focus_distance = o.focus_distance;
     return s;
 }
 

@@ -153,10 +153,14 @@ const OptionSpec kOptions[] = {
     {"--stats-json", nullptr, "FILE", "Write render statistics as JSON",
      "a file name", "none",
      [](ParseState& st, const Arg& a) { st.options.stats_json = non_empty(a); }},
-    {"--integrator", nullptr, "NAME", "Integrator: ppm = progressive photon mapping, pt = path-traced reference",
-     "ppm or pt", "ppm",
+    {"--integrator", nullptr, "NAME",
+     "Integrator: ppm = progressive photon mapping, sppm = stochastic PPM, pppm = probabilistic PPM "
+     "(independent passes), pt = path-traced reference",
+     "ppm, sppm, pppm or pt", "ppm",
      [](ParseState& st, const Arg& a) {
          if (a.value == "ppm") st.options.integrator = Integrator::PPM;
+         else if (a.value == "sppm") st.options.integrator = Integrator::SPPM;
+         else if (a.value == "pppm") st.options.integrator = Integrator::PPPM;
          else if (a.value == "pt") st.options.integrator = Integrator::PT;
          else bad_value(a);
      }},
@@ -170,6 +174,14 @@ const OptionSpec kOptions[] = {
     {"--spp", nullptr, "N", "Hit points (samples) per pixel per pass",
      "an integer in 1..256", "1",
      [](ParseState& st, const Arg& a) { st.options.spp = static_cast<int>(parse_int(a, 1, 256)); }},
+    {"--aperture", nullptr, "R", "Thin-lens aperture radius in scene units (depth of field)",
+     "a finite number >= 0 (0 = pinhole)", "the camera's, else 0",
+     [](ParseState& st, const Arg& a) { st.options.aperture = parse_real(a, [](double x) { return x >= 0; }); }},
+    {"--focus-distance", nullptr, "D", "Distance to the plane in focus, in scene units",
+     "a finite number > 0", "the camera's, else the scene centre's distance",
+     [](ParseState& st, const Arg& a) {
+         st.options.focus_distance = parse_real(a, [](double x) { return x > 0; });
+     }},
     {"--max-bounces", nullptr, "N", "Longest eye or photon path",
      "an integer in 1..1024", "16",
      [](ParseState& st, const Arg& a) { st.options.max_bounces = static_cast<int>(parse_int(a, 1, 1024)); }},
@@ -258,7 +270,14 @@ void append_wrapped(std::string& out, const std::string& text, size_t indent, si
 
 } // namespace
 
-const char* to_string(Integrator integrator) { return integrator == Integrator::PT ? "pt" : "ppm"; }
+const char* to_string(Integrator integrator) {
+    switch (integrator) {
+    case Integrator::SPPM: return "sppm";
+    case Integrator::PPPM: return "pppm";
+    case Integrator::PT: return "pt";
+    default: return "ppm";
+    }
+}
 
 const char* to_string(DirectLighting direct) { return direct == DirectLighting::Photons ? "photons" : "sample"; }
 

@@ -7,7 +7,7 @@
 
 namespace clppm {
 
-enum class Integrator { PPM, PT };           // --integrator ppm|pt
+enum class Integrator { PPM, SPPM, PPPM, PT }; // --integrator ppm|sppm|pppm|pt
 enum class DirectLighting { Photons, Sample }; // --direct photons|sample
 
 const char* to_string(Integrator integrator);  // "ppm", "pt"
@@ -33,6 +33,8 @@ struct Options {
     Integrator integrator = Integrator::PPM;
     DirectLighting direct = DirectLighting::Sample;
     int spp = 1;                        // PPM hit points (samples) per pixel, 1..256
+    double aperture = -1.0;             // thin-lens aperture radius; < 0 = the camera's (0 = pinhole)
+    double focus_distance = 0.0;        // thin-lens focus distance; 0 = the camera's
     int max_bounces = 16;               // 1..1024
     uint64_t progressive_output = 0;    // save every K passes; 0 = off
     std::string kernel_dir;             // load kernels from here instead of the embedded copies

@@ -9,44 +9,59 @@ namespace clppm {
 
 namespace {
 
-constexpr uint32_t kEyeSlots = 4;              // EYE_SLOTS in kernels/eye_pass.cl
-constexpr uint32_t kEyeBatch = 1u << 18;       // pixel samples per eye-pass launch
-constexpr uint32_t kUpdateWg = 64;             // PPM_UPDATE_WG in kernels/ppm_update.cl
-constexpr uint32_t kScanWg = 256;              // GRID_SCAN_WG in kernels/hash_grid.cl
-
-cl::NDRange global_for(size_t n, size_t wg = 1) { return cl::NDRange(std::max<size_t>(wg, (n + wg - 1) / wg * wg)); }
-
-uint32_t next_pow2(uint32_t v) {
-    uint32_t p = 1;
-    while (p < v && p < (1u << 31)) p <<= 1;
-    return p;
-}
+constexpr uint32_t kEyeSlots = 4;        // EYE_SLOTS for PPM (integrator_build_options)
+constexpr uint32_t kEyeBatch = 1u << 18; // pixel samples per eye-pass launch
+constexpr uint32_t kUpdateWg = 64;       // PPM_UPDATE_WG in kernels/ppm_update.cl
 
 } // namespace
+
+size_t radius_partials_bytes(uint32_t n) {
+    return (std::max<uint32_t>(1, n) + kUpdateWg - 1) / kUpdateWg * sizeof(cl_float2);
+}
+
+std::pair<double, double> enqueue_ppm_update(const DeviceContext& dc, cl::Kernel& kernel, const cl::Buffer& passflux,
+                                             const cl::Buffer& hitpoints, const cl::Buffer& stats, uint32_t n,
+                                             double alpha, const cl::Buffer& radius_partials, IntegratorStats& istats) {
+    if (n == 0) return {0.0, 0.0};
+    kernel.setArg(0, passflux);
+    kernel.setArg(1, hitpoints);
+    kernel.setArg(2, stats);
+    kernel.setArg(3, cl_uint(n));
+    kernel.setArg(4, cl_double(alpha));
+    kernel.setArg(5, radius_partials);
+    const size_t groups = (n + kUpdateWg - 1) / kUpdateWg;
+    cl::Event ev;
+    dc.queue.enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(groups * kUpdateWg), cl::NDRange(kUpdateWg),
+                                  nullptr, &ev);
+    std::vector<cl_float2> partials(groups);
+    dc.queue.enqueueReadBuffer(radius_partials, CL_TRUE, 0, groups * sizeof(cl_float2), partials.data());
+    add_event_time(istats, "update", ev);
+    double sum = 0, mx = 0;
+    for (const cl_float2& p : partials) sum += p.s[0], mx = std::max(mx, double(p.s[1]));
+    return {sum / n, mx};
+}
+
+Image read_image(const DeviceContext& dc, const cl::Buffer& buffer, unsigned width, unsigned height) {
+    std::vector<cl_float4> px(size_t(width) * height);
+    dc.queue.enqueueReadBuffer(buffer, CL_TRUE, 0, px.size() * sizeof(cl_float4), px.data());
+    Image img;
+    img.width = int(width);
+    img.height = int(height);
+    img.rgb.resize(px.size() * 3);
+    for (size_t i = 0; i < px.size(); ++i)
+        for (int c = 0; c < 3; ++c) img.rgb[3 * i + c] = px[i].s[c];
+    return img;
+}
 
 PpmIntegrator::PpmIntegrator(const DeviceContext& dc, const DeviceScene& scene, const RenderSettings& settings,
                              const cl::Program& program)
     : dc_(dc), scene_(scene), settings_(settings) {
+    photon_map_ = std::make_unique<PhotonMap>(dc, scene, settings_, program, stats_);
     k_eye_ = cl::Kernel(program, "eye_pass");
-    k_photon_ = cl::Kernel(program, "photon_trace");
-    k_count_ = cl::Kernel(program, "grid_count");
-    k_scan_ = cl::Kernel(program, "grid_scan");
-    k_scatter_ = cl::Kernel(program, "grid_scatter");
-    k_gather_ = cl::Kernel(program, "gather");
     k_direct_ = cl::Kernel(program, "direct_light");
     k_update_ = cl::Kernel(program, "ppm_update");
     k_film_ = cl::Kernel(program, "ppm_film");
     num_pixels_ = scene.camera.width * scene.camera.height;
-}
-
-double PpmIntegrator::initial_radius(std::vector<float> footprints, double scene_radius) {
-    double diameter = 2 * scene_radius;
-    if (footprints.empty()) return 1e-3 * diameter;
-    auto mid = footprints.begin() + footprints.size() / 2;
-    std::nth_element(footprints.begin(), mid, footprints.end());
-    double r = 2.0 * double(*mid);
-    if (!std::isfinite(r)) r = 1e-3 * diameter;
-    return std::clamp(r, 1e-6 * diameter, 0.05 * diameter);
 }
 
 void PpmIntegrator::prepare() { eye_pass(); }
@@ -67,6 +82,7 @@ void PpmIntegrator::eye_pass() {
     int a = scene_.set_scene_args(k_eye_);
     k_eye_.setArg(a++, scene_.camera_buf);
     k_eye_.setArg(a++, cl_ulong(settings_.seed));
+    k_eye_.setArg(a++, cl_ulong(0));
     const int first_arg = a;
     for (uint64_t first = 0; first < total_samples; first += batch) {
         uint32_t n = uint32_t(std::min<uint64_t>(batch, total_samples - first));
@@ -92,6 +108,7 @@ void PpmIntegrator::eye_pass() {
             }
         }
     }
+    collect_event_times(stats_);
     std::vector<uint32_t> pixel_first(num_pixels_ + 1, 0);
     for (uint32_t p = 0; p < num_pixels_; ++p) pixel_first[p + 1] = pixel_first[p] + pixel_count[p];
     num_hitpoints_ = uint32_t(hitpoints.size());
@@ -100,13 +117,11 @@ void PpmIntegrator::eye_pass() {
     std::vector<float> footprints;
     footprints.reserve(hitpoints.size());
     for (const dev::HitPoint& hp : hitpoints) footprints.push_back(hp.footprint);
-    double r0 = settings_.radius > 0 ? settings_.radius : initial_radius(footprints, scene_.info.radius);
-    stats_.initial_radius = r0;
-    stats_.mean_radius = r0;
-    cell_radius_ = max_radius_ = r0;
+    const double r0 = settings_.radius > 0 ? settings_.radius : initial_radius_heuristic(footprints, scene_.info.radius);
+    stats_.initial_radius = stats_.mean_radius = r0;
+    typical_radius_ = max_radius_ = r0;
 
-    std::vector<dev::HitStats> hstats(std::max<size_t>(1, hitpoints.size()));
-    for (dev::HitStats& s : hstats) s = dev::HitStats{r0 * r0, 0.0, {0, 0, 0}, {0, 0, 0}};
+    std::vector<dev::HitStats> hstats(std::max<size_t>(1, hitpoints.size()), dev::HitStats{r0 * r0, 0.0, {0, 0, 0}, {0, 0, 0}});
     if (hitpoints.empty()) hitpoints.resize(1); // buffers must not be empty; num_hitpoints_ stays 0
     auto make = [&](cl_mem_flags f, size_t bytes, const void* src) {
         stats_.device_bytes += bytes;
@@ -119,137 +134,27 @@ void PpmIntegrator::eye_pass() {
     pixel_first_ = make(CL_MEM_READ_ONLY, pixel_first.size() * sizeof(uint32_t), pixel_first.data());
     emitted_ = make(CL_MEM_READ_ONLY, emitted.size() * sizeof(cl_float4), emitted.data());
     image_buf_ = make(CL_MEM_WRITE_ONLY, size_t(num_pixels_) * sizeof(cl_float4), nullptr);
-    size_t groups = (std::max<uint32_t>(1, num_hitpoints_) + kUpdateWg - 1) / kUpdateWg;
-    radius_partials_ = make(CL_MEM_WRITE_ONLY, groups * sizeof(cl_float2), nullptr);
-    counter_ = make(CL_MEM_READ_WRITE, sizeof(cl_uint), nullptr);
-    grid_info_ = make(CL_MEM_READ_ONLY, sizeof(dev::GridInfo), nullptr);
+    radius_partials_ = make(CL_MEM_WRITE_ONLY, radius_partials_bytes(num_hitpoints_), nullptr);
 }
 
-// Sec. 4.2: M photons from the lights. Stored hits go to photons_; if they outgrow the buffer
-// the pass is traced again into a larger one (same seed, so the same photons).
-void PpmIntegrator::trace_photons() {
-    const uint32_t M = uint32_t(settings_.photons);
-    if (photon_capacity_ == 0)
-        photon_capacity_ = uint32_t(std::clamp<uint64_t>(uint64_t(M) * 3, 1024, 0x7fffffffu));
-    for (;;) {
-        if (!photons_()) {
-            photons_ = cl::Buffer(dc_.context, CL_MEM_READ_WRITE, size_t(photon_capacity_) * sizeof(dev::Photon));
-            sorted_ = cl::Buffer(dc_.context, CL_MEM_READ_WRITE, size_t(photon_capacity_) * sizeof(dev::Photon));
-        }
-        dc_.queue.enqueueFillBuffer(counter_, cl_uint(0), 0, sizeof(cl_uint));
-        int a = scene_.set_scene_args(k_photon_);
-        k_photon_.setArg(a++, cl_ulong(settings_.seed));
-        k_photon_.setArg(a++, cl_ulong(stats_.passes + 1));
-        k_photon_.setArg(a++, cl_uint(0));
-        k_photon_.setArg(a++, cl_uint(M));
-        k_photon_.setArg(a++, cl_uint(settings_.direct == DirectLighting::Sample ? 1 : 0));
-        k_photon_.setArg(a++, photons_);
-        k_photon_.setArg(a++, cl_uint(photon_capacity_));
-        k_photon_.setArg(a++, counter_);
-        cl::Event ev;
-        enqueue_1d(dc_.queue, k_photon_, M, &ev);
-        cl_uint stored = 0;
-        dc_.queue.enqueueReadBuffer(counter_, CL_TRUE, 0, sizeof(cl_uint), &stored);
-        add_event_time(stats_, "photon_trace", ev);
-        if (stored <= photon_capacity_) {
-            photons_this_pass_ = stored;
-            return;
-        }
-        photon_capacity_ = uint32_t(std::min<uint64_t>(uint64_t(stored) * 5 / 4 + 1024, 0x7fffffffu));
-        photons_ = cl::Buffer();
-    }
-}
-
-// Sec. 4.3: the hashed grid of this pass's photons. Cells are sized for the hit points' radii:
-// twice the mean radius, but no smaller than a quarter of the largest so that no hit point
-// visits more than 9^3 cells, and no finer than 2^-20 of the scene.
-void PpmIntegrator::build_grid() {
-    const uint32_t n = photons_this_pass_;
-    dev::GridInfo g{};
-    double extent = 2.0 * scene_.info.radius;
-    double cell = std::max({2.0 * cell_radius_, max_radius_ / 4.0, extent / double(1 << 20)});
-    for (int k = 0; k < 3; ++k) g.origin[k] = scene_.bounds_min[k];
-    g.inv_cell = float(1.0 / cell);
-    g.num_photons = n;
-    uint32_t table = next_pow2(std::max<uint32_t>(1024, n));
-    g.table_size = table;
-    if (table != table_size_) {
-        counts_ = cl::Buffer(dc_.context, CL_MEM_READ_WRITE, size_t(table) * sizeof(cl_uint));
-        starts_ = cl::Buffer(dc_.context, CL_MEM_READ_WRITE, size_t(table + 1) * sizeof(cl_uint));
-        table_size_ = table;
-    }
-    dc_.queue.enqueueWriteBuffer(grid_info_, CL_FALSE, 0, sizeof g, &g);
-    dc_.queue.enqueueFillBuffer(counts_, cl_uint(0), 0, size_t(table) * sizeof(cl_uint));
-    cl::Event e1, e2, e3;
-    k_count_.setArg(0, grid_info_);
-    k_count_.setArg(1, photons_);
-    k_count_.setArg(2, counts_);
-    enqueue_1d(dc_.queue, k_count_, n, &e1);
-    k_scan_.setArg(0, counts_);
-    k_scan_.setArg(1, starts_);
-    k_scan_.setArg(2, cl_uint(table));
-    dc_.queue.enqueueNDRangeKernel(k_scan_, cl::NullRange, cl::NDRange(kScanWg), cl::NDRange(kScanWg), nullptr, &e2);
-    k_scatter_.setArg(0, grid_info_);
-    k_scatter_.setArg(1, photons_);
-    k_scatter_.setArg(2, starts_);
-    k_scatter_.setArg(3, counts_);
-    k_scatter_.setArg(4, sorted_);
-    enqueue_1d(dc_.queue, k_scatter_, n, &e3);
-    e3.wait();
-    add_event_time(stats_, "grid_build", e1);
-    add_event_time(stats_, "grid_build", e2);
-    add_event_time(stats_, "grid_build", e3);
-}
-
-void PpmIntegrator::gather_and_update() {
-    const uint32_t n = num_hitpoints_;
-    if (n == 0) return;
-    cl::Event eg, ed, eu;
-    k_gather_.setArg(0, grid_info_);
-    k_gather_.setArg(1, sorted_);
-    k_gather_.setArg(2, starts_);
-    k_gather_.setArg(3, hitpoints_);
-    k_gather_.setArg(4, stats_buf_);
-    k_gather_.setArg(5, cl_uint(n));
-    k_gather_.setArg(6, passflux_);
-    enqueue_1d(dc_.queue, k_gather_, n, &eg);
-    if (settings_.direct == DirectLighting::Sample) {
-        int a = scene_.set_scene_args(k_direct_);
-        k_direct_.setArg(a++, cl_ulong(settings_.seed));
-        k_direct_.setArg(a++, cl_ulong(stats_.passes + 1));
-        k_direct_.setArg(a++, hitpoints_);
-        k_direct_.setArg(a++, stats_buf_);
-        k_direct_.setArg(a++, cl_uint(n));
-        enqueue_1d(dc_.queue, k_direct_, n, &ed);
-    }
-    k_update_.setArg(0, passflux_);
-    k_update_.setArg(1, hitpoints_);
-    k_update_.setArg(2, stats_buf_);
-    k_update_.setArg(3, cl_uint(n));
-    k_update_.setArg(4, cl_double(settings_.alpha));
-    k_update_.setArg(5, radius_partials_);
-    dc_.queue.enqueueNDRangeKernel(k_update_, cl::NullRange, global_for(n, kUpdateWg), cl::NDRange(kUpdateWg), nullptr,
-                                   &eu);
-    size_t groups = (n + kUpdateWg - 1) / kUpdateWg;
-    std::vector<cl_float2> partials(groups);
-    dc_.queue.enqueueReadBuffer(radius_partials_, CL_TRUE, 0, groups * sizeof(cl_float2), partials.data());
-    add_event_time(stats_, "gather", eg);
-    if (settings_.direct == DirectLighting::Sample) add_event_time(stats_, "direct_light", ed);
-    add_event_time(stats_, "update", eu);
-    double sum = 0, mx = 0;
-    for (const cl_float2& p : partials) sum += p.s[0], mx = std::max(mx, double(p.s[1]));
-    stats_.mean_radius = sum / n;
-    cell_radius_ = stats_.mean_radius;
-    max_radius_ = mx;
+// Sec. 4.2: M(x) and Phi_M(x) from this pass's photons, explicit direct light, then Eqs. 7-10.
+void PpmIntegrator::update() {
+    photon_map_->gather(hitpoints_, stats_buf_, num_hitpoints_, 0.f, passflux_);
+    if (settings_.direct == DirectLighting::Sample)
+        enqueue_direct_light(dc_, scene_, k_direct_, settings_.seed, stats_.passes + 1, hitpoints_, stats_buf_,
+                             num_hitpoints_, stats_);
+    auto [mean, mx] = enqueue_ppm_update(dc_, k_update_, passflux_, hitpoints_, stats_buf_, num_hitpoints_,
+                                         settings_.alpha, radius_partials_, stats_);
+    if (num_hitpoints_ > 0) stats_.mean_radius = typical_radius_ = mean, max_radius_ = mx;
 }
 
 void PpmIntegrator::run_pass() {
-    trace_photons();
-    build_grid();
-    gather_and_update();
+    photon_map_->trace(stats_.passes + 1);
+    photon_map_->build_grid(typical_radius_, max_radius_);
+    update();
+    collect_event_times(stats_);
     stats_.passes += 1;
     stats_.photons_emitted += settings_.photons;
-    stats_.photons_stored += photons_this_pass_;
 }
 
 Image PpmIntegrator::image() {
@@ -263,15 +168,7 @@ Image PpmIntegrator::image() {
     k_film_.setArg(7, cl_double(double(settings_.direct == DirectLighting::Sample ? stats_.passes : 0)));
     k_film_.setArg(8, image_buf_);
     enqueue_1d(dc_.queue, k_film_, num_pixels_);
-    std::vector<cl_float4> px(num_pixels_);
-    dc_.queue.enqueueReadBuffer(image_buf_, CL_TRUE, 0, px.size() * sizeof(cl_float4), px.data());
-    Image img;
-    img.width = int(scene_.camera.width);
-    img.height = int(scene_.camera.height);
-    img.rgb.resize(size_t(num_pixels_) * 3);
-    for (size_t i = 0; i < px.size(); ++i)
-        for (int c = 0; c < 3; ++c) img.rgb[3 * i + c] = px[i].s[c];
-    return img;
+    return read_image(dc_, image_buf_, scene_.camera.width, scene_.camera.height);
 }
 
 } // namespace clppm

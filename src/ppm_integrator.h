@@ -1,9 +1,11 @@
 // Progressive photon mapping (Hachisuka, Ogaki, Jensen 2008): one eye pass storing hit points,
 // then refinement passes of photon tracing, grid build, gather and the progressive update.
 #pragma once
+#include <memory>
 #include <vector>
 
 #include "integrator.h"
+#include "photon_map.h"
 
 namespace clppm {
 
@@ -16,30 +18,32 @@ public:
     void run_pass() override;
     Image image() override;
 
-    // The initial radius heuristic: twice the median pixel footprint of the hit points, kept
-    // within [1e-6, 0.05] of the scene's bounding diameter.
-    static double initial_radius(std::vector<float> footprints, double scene_radius);
-
 private:
     void eye_pass();
-    void trace_photons();
-    void build_grid();
-    void gather_and_update();
+    void update();
 
     const DeviceContext& dc_;
     const DeviceScene& scene_;
     RenderSettings settings_;
-    cl::Kernel k_eye_, k_photon_, k_count_, k_scan_, k_scatter_, k_gather_, k_direct_, k_update_, k_film_;
+    std::unique_ptr<PhotonMap> photon_map_;
+    cl::Kernel k_eye_, k_direct_, k_update_, k_film_;
 
     uint32_t num_pixels_ = 0;
     uint32_t num_hitpoints_ = 0;
     cl::Buffer hitpoints_, stats_buf_, passflux_, pixel_first_, emitted_, image_buf_, radius_partials_;
-    cl::Buffer photons_, sorted_, counter_, grid_info_, counts_, starts_;
-    uint32_t photon_capacity_ = 0;
-    uint32_t photons_this_pass_ = 0;
-    uint32_t table_size_ = 0;
-    double cell_radius_ = 0;  // radius the next grid's cells are sized for
+    double typical_radius_ = 0; // mean R over hit points: sizes the next grid's cells
     double max_radius_ = 0;
 };
+
+// Runs ppm_update (kernels/ppm_update.cl) over n hit points and returns (mean, max) of R after it.
+std::pair<double, double> enqueue_ppm_update(const DeviceContext& dc, cl::Kernel& kernel, const cl::Buffer& passflux,
+                                             const cl::Buffer& hitpoints, const cl::Buffer& stats, uint32_t n,
+                                             double alpha, const cl::Buffer& radius_partials, IntegratorStats& istats);
+
+// Bytes of the per-group radius partials enqueue_ppm_update needs for n hit points.
+size_t radius_partials_bytes(uint32_t n);
+
+// Reads a float4 image buffer back into an Image.
+Image read_image(const DeviceContext& dc, const cl::Buffer& buffer, unsigned width, unsigned height);
 
 } // namespace clppm

@@ -1,5 +1,7 @@
 #include "pt_integrator.h"
 
+#include "ppm_integrator.h"
+
 namespace clppm {
 
 PtIntegrator::PtIntegrator(const DeviceContext& dc, const DeviceScene& scene, const RenderSettings& settings,
@@ -27,8 +29,8 @@ void PtIntegrator::run_pass() {
     k_trace_.setArg(a++, accum_);
     cl::Event ev;
     enqueue_1d(dc_.queue, k_trace_, num_pixels_, &ev);
-    ev.wait();
     add_event_time(stats_, "path_trace", ev);
+    collect_event_times(stats_);
     stats_.passes += 1;
 }
 
@@ -38,15 +40,7 @@ Image PtIntegrator::image() {
     k_film_.setArg(2, cl_double(double(stats_.passes)));
     k_film_.setArg(3, image_buf_);
     enqueue_1d(dc_.queue, k_film_, num_pixels_);
-    std::vector<cl_float4> px(num_pixels_);
-    dc_.queue.enqueueReadBuffer(image_buf_, CL_TRUE, 0, px.size() * sizeof(cl_float4), px.data());
-    Image img;
-    img.width = int(scene_.camera.width);
-    img.height = int(scene_.camera.height);
-    img.rgb.resize(size_t(num_pixels_) * 3);
-    for (size_t i = 0; i < px.size(); ++i)
-        for (int c = 0; c < 3; ++c) img.rgb[3 * i + c] = px[i].s[c];
-    return img;
+    return read_image(dc_, image_buf_, scene_.camera.width, scene_.camera.height);
 }
 
 } // namespace clppm

@@ -126,8 +126,13 @@ dev::Camera make_camera(const Scene& scene, const RenderSettings& settings, cons
     store4(cam.right, V3{right.x * tx, right.y * tx, right.z * tx});
     store4(cam.up, V3{up.x * ty, up.y * ty, up.z * ty});
     cam.width = w, cam.height = h;
-    cam.lens_radius = desc.aperture_radius;
-    cam.focus_distance = desc.focus_distance;
+    cam.lens_radius = float(settings.aperture >= 0 ? settings.aperture : desc.aperture_radius);
+    double focus = settings.focus_distance > 0 ? settings.focus_distance : desc.focus_distance;
+    if (!(focus > 0)) { // the plane through the centre of the scene
+        V3 c{0.5 * (bmin[0] + bmax[0]), 0.5 * (bmin[1] + bmax[1]), 0.5 * (bmin[2] + bmax[2])};
+        focus = std::max(1e-6, dot(sub(c, V3{desc.position[0], desc.position[1], desc.position[2]}), f));
+    }
+    cam.focus_distance = float(focus);
     return cam;
 }
 

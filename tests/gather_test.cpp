@@ -116,7 +116,8 @@ std::vector<dev::PassFlux> device_gather(const GatherCase& c) {
     scatter.setArg(0, grid), scatter.setArg(1, photons), scatter.setArg(2, starts), scatter.setArg(3, counts);
     scatter.setArg(4, sorted);
     gather.setArg(0, grid), gather.setArg(1, sorted), gather.setArg(2, starts), gather.setArg(3, hps);
-    gather.setArg(4, stats), gather.setArg(5, cl_uint(c.hitpoints.size())), gather.setArg(6, out);
+    gather.setArg(4, stats), gather.setArg(5, cl_uint(c.hitpoints.size())), gather.setArg(6, cl_float(0));
+    gather.setArg(7, out);
     dc.queue.enqueueNDRangeKernel(count, cl::NullRange, cl::NDRange(c.photons.size()));
     dc.queue.enqueueNDRangeKernel(scan, cl::NullRange, cl::NDRange(256), cl::NDRange(256));
     dc.queue.enqueueNDRangeKernel(scatter, cl::NullRange, cl::NDRange(c.photons.size()));

@@ -191,7 +191,7 @@ INSTANTIATE_TEST_SUITE_P(
         BadValue{{"--device", ""}, "--device '': must be a device index, cpu, gpu or part of a device name"},
         BadValue{{"--camera", "-1"}, "--camera -1: must be an integer >= 0"},
         BadValue{{"--stats-json="}, "--stats-json '': must be a file name"},
-        BadValue{{"--integrator", "bdpt"}, "--integrator bdpt: must be ppm or pt"},
+        BadValue{{"--integrator", "bdpt"}, "--integrator bdpt: must be ppm, sppm, pppm or pt"},
         BadValue{{"--direct", "both"}, "--direct both: must be photons or sample"},
         BadValue{{"--spp", "0"}, "--spp 0: must be an integer in 1..256"},
         BadValue{{"--spp", "257"}, "--spp 257: must be an integer in 1..256"},

@@ -1,0 +1,8 @@
+/* sppm_program.cl: the kernels of a stochastic or probabilistic PPM render (EYE_SLOTS 1). */
+#include "eye_pass.cl"
+#include "photon_trace.cl"
+#include "hash_grid.cl"
+#include "gather.cl"
+#include "direct_light.cl"
+#include "ppm_update.cl"
+#include "sppm.cl"

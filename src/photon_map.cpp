@@ -1,0 +1,149 @@
+#include "photon_map.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace clppm {
+
+namespace {
+
+constexpr uint32_t kScanWg = 256; // GRID_SCAN_WG in kernels/hash_grid.cl
+
+uint32_t next_pow2(uint32_t v) {
+    uint32_t p = 1;
+    while (p < v && p < (1u << 31)) p <<= 1;
+    return p;
+}
+
+} // namespace
+
+PhotonMap::PhotonMap(const DeviceContext& dc, const DeviceScene& scene, const RenderSettings& settings,
+                     const cl::Program& program, IntegratorStats& stats)
+    : dc_(dc), scene_(scene), settings_(settings), stats_(stats) {
+    k_photon_ = cl::Kernel(program, "photon_trace");
+    k_count_ = cl::Kernel(program, "grid_count");
+    k_scan_ = cl::Kernel(program, "grid_scan");
+    k_scatter_ = cl::Kernel(program, "grid_scatter");
+    k_gather_ = cl::Kernel(program, "gather");
+    counter_ = cl::Buffer(dc.context, CL_MEM_READ_WRITE, sizeof(cl_uint));
+    grid_info_ = cl::Buffer(dc.context, CL_MEM_READ_ONLY, sizeof(dev::GridInfo));
+}
+
+size_t PhotonMap::device_bytes() const {
+    return 2 * size_t(capacity_) * sizeof(dev::Photon) + (2 * size_t(table_size_) + 1) * sizeof(cl_uint);
+}
+
+void PhotonMap::trace(uint64_t pass) {
+    const uint32_t M = uint32_t(settings_.photons);
+    if (capacity_ == 0) capacity_ = uint32_t(std::clamp<uint64_t>(uint64_t(M) * 3, 1024, 0x7fffffffu));
+    for (;;) {
+        if (!photons_()) {
+            photons_ = cl::Buffer(dc_.context, CL_MEM_READ_WRITE, size_t(capacity_) * sizeof(dev::Photon));
+            sorted_ = cl::Buffer(dc_.context, CL_MEM_READ_WRITE, size_t(capacity_) * sizeof(dev::Photon));
+        }
+        dc_.queue.enqueueFillBuffer(counter_, cl_uint(0), 0, sizeof(cl_uint));
+        int a = scene_.set_scene_args(k_photon_);
+        k_photon_.setArg(a++, cl_ulong(settings_.seed));
+        k_photon_.setArg(a++, cl_ulong(pass));
+        k_photon_.setArg(a++, cl_uint(0));
+        k_photon_.setArg(a++, cl_uint(M));
+        k_photon_.setArg(a++, cl_uint(settings_.direct == DirectLighting::Sample ? 1 : 0));
+        k_photon_.setArg(a++, photons_);
+        k_photon_.setArg(a++, cl_uint(capacity_));
+        k_photon_.setArg(a++, counter_);
+        cl::Event ev;
+        enqueue_1d(dc_.queue, k_photon_, M, &ev);
+        cl_uint stored = 0;
+        dc_.queue.enqueueReadBuffer(counter_, CL_TRUE, 0, sizeof(cl_uint), &stored);
+        add_event_time(stats_, "photon_trace", ev);
+        if (stored <= capacity_) {
+            stored_ = stored;
+            stats_.photons_stored += stored;
+            return;
+        }
+        capacity_ = uint32_t(std::min<uint64_t>(uint64_t(stored) * 5 / 4 + 1024, 0x7fffffffu));
+        photons_ = cl::Buffer();
+    }
+}
+
+void PhotonMap::build_grid(double typical_radius, double max_radius) {
+    const uint32_t n = stored_;
+    dev::GridInfo g{};
+    const double extent = 2.0 * scene_.info.radius;
+    const double cell = std::max({2.0 * typical_radius, max_radius / 4.0, extent / double(1 << 20)});
+    for (int k = 0; k < 3; ++k) g.origin[k] = scene_.bounds_min[k];
+    g.inv_cell = float(1.0 / cell);
+    g.num_photons = n;
+    g.table_size = next_pow2(std::max<uint32_t>(1024, n));
+    if (g.table_size != table_size_) {
+        table_size_ = g.table_size;
+        counts_ = cl::Buffer(dc_.context, CL_MEM_READ_WRITE, size_t(table_size_) * sizeof(cl_uint));
+        starts_ = cl::Buffer(dc_.context, CL_MEM_READ_WRITE, size_t(table_size_ + 1) * sizeof(cl_uint));
+    }
+    dc_.queue.enqueueWriteBuffer(grid_info_, CL_FALSE, 0, sizeof g, &g);
+    dc_.queue.enqueueFillBuffer(counts_, cl_uint(0), 0, size_t(table_size_) * sizeof(cl_uint));
+    cl::Event e1, e2, e3;
+    k_count_.setArg(0, grid_info_);
+    k_count_.setArg(1, photons_);
+    k_count_.setArg(2, counts_);
+    enqueue_1d(dc_.queue, k_count_, n, &e1);
+    k_scan_.setArg(0, counts_);
+    k_scan_.setArg(1, starts_);
+    k_scan_.setArg(2, cl_uint(table_size_));
+    dc_.queue.enqueueNDRangeKernel(k_scan_, cl::NullRange, cl::NDRange(kScanWg), cl::NDRange(kScanWg), nullptr, &e2);
+    k_scatter_.setArg(0, grid_info_);
+    k_scatter_.setArg(1, photons_);
+    k_scatter_.setArg(2, starts_);
+    k_scatter_.setArg(3, counts_);
+    k_scatter_.setArg(4, sorted_);
+    enqueue_1d(dc_.queue, k_scatter_, n, &e3);
+    e3.wait();
+    add_event_time(stats_, "grid_build", e1);
+    add_event_time(stats_, "grid_build", e2);
+    add_event_time(stats_, "grid_build", e3);
+}
+
+void PhotonMap::gather(const cl::Buffer& hitpoints, const cl::Buffer& stats, uint32_t n, float global_r2,
+                       const cl::Buffer& out) {
+    if (n == 0) return;
+    k_gather_.setArg(0, grid_info_);
+    k_gather_.setArg(1, sorted_);
+    k_gather_.setArg(2, starts_);
+    k_gather_.setArg(3, hitpoints);
+    k_gather_.setArg(4, stats);
+    k_gather_.setArg(5, cl_uint(n));
+    k_gather_.setArg(6, cl_float(global_r2));
+    k_gather_.setArg(7, out);
+    cl::Event ev;
+    enqueue_1d(dc_.queue, k_gather_, n, &ev);
+    ev.wait();
+    add_event_time(stats_, "gather", ev);
+}
+
+void enqueue_direct_light(const DeviceContext& dc, const DeviceScene& scene, cl::Kernel& kernel, uint64_t seed,
+                          uint64_t pass, const cl::Buffer& hitpoints, const cl::Buffer& stats, uint32_t n,
+                          IntegratorStats& istats) {
+    if (n == 0) return;
+    int a = scene.set_scene_args(kernel);
+    kernel.setArg(a++, cl_ulong(seed));
+    kernel.setArg(a++, cl_ulong(pass));
+    kernel.setArg(a++, hitpoints);
+    kernel.setArg(a++, stats);
+    kernel.setArg(a++, cl_uint(n));
+    cl::Event ev;
+    enqueue_1d(dc.queue, kernel, n, &ev);
+    ev.wait();
+    add_event_time(istats, "direct_light", ev);
+}
+
+double initial_radius_heuristic(std::vector<float> footprints, double scene_radius) {
+    double diameter = 2 * scene_radius;
+    if (footprints.empty()) return 1e-3 * diameter;
+    auto mid = footprints.begin() + footprints.size() / 2;
+    std::nth_element(footprints.begin(), mid, footprints.end());
+    double r = 2.0 * double(*mid);
+    if (!std::isfinite(r)) r = 1e-3 * diameter;
+    return std::clamp(r, 1e-6 * diameter, 0.05 * diameter);
+}
+
+} // namespace clppm

@@ -1,0 +1,121 @@
+#include "sppm_integrator.h"
+
+#include <cmath>
+
+#include "ppm_integrator.h"
+
+namespace clppm {
+
+SppmIntegrator::SppmIntegrator(const DeviceContext& dc, const DeviceScene& scene, const RenderSettings& settings,
+                               const cl::Program& program)
+    : dc_(dc), scene_(scene), settings_(settings), probabilistic_(settings.integrator == Integrator::PPPM) {
+    photon_map_ = std::make_unique<PhotonMap>(dc, scene, settings_, program, stats_);
+    k_eye_ = cl::Kernel(program, "eye_pass");
+    k_emission_ = cl::Kernel(program, "accumulate_emission");
+    k_direct_ = cl::Kernel(program, "direct_light");
+    k_update_ = cl::Kernel(program, "ppm_update");
+    k_accumulate_ = cl::Kernel(program, "pppm_accumulate");
+    k_film_ = cl::Kernel(program, probabilistic_ ? "pppm_film" : "sppm_film");
+    num_pixels_ = scene.camera.width * scene.camera.height;
+}
+
+void SppmIntegrator::prepare() {
+    const size_t n = num_pixels_;
+    auto make = [&](size_t bytes) {
+        stats_.device_bytes += bytes;
+        return cl::Buffer(dc_.context, CL_MEM_READ_WRITE, bytes);
+    };
+    hitpoints_ = make(n * sizeof(dev::HitPoint));
+    sample_emission_ = make(n * sizeof(cl_float4));
+    stats_buf_ = make(n * sizeof(dev::HitStats));
+    passflux_ = make(n * sizeof(dev::PassFlux));
+    image_buf_ = make(n * sizeof(cl_float4));
+    radius_partials_ = make(radius_partials_bytes(num_pixels_));
+    stats_.hitpoints = n;
+
+    // The first pass's visible points decide the initial radius, as PPM's hit points do.
+    eye_pass(1);
+    std::vector<dev::HitPoint> hps(n);
+    dc_.queue.enqueueReadBuffer(hitpoints_, CL_TRUE, 0, n * sizeof(dev::HitPoint), hps.data());
+    std::vector<float> footprints;
+    for (const dev::HitPoint& hp : hps)
+        if (hp.pixel != HITPOINT_NONE) footprints.push_back(hp.footprint);
+    const double r0 = settings_.radius > 0 ? settings_.radius : initial_radius_heuristic(footprints, scene_.info.radius);
+    stats_.initial_radius = stats_.mean_radius = typical_radius_ = max_radius_ = r0;
+    r2_ = r0 * r0;
+    const dev::HitStats init{r0 * r0, 0.0, {0, 0, 0}, {0, 0, 0}};
+    dc_.queue.enqueueFillBuffer(stats_buf_, init, 0, n * sizeof(dev::HitStats));
+}
+
+// New visible points for every pixel; their seen emission joins the per-pixel running sum.
+void SppmIntegrator::eye_pass(uint64_t pass) {
+    int a = scene_.set_scene_args(k_eye_);
+    k_eye_.setArg(a++, scene_.camera_buf);
+    k_eye_.setArg(a++, cl_ulong(settings_.seed));
+    k_eye_.setArg(a++, cl_ulong(pass));
+    k_eye_.setArg(a++, cl_uint(0));
+    k_eye_.setArg(a++, cl_uint(num_pixels_));
+    k_eye_.setArg(a++, cl_uint(1));
+    k_eye_.setArg(a++, hitpoints_);
+    k_eye_.setArg(a++, sample_emission_);
+    cl::Event ev;
+    enqueue_1d(dc_.queue, k_eye_, num_pixels_, &ev);
+    add_event_time(stats_, "eye_pass", ev);
+}
+
+void SppmIntegrator::run_pass() {
+    const uint64_t pass = stats_.passes + 1;
+    if (pass > 1) eye_pass(pass);
+    k_emission_.setArg(0, sample_emission_);
+    k_emission_.setArg(1, stats_buf_);
+    k_emission_.setArg(2, cl_uint(num_pixels_));
+    enqueue_1d(dc_.queue, k_emission_, num_pixels_);
+    if (settings_.direct == DirectLighting::Sample)
+        enqueue_direct_light(dc_, scene_, k_direct_, settings_.seed, pass, hitpoints_, stats_buf_, num_pixels_, stats_);
+
+    photon_map_->trace(pass);
+    if (probabilistic_) {
+        const double r = std::sqrt(r2_);
+        photon_map_->build_grid(r, r);
+        photon_map_->gather(hitpoints_, stats_buf_, num_pixels_, float(r2_), passflux_);
+        k_accumulate_.setArg(0, passflux_);
+        k_accumulate_.setArg(1, hitpoints_);
+        k_accumulate_.setArg(2, stats_buf_);
+        k_accumulate_.setArg(3, cl_uint(num_pixels_));
+        k_accumulate_.setArg(4, cl_double(1.0 / (M_PI * r2_)));
+        cl::Event ev;
+        enqueue_1d(dc_.queue, k_accumulate_, num_pixels_, &ev);
+        add_event_time(stats_, "update", ev);
+        dc_.queue.finish();
+        r2_ = next_pppm_radius2(r2_, pass, settings_.alpha);
+        stats_.mean_radius = std::sqrt(r2_);
+    } else {
+        photon_map_->build_grid(typical_radius_, max_radius_);
+        photon_map_->gather(hitpoints_, stats_buf_, num_pixels_, 0.f, passflux_);
+        auto [mean, mx] = enqueue_ppm_update(dc_, k_update_, passflux_, hitpoints_, stats_buf_, num_pixels_,
+                                             settings_.alpha, radius_partials_, stats_);
+        stats_.mean_radius = typical_radius_ = mean;
+        max_radius_ = mx;
+    }
+    collect_event_times(stats_);
+    stats_.passes = pass;
+    stats_.photons_emitted += settings_.photons;
+}
+
+Image SppmIntegrator::image() {
+    int a = 0;
+    k_film_.setArg(a++, stats_buf_);
+    k_film_.setArg(a++, cl_uint(num_pixels_));
+    if (probabilistic_) {
+        k_film_.setArg(a++, cl_double(double(scene_.info.total_power) / double(settings_.photons)));
+    } else {
+        k_film_.setArg(a++, cl_double(scene_.info.total_power));
+        k_film_.setArg(a++, cl_double(double(stats_.photons_emitted)));
+    }
+    k_film_.setArg(a++, cl_double(double(stats_.passes)));
+    k_film_.setArg(a++, image_buf_);
+    enqueue_1d(dc_.queue, k_film_, num_pixels_);
+    return read_image(dc_, image_buf_, scene_.camera.width, scene_.camera.height);
+}
+
+} // namespace clppm
