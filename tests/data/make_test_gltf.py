@@ -1,0 +1,346 @@
+#!/usr/bin/env python3
+"""Writes the small glTF files that tests/gltf_load_test.cpp loads (python3 standard library).
+
+One file per loader feature and one per error. Deterministic; run from anywhere:
+    python3 tests/data/make_test_gltf.py
+The expected numbers in the test follow from the geometry written here.
+"""
+import base64
+import json
+import math
+import os
+import struct
+import sys
+import zlib
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.dont_write_bytecode = True  # keep scripts/ free of __pycache__
+sys.path.insert(0, os.path.join(HERE, "..", "..", "scripts"))
+from make_scenes import (ARRAY_BUFFER, FLOAT, UBYTE, UINT, USHORT, GltfBuilder,  # noqa: E402
+                         rounded, write_text)
+
+NAN, INF = float("nan"), float("inf")
+TRI = [(0.0, 0.0, 0.0), (1.0, 0.0, 0.0), (0.0, 1.0, 0.0)]
+TRI_N = [(0.0, 0.0, 1.0)] * 3
+
+
+def out(name):
+    return os.path.join(HERE, name)
+
+
+def write_doc(name, doc):
+    write_text(out(name), json.dumps(rounded(doc), indent=1) + "\n")
+
+
+def one_triangle(**material):
+    """A builder holding one +z facing triangle under node 0 in scene 0."""
+    b = GltfBuilder("clppm tests/data/make_test_gltf.py")
+    mat = b.material("m", **material) if material else None
+    mesh = b.mesh([b.primitive(TRI, [0, 1, 2], TRI_N, material=mat)], "tri")
+    b.scene([b.node(name="tri", mesh=mesh)])
+    return b
+
+
+def quat_axis_angle(axis, angle):
+    s = math.sin(angle / 2)
+    return [axis[0] * s, axis[1] * s, axis[2] * s, math.cos(angle / 2)]
+
+
+def png_rgba(rows):
+    """A PNG of 8-bit RGBA pixels; rows top first."""
+    h, w = len(rows), len(rows[0])
+    raw = b"".join(b"\x00" + bytes(c for px in row for c in px) for row in rows)
+
+    def chunk(kind, data):
+        return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data) & 0xFFFFFFFF)
+
+    return (b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", w, h, 8, 6, 0, 0, 0)) +
+            chunk(b"IDAT", zlib.compress(raw, 9)) + chunk(b"IEND", b""))
+
+
+# ---- features ----------------------------------------------------------------------------------
+
+def hierarchy():
+    """TRS parent with a matrix child; non-uniform scale for inverse-transpose normals; scene 1
+    is the default."""
+    b = GltfBuilder("clppm tests/data/make_test_gltf.py")
+    tri = b.mesh([b.primitive(TRI, [0, 1, 2], TRI_N)], "tri")
+    s = 1 / math.sqrt(2)
+    tilted = b.mesh([b.primitive([(0, 0, 0), (1, 0, 0), (0, 1, 1)], [0, 1, 2], [(0, -s, s)] * 3)], "tilted")
+    child = b.node(name="child", mesh=tri, matrix=[1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 1, 1])
+    parent = b.node(name="parent", children=[child], translation=[1, 2, 3],
+                    rotation=quat_axis_angle((0, 0, 1), math.pi / 2), scale=[2, 2, 2])
+    squashed = b.node(name="squashed", mesh=tilted, translation=[10, 0, 0], scale=[1, 4, 1])
+    b.doc["scenes"] = [{"nodes": [squashed]}, {"nodes": [parent, squashed]}]
+    b.doc["scene"] = 1
+    b.write_embedded(out("hierarchy.gltf"))
+
+
+def index_types():
+    """Four quads at z = 0..3: u8, u16, u32 indices and non-indexed."""
+    b = GltfBuilder("clppm tests/data/make_test_gltf.py")
+    prims = []
+    for z, index_type in enumerate((UBYTE, USHORT, UINT)):
+        quad = [(0, 0, z), (1, 0, z), (1, 1, z), (0, 1, z)]
+        prims.append(b.primitive(quad, [0, 1, 2, 0, 2, 3], [(0, 0, 1)] * 4, index_type=index_type))
+    flat6 = [(0, 0, 3), (1, 0, 3), (1, 1, 3), (0, 0, 3), (1, 1, 3), (0, 1, 3)]
+    prims.append(b.primitive(flat6, None, [(0, 0, 1)] * 6))
+    b.scene([b.node(name="quads", mesh=b.mesh(prims, "quads"))])
+    b.write_embedded(out("index_types.gltf"))
+
+
+def byte_stride():
+    """Interleaved POSITION/NORMAL/TEXCOORD_0 (u16 normalized) with byteStride 32, and a second
+    primitive with u8 normalized TEXCOORD_0."""
+    b = GltfBuilder("clppm tests/data/make_test_gltf.py")
+    uv16 = [(0, 0), (65535, 0), (32768, 65535)]
+    data = b"".join(struct.pack("<3f3f2H4x", *p, 0.0, 0.0, 1.0, *uv) for p, uv in zip(TRI, uv16))
+    view = b.buffer_view(data, ARRAY_BUFFER, stride=32)
+    pos = b.raw_accessor({"bufferView": view, "byteOffset": 0, "componentType": FLOAT, "count": 3,
+                          "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]})
+    nrm = b.raw_accessor({"bufferView": view, "byteOffset": 12, "componentType": FLOAT, "count": 3, "type": "VEC3"})
+    uv = b.raw_accessor({"bufferView": view, "byteOffset": 24, "componentType": USHORT, "normalized": True,
+                         "count": 3, "type": "VEC2"})
+    first = {"attributes": {"POSITION": pos, "NORMAL": nrm, "TEXCOORD_0": uv}}
+    second = b.primitive([(0, 0, 1), (1, 0, 1), (0, 1, 1)], None, TRI_N)
+    second["attributes"]["TEXCOORD_0"] = b.accessor([0, 255, 51, 0, 255, 102], UBYTE, "VEC2", ARRAY_BUFFER,
+                                                    normalized=True)
+    b.scene([b.node(name="strided", mesh=b.mesh([first, second]))])
+    b.write_embedded(out("byte_stride.gltf"))
+
+
+def containers():
+    """The same quad as .glb, as .gltf with an external .bin, and with an embedded data URI."""
+    for name in ("box.glb", "external.gltf", "embedded.gltf"):
+        b = GltfBuilder("clppm tests/data/make_test_gltf.py")
+        mat = b.material("grey", (0.5, 0.5, 0.5))
+        quad = [(-1, 0, -1), (1, 0, -1), (1, 0, 1), (-1, 0, 1)]
+        prim = b.primitive(quad, [0, 2, 1, 0, 3, 2], [(0, 1, 0)] * 4, material=mat)
+        b.scene([b.node(name="quad", mesh=b.mesh([prim]), translation=[0, 0.5, 0])])
+        if name.endswith(".glb"):
+            b.write_glb(out(name))
+        elif name.startswith("external"):
+            b.write_external(out(name))
+        else:
+            b.write_embedded(out(name))
+
+
+def no_normals():
+    """One mesh without NORMAL, instanced by two nodes: flat normals, counted once."""
+    b = GltfBuilder("clppm tests/data/make_test_gltf.py")
+    mesh = b.mesh([b.primitive([(0, 0, 0), (1, 0, 0), (0, 0, -1)], [0, 1, 2])], "bare")
+    b.scene([b.node(name="a", mesh=mesh), b.node(name="b", mesh=mesh, translation=[0, 1, 0])])
+    b.write_embedded(out("no_normals.gltf"))
+
+
+def degenerate():
+    """Non-indexed: 1 good triangle, 4 degenerate (repeated vertex, collinear, NaN, Inf), then a
+    good triangle with tilted normals, one NaN (kept, all three normals flat +z)."""
+    b = GltfBuilder("clppm tests/data/make_test_gltf.py")
+    z, tilt = (0.0, 0.0, 1.0), (0.0, math.sqrt(0.5), math.sqrt(0.5))
+    tris = [
+        (TRI, [z, z, z]),
+        ([(0, 0, 0), (1, 0, 0), (1, 0, 0)], [z, z, z]),
+        ([(0, 0, 0), (1, 1, 1), (2, 2, 2)], [z, z, z]),
+        ([(0, 0, 0), (NAN, 0, 0), (0, 1, 0)], [z, z, z]),
+        ([(0, 0, 0), (1, 0, 0), (0, INF, 0)], [z, z, z]),
+        ([(0, 0, 2), (1, 0, 2), (0, 1, 2)], [tilt, (NAN, 0.0, 1.0), tilt]),
+    ]
+    pos = [p for t, _ in tris for p in t]
+    nrm = [n for _, ns in tris for n in ns]
+    b.scene([b.node(name="mixed", mesh=b.mesh([b.primitive(pos, None, nrm, bounds=False)]))])
+    b.write_embedded(out("degenerate.gltf"))
+
+
+def mirror():
+    """x -> -x mirror: winding must be flipped so the front face keeps agreeing with the normals."""
+    b = GltfBuilder("clppm tests/data/make_test_gltf.py")
+    smooth = b.primitive(TRI, [0, 1, 2], TRI_N)
+    bare = b.primitive([(0, 0, 1), (1, 0, 1), (0, 1, 1)], [0, 1, 2])
+    b.scene([b.node(name="mirrored", mesh=b.mesh([smooth, bare]), scale=[-1, 1, 1])])
+    b.write_embedded(out("mirror.gltf"))
+
+
+def materials():
+    """One triangle per material (z = material index) and one without a material."""
+    b = GltfBuilder("clppm tests/data/make_test_gltf.py")
+    b.material("diffuse", (0.5, 0.25, 0.125), metallic=0.0, roughness=0.7)
+    b.material("emissive", (0.1, 0.1, 0.1), emissive=(1.0, 0.5, 0.25), emissive_strength=8.0)
+    b.material("glass", (1, 1, 1), metallic=0.0, roughness=0.3, transmission=1.0, ior=1.33)
+    b.material("mirror", (0.9, 0.9, 0.9), metallic=1.0, roughness=0.0)
+    b.material("metal_mix", (0.8, 0.7, 0.6), metallic=0.4, roughness=0.5)
+    b.material("two_sided", (0.3, 0.3, 0.3), double_sided=True)
+    b._append("materials", {"name": "pbr_default"})
+    b.material("glass_default_ior", (1, 1, 1), metallic=0.0, transmission=0.5)
+    prims = []
+    for i in range(9):
+        tri = [(x, y, float(i)) for x, y, _ in TRI]
+        prims.append(b.primitive(tri, [0, 1, 2], TRI_N, material=i if i < 8 else None))
+    b.scene([b.node(name="swatches", mesh=b.mesh(prims))])
+    b.write_embedded(out("materials.gltf"))
+
+
+TEXTURE_PIXELS = [[(0, 0, 0, 255), (255, 255, 255, 255)],
+                  [(128, 64, 188, 255), (10, 200, 30, 128)]]
+
+
+def texture():
+    """A 2x2 sRGB PNG as a data URI (sampler: clamp s) and from a bufferView (clamp s and t);
+    a texture on TEXCOORD_1 and one whose image is not an image."""
+    b = GltfBuilder("clppm tests/data/make_test_gltf.py")
+    png = png_rgba(TEXTURE_PIXELS)
+    b.doc["images"] = [
+        {"uri": "data:image/png;base64," + base64.b64encode(png).decode("ascii")},
+        {"uri": "data:image/png;base64," + base64.b64encode(b"this is not a PNG file").decode("ascii")},
+        {"bufferView": b.buffer_view(png), "mimeType": "image/png"},
+    ]
+    b.doc["samplers"] = [{"wrapS": 33071, "wrapT": 10497}, {"wrapS": 33071, "wrapT": 33071}]
+    b.doc["textures"] = [{"source": 0, "sampler": 0}, {"source": 0}, {"source": 1}, {"source": 2, "sampler": 1}]
+    b.material("textured", (1, 1, 1), base_color_texture={"index": 0})
+    b.material("second_uv_set", (1, 1, 1), base_color_texture={"index": 1, "texCoord": 1})
+    b.material("broken_image", (1, 1, 1), base_color_texture={"index": 2})
+    b.material("from_buffer_view", (1, 1, 1), base_color_texture={"index": 3})
+    uvs = [(0, 0), (1, 0), (0, 1)]
+    prims = [b.primitive([(x, y, float(i)) for x, y, _ in TRI], [0, 1, 2], TRI_N, uvs=uvs, material=i)
+             for i in range(4)]
+    b.scene([b.node(name="textured", mesh=b.mesh(prims))])
+    b.write_embedded(out("texture.gltf"))
+
+
+def lights():
+    """Point (with range), spot under a translated parent, spot with default cones, directional."""
+    b = GltfBuilder("clppm tests/data/make_test_gltf.py")
+    point = b.light({"name": "point", "type": "point", "color": [1.0, 0.5, 0.25], "intensity": 10.0, "range": 5.0})
+    spot = b.light({"name": "spot", "type": "spot", "intensity": 20.0,
+                    "spot": {"innerConeAngle": 0.2, "outerConeAngle": 0.4}})
+    spot_default = b.light({"name": "spot_default", "type": "spot", "intensity": 1.0, "spot": {}})
+    sun = b.light({"name": "sun", "type": "directional", "color": [1.0, 1.0, 1.0], "intensity": 3.0})
+    down = quat_axis_angle((1, 0, 0), -math.pi / 2)
+    spot_node = b.node(name="spot", light=spot, translation=[0, 5, 0], rotation=down)
+    mesh = b.mesh([b.primitive(TRI, [0, 1, 2], TRI_N)], "tri")
+    b.scene([
+        b.node(name="tri", mesh=mesh),
+        b.node(name="point", light=point, translation=[1, 2, 3]),
+        b.node(name="rig", children=[spot_node], translation=[1, 0, 0]),
+        b.node(name="spot_default", light=spot_default),
+        b.node(name="sun", light=sun, rotation=quat_axis_angle((0, 1, 0), math.pi / 2)),
+    ])
+    b.write_embedded(out("lights.gltf"))
+
+
+def cameras():
+    """Perspective cameras in traversal order: extras on the node, extras on the camera under a
+    translated parent, a sheared matrix (up re-orthogonalised); an orthographic one (skipped)."""
+    b = GltfBuilder("clppm tests/data/make_test_gltf.py")
+    with_extras = b.camera(0.5, 1.5, "with_extras", extras={"aperture_radius": 0.05, "focus_distance": 4.0})
+    plain = b.camera(0.8, None, "plain")
+    sheared = b.camera(0.7, 2.0, "sheared")
+    ortho = b._append("cameras", {"type": "orthographic", "name": "ortho",
+                                  "orthographic": {"xmag": 1, "ymag": 1, "znear": 0.1, "zfar": 10}})
+    mesh = b.mesh([b.primitive(TRI, [0, 1, 2], TRI_N)], "tri")
+    lens_node = b.node(name="lens", camera=with_extras, translation=[0, 1, 4])
+    b.scene([
+        b.node(name="side", camera=plain, rotation=quat_axis_angle((0, 1, 0), math.pi / 2),
+               extras={"aperture_radius": 0.1, "focus_distance": 2.0}),
+        b.node(name="rig", children=[lens_node], translation=[0, 0, 1]),
+        b.node(name="sheared", camera=sheared, matrix=[1, 0, 0, 0, 0, 1, 1, 0, 0, 0, 1, 0, 0, 0, 0, 1]),
+        b.node(name="ortho", camera=ortho),
+        b.node(name="tri", mesh=mesh),
+    ])
+    b.write_embedded(out("cameras.gltf"))
+
+
+# ---- errors -------------------------------------------------------------------------------------
+
+def triangle_doc(**material):
+    b = one_triangle(**material)
+    return b, b.document(b.data_uri())
+
+
+def errors():
+    write_text(out("malformed.gltf"), '{"asset": {"version": "2.0"}, "nodes": [\n')
+    write_text(out("not_gltf.gltf"), '{"hello": 1}\n')
+
+    _, doc = triangle_doc()
+    doc["extensionsRequired"] = ["KHR_lights_punctual", "KHR_texture_transform"]
+    doc["extensionsUsed"] = doc["extensionsRequired"]
+    write_doc("ext_required.gltf", doc)
+
+    _, doc = triangle_doc()
+    doc["meshes"][0]["primitives"][0]["attributes"]["POSITION"] = 99
+    write_doc("accessor_range.gltf", doc)
+
+    b = GltfBuilder("clppm tests/data/make_test_gltf.py")
+    b.scene([b.node(mesh=b.mesh([b.primitive(TRI, [0, 1, 7], TRI_N)]))])
+    b.write_embedded(out("index_range.gltf"))
+
+    _, doc = triangle_doc()
+    doc["accessors"][0]["count"] = 10
+    write_doc("accessor_past_view.gltf", doc)
+
+    _, doc = triangle_doc()
+    doc["bufferViews"][0]["byteLength"] = 1000
+    write_doc("view_past_buffer.gltf", doc)
+
+    _, doc = triangle_doc()
+    doc["accessors"][0]["count"] = 3000000000
+    write_doc("huge_count.gltf", doc)
+
+    b = GltfBuilder("clppm tests/data/make_test_gltf.py")
+    mesh = b.mesh([b.primitive(TRI, [0, 1, 2], TRI_N)])
+    inner = b.node(name="overflow", mesh=mesh, scale=[1e200, 1, 1])
+    b.scene([b.node(name="huge", children=[inner], scale=[1e200, 1, 1])])
+    b.write_embedded(out("nonfinite_node.gltf"))
+
+    _, doc = triangle_doc()
+    doc["nodes"] = [{"name": "a", "mesh": 0, "children": [1]}, {"name": "b", "children": [2]},
+                    {"name": "c", "children": [0]}]
+    write_doc("cycle.gltf", doc)
+
+    _, doc = triangle_doc()
+    doc["meshes"][0]["primitives"][0]["mode"] = 0  # POINTS
+    write_doc("no_triangles.gltf", doc)
+
+    for name, uri in (("uri_parent.gltf", "../outside.bin"), ("uri_absolute.gltf", "/etc/passwd"),
+                      ("uri_sneaky.gltf", "sub/../../outside.bin")):
+        b, doc = triangle_doc()
+        doc["buffers"][0]["uri"] = uri
+        write_doc(name, doc)
+    _, doc = triangle_doc()
+    doc["images"] = [{"uri": "..%2F..%2Fsecret.png"}]
+    write_doc("uri_image_parent.gltf", doc)
+
+    _, doc = triangle_doc()
+    doc["buffers"][0]["uri"] = "missing.bin"
+    write_doc("missing_bin.gltf", doc)
+
+    _, doc = triangle_doc(base_color=(1e300, 0.0, 0.0))
+    doc["materials"][0]["name"] = "hot"
+    write_doc("nonfinite_material.gltf", doc)
+
+    _, doc = triangle_doc()
+    nested = 1
+    for _ in range(200):
+        nested = [nested]
+    doc["extras"] = {"deep": nested}
+    write_doc("deep_json.gltf", doc)
+
+    b, doc = triangle_doc()
+    doc["bufferViews"].append({"buffer": 0, "byteOffset": 0, "byteLength": 100000})
+    doc["images"] = [{"bufferView": len(doc["bufferViews"]) - 1, "mimeType": "image/png"}]
+    write_doc("image_view_past_buffer.gltf", doc)
+
+    with open(out("box.glb"), "rb") as f:
+        glb = f.read()
+    with open(out("truncated.glb"), "wb") as f:
+        f.write(glb[:len(glb) // 2])
+
+
+def main():
+    for make in (hierarchy, index_types, byte_stride, containers, no_normals, degenerate, mirror,
+                 materials, texture, lights, cameras, errors):
+        make()
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,575 @@
+// The glTF loader against the small files of tests/data (written by tests/data/make_test_gltf.py,
+// which documents the geometry behind every expected number) and the shipped scenes.
+#include "gltf_load.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <sstream>
+
+#include "error.h"
+#include "test_util.h"
+
+namespace clppm {
+namespace {
+
+const double kPi = 3.14159265358979323846;
+
+std::string data(const std::string& name) { return std::string(CLPPM_TEST_DATA) + "/" + name; }
+std::string scene_file(const std::string& name) { return std::string(CLPPM_SCENES_DIR) + "/" + name; }
+
+std::string read_text(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+void expect_vec3(const float* v, double x, double y, double z, double eps = 1e-5) {
+    EXPECT_NEAR(v[0], x, eps);
+    EXPECT_NEAR(v[1], y, eps);
+    EXPECT_NEAR(v[2], z, eps);
+}
+
+void expect_pos(const Scene& s, size_t tri, int k, double x, double y, double z) {
+    const Vec3& p = s.positions[3 * tri + size_t(k)];
+    SCOPED_TRACE("triangle " + std::to_string(tri) + " vertex " + std::to_string(k));
+    EXPECT_NEAR(p.x, x, 1e-5);
+    EXPECT_NEAR(p.y, y, 1e-5);
+    EXPECT_NEAR(p.z, z, 1e-5);
+}
+
+// Unit normal of the stored winding: (p1 - p0) x (p2 - p0).
+std::array<double, 3> winding_normal(const Scene& s, size_t tri) {
+    const Vec3* p = &s.positions[3 * tri];
+    double e1[3] = {p[1].x - p[0].x, p[1].y - p[0].y, p[1].z - p[0].z};
+    double e2[3] = {p[2].x - p[0].x, p[2].y - p[0].y, p[2].z - p[0].z};
+    std::array<double, 3> c = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2],
+                               e1[0] * e2[1] - e1[1] * e2[0]};
+    double len = std::sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+    return {c[0] / len, c[1] / len, c[2] / len};
+}
+
+bool has_warning(const Scene& s, const std::string& key) {
+    for (const std::string& w : s.warnings)
+        if (w.find(key) != std::string::npos) return true;
+    return false;
+}
+
+std::string load_error(const std::string& path) {
+    try {
+        load_gltf(path);
+    } catch (const Error& e) {
+        return e.what();
+    }
+    ADD_FAILURE() << path << " loaded without an error";
+    return "";
+}
+
+// The message names the file first, holds `key`, and is one line.
+void expect_error(const std::string& name, const std::string& key) {
+    std::string path = data(name);
+    std::string msg = load_error(path);
+    EXPECT_EQ(msg.rfind(path + ": ", 0), 0u) << msg;
+    EXPECT_NE(msg.find(key), std::string::npos) << "expected '" << key << "' in: " << msg;
+    EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
+}
+
+float srgb(int c) {
+    double v = c / 255.0;
+    return float(v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4));
+}
+
+// ---- geometry -----------------------------------------------------------------------------------
+
+TEST(GltfHierarchy, TrsParentMatrixChildInTheDefaultScene) {
+    Scene s = load_gltf(data("hierarchy.gltf"));
+    // "scene": 1 holds parent and squashed; scene 0 would give one triangle.
+    ASSERT_EQ(s.num_triangles(), 2u);
+    ASSERT_EQ(s.positions.size(), 6u);
+    // child = T(1,2,3) Rz(90 deg) S(2) * T(0,0,1) applied to (0,0,0), (1,0,0), (0,1,0).
+    expect_pos(s, 0, 0, 1, 2, 5);
+    expect_pos(s, 0, 1, 1, 4, 5);
+    expect_pos(s, 0, 2, -1, 2, 5);
+    expect_vec3(s.shading[0].n0, 0, 0, 1);
+    expect_vec3(s.shading[0].n2, 0, 0, 1);
+    EXPECT_TRUE(s.cameras.empty());
+    EXPECT_TRUE(s.punctual_lights.empty());
+    EXPECT_EQ(s.source, data("hierarchy.gltf"));
+}
+
+TEST(GltfHierarchy, NonUniformScaleTransformsNormalsByInverseTranspose) {
+    Scene s = load_gltf(data("hierarchy.gltf"));
+    ASSERT_EQ(s.num_triangles(), 2u);
+    expect_pos(s, 1, 0, 10, 0, 0);
+    expect_pos(s, 1, 1, 11, 0, 0);
+    expect_pos(s, 1, 2, 10, 4, 1);
+    // (0,-1,1)/sqrt2 through diag(1,4,1)^-T = (0,-1,4)/sqrt17: still perpendicular to the surface.
+    double r = std::sqrt(17.0);
+    expect_vec3(s.shading[1].n0, 0, -1 / r, 4 / r);
+    std::array<double, 3> g = winding_normal(s, 1);
+    expect_vec3(s.shading[1].n1, g[0], g[1], g[2]);
+}
+
+TEST(GltfIndices, U8U16U32AndNonIndexedGiveTheSameQuads) {
+    Scene s = load_gltf(data("index_types.gltf"));
+    ASSERT_EQ(s.num_triangles(), 8u);
+    for (int q = 0; q < 4; ++q) {
+        SCOPED_TRACE("quad " + std::to_string(q));
+        size_t t = size_t(2 * q);
+        expect_pos(s, t, 0, 0, 0, q);
+        expect_pos(s, t, 1, 1, 0, q);
+        expect_pos(s, t, 2, 1, 1, q);
+        expect_pos(s, t + 1, 0, 0, 0, q);
+        expect_pos(s, t + 1, 1, 1, 1, q);
+        expect_pos(s, t + 1, 2, 0, 1, q);
+    }
+    EXPECT_EQ(s.degenerate_triangles_skipped, 0u);
+    EXPECT_EQ(s.meshes_without_normals, 0u);
+}
+
+TEST(GltfAccessors, ByteStrideAndNormalizedTexcoords) {
+    Scene s = load_gltf(data("byte_stride.gltf"));
+    ASSERT_EQ(s.num_triangles(), 2u);
+    expect_pos(s, 0, 1, 1, 0, 0);
+    expect_pos(s, 0, 2, 0, 1, 0);
+    expect_vec3(s.shading[0].n1, 0, 0, 1);
+    // u16 normalized (32768, 65535) -> (32768/65535, 1).
+    EXPECT_FLOAT_EQ(s.shading[0].uv0[0], 0.f);
+    EXPECT_FLOAT_EQ(s.shading[0].uv1[0], 1.f);
+    EXPECT_NEAR(s.shading[0].uv2[0], 32768.0 / 65535.0, 1e-6);
+    EXPECT_FLOAT_EQ(s.shading[0].uv2[1], 1.f);
+    // u8 normalized (0,255), (51,0), (255,102) -> (0,1), (0.2,0), (1,0.4).
+    EXPECT_FLOAT_EQ(s.shading[1].uv0[1], 1.f);
+    EXPECT_NEAR(s.shading[1].uv1[0], 0.2, 1e-6);
+    EXPECT_NEAR(s.shading[1].uv2[1], 0.4, 1e-6);
+}
+
+TEST(GltfContainers, GlbExternalAndEmbeddedBuffersAgree) {
+    Scene glb = load_gltf(data("box.glb"));
+    Scene ext = load_gltf(data("external.gltf"));
+    Scene emb = load_gltf(data("embedded.gltf"));
+    for (const Scene* s : {&glb, &ext, &emb}) {
+        SCOPED_TRACE(s->source);
+        ASSERT_EQ(s->num_triangles(), 2u);
+        expect_pos(*s, 0, 0, -1, 0.5, -1);
+        expect_pos(*s, 0, 1, 1, 0.5, 1);
+        expect_pos(*s, 0, 2, 1, 0.5, -1);
+        expect_pos(*s, 1, 2, 1, 0.5, 1);
+        expect_vec3(s->shading[1].n0, 0, 1, 0);
+        ASSERT_EQ(s->materials.size(), 1u);
+        EXPECT_FLOAT_EQ(s->materials[0].base_color[1], 0.5f);
+    }
+}
+
+TEST(GltfNormals, MissingNormalsAreFlatAndCountedOncePerMesh) {
+    Scene s = load_gltf(data("no_normals.gltf"));
+    ASSERT_EQ(s.num_triangles(), 2u);
+    EXPECT_EQ(s.meshes_without_normals, 1u); // one mesh, two instances
+    // (1,0,0) x (0,0,-1) = (0,1,0)
+    for (size_t t = 0; t < 2; ++t) {
+        expect_vec3(s.shading[t].n0, 0, 1, 0);
+        expect_vec3(s.shading[t].n2, 0, 1, 0);
+    }
+    expect_pos(s, 1, 2, 0, 1, -1);
+}
+
+TEST(GltfDegenerate, ZeroAreaAndNonFiniteTrianglesAreSkippedAndCounted) {
+    Scene s = load_gltf(data("degenerate.gltf"));
+    EXPECT_EQ(s.degenerate_triangles_skipped, 4u);
+    ASSERT_EQ(s.num_triangles(), 2u);
+    expect_pos(s, 0, 1, 1, 0, 0);
+    expect_pos(s, 1, 0, 0, 0, 2);
+    ASSERT_EQ(s.positions.size(), 6u);
+}
+
+TEST(GltfDegenerate, NanNormalMakesTheWholeTriangleFlat) {
+    Scene s = load_gltf(data("degenerate.gltf"));
+    ASSERT_EQ(s.num_triangles(), 2u);
+    // The file's normals are (0,.71,.71), NaN, (0,.71,.71); the flat normal is +z.
+    expect_vec3(s.shading[1].n0, 0, 0, 1);
+    expect_vec3(s.shading[1].n1, 0, 0, 1);
+    expect_vec3(s.shading[1].n2, 0, 0, 1);
+}
+
+TEST(GltfMirror, NegativeDeterminantKeepsWindingAndNormalsConsistent) {
+    Scene s = load_gltf(data("mirror.gltf"));
+    ASSERT_EQ(s.num_triangles(), 2u);
+    for (size_t t = 0; t < 2; ++t) {
+        SCOPED_TRACE("triangle " + std::to_string(t));
+        std::array<double, 3> g = winding_normal(s, t);
+        expect_vec3(s.shading[t].n0, 0, 0, 1); // x -> -x leaves a +z normal +z
+        EXPECT_NEAR(g[2], 1.0, 1e-6);          // and the front face agrees
+    }
+    // (0,0,0), (1,0,0), (0,1,0) mirrored and re-wound: (0,0,0), (0,1,0), (-1,0,0).
+    expect_pos(s, 0, 1, 0, 1, 0);
+    expect_pos(s, 0, 2, -1, 0, 0);
+}
+
+// ---- materials and textures ---------------------------------------------------------------------
+
+TEST(GltfMaterials, KindMapping) {
+    Scene s = load_gltf(data("materials.gltf"));
+    ASSERT_EQ(s.materials.size(), 9u); // 8 in the file + the default
+    // Metallic 1 is a mirror when roughness is 0 and a GGX conductor otherwise (the glTF default
+    // material, metallic 1 roughness 1, is a rough white metal).
+    const uint32_t want[9] = {MATERIAL_DIFFUSE, MATERIAL_DIFFUSE,    MATERIAL_DIELECTRIC,
+                              MATERIAL_MIRROR,  MATERIAL_METAL_MIX,  MATERIAL_DIFFUSE,
+                              MATERIAL_GLOSSY,  MATERIAL_DIELECTRIC, MATERIAL_GLOSSY};
+    for (size_t i = 0; i < 9; ++i) EXPECT_EQ(s.materials[i].kind, want[i]) << "material " << i;
+    ASSERT_EQ(s.num_triangles(), 9u);
+    for (uint32_t t = 0; t < 9; ++t) EXPECT_EQ(s.shading[t].material, t);
+    expect_vec3(s.materials[0].base_color, 0.5, 0.25, 0.125);
+    EXPECT_FLOAT_EQ(s.materials[0].roughness, 0.7f);
+    EXPECT_FLOAT_EQ(s.materials[4].metallic, 0.4f);
+    EXPECT_EQ(s.materials[5].flags, MATERIAL_FLAG_DOUBLE_SIDED);
+    EXPECT_EQ(s.materials[0].flags, 0u);
+    EXPECT_EQ(s.materials[0].base_color_tex, -1);
+}
+
+TEST(GltfMaterials, EmissionIsFactorTimesStrength) {
+    Scene s = load_gltf(data("materials.gltf"));
+    expect_vec3(s.materials[1].emission, 8, 4, 2);
+    expect_vec3(s.materials[0].emission, 0, 0, 0);
+}
+
+TEST(GltfMaterials, TransmissionAndIor) {
+    Scene s = load_gltf(data("materials.gltf"));
+    EXPECT_FLOAT_EQ(s.materials[2].transmission, 1.f);
+    EXPECT_FLOAT_EQ(s.materials[2].ior, 1.33f);
+    EXPECT_FLOAT_EQ(s.materials[2].roughness, 0.3f);
+    EXPECT_FLOAT_EQ(s.materials[7].transmission, 0.5f);
+    EXPECT_FLOAT_EQ(s.materials[7].ior, 1.5f); // KHR_materials_ior default
+    EXPECT_FLOAT_EQ(s.materials[3].metallic, 1.f);
+    EXPECT_FLOAT_EQ(s.materials[3].roughness, 0.f);
+}
+
+TEST(GltfMaterials, DefaultMaterialFollowsTheSpecification) {
+    Scene s = load_gltf(data("materials.gltf"));
+    // glTF 2.0: base colour 1, metallic 1, roughness 1 -> a rough white GGX metal by our mapping.
+    const dev::Material& d = s.materials[8];
+    expect_vec3(d.base_color, 1, 1, 1);
+    EXPECT_FLOAT_EQ(d.metallic, 1.f);
+    EXPECT_FLOAT_EQ(d.roughness, 1.f);
+    EXPECT_EQ(d.base_color_tex, -1);
+    // A material without pbrMetallicRoughness takes the same defaults.
+    EXPECT_FLOAT_EQ(s.materials[6].metallic, 1.f);
+    expect_vec3(s.materials[6].base_color, 1, 1, 1);
+}
+
+TEST(GltfTextures, SrgbTexelsDecodeToLinearWithWrapBits) {
+    Scene s = load_gltf(data("texture.gltf"));
+    ASSERT_EQ(s.textures.size(), 2u);
+    ASSERT_EQ(s.texels.size(), 8u);
+    EXPECT_EQ(s.materials[0].base_color_tex, 0);
+    EXPECT_EQ(s.materials[3].base_color_tex, 1);
+    const dev::Texture& a = s.textures[0];
+    EXPECT_EQ(a.offset, 0u);
+    EXPECT_EQ(a.width, 2u);
+    EXPECT_EQ(a.height, 2u);
+    EXPECT_EQ(a.wrap, 1u); // CLAMP_TO_EDGE on s only
+    EXPECT_EQ(s.textures[1].offset, 4u);
+    EXPECT_EQ(s.textures[1].wrap, 3u); // clamp s and t; image from a bufferView
+    // Top row first: (0,0,0,255) (255,255,255,255) / (128,64,188,255) (10,200,30,128).
+    const std::array<float, 4> want[4] = {{0, 0, 0, 1}, {1, 1, 1, 1},
+                                          {srgb(128), srgb(64), srgb(188), 1},
+                                          {srgb(10), srgb(200), srgb(30), 128 / 255.f}};
+    for (size_t t = 0; t < 8; ++t)
+        for (int c = 0; c < 4; ++c) EXPECT_NEAR(s.texels[t][size_t(c)], want[t % 4][size_t(c)], 1e-6) << t << c;
+    EXPECT_NEAR(s.texels[2][0], 0.2158605, 1e-6); // sRGB 128
+    EXPECT_FLOAT_EQ(s.shading[0].uv2[1], 1.f);
+}
+
+TEST(GltfTextures, OtherTexCoordSetsAndUndecodableImagesWarn) {
+    Scene s = load_gltf(data("texture.gltf"));
+    EXPECT_EQ(s.materials[1].base_color_tex, -1);
+    EXPECT_EQ(s.materials[2].base_color_tex, -1);
+    EXPECT_TRUE(has_warning(s, "TEXCOORD_1")) << ::testing::PrintToString(s.warnings);
+    EXPECT_TRUE(has_warning(s, "image 1 could not be decoded")) << ::testing::PrintToString(s.warnings);
+}
+
+// ---- lights and cameras -------------------------------------------------------------------------
+
+TEST(GltfLights, PointSpotAndDirectional) {
+    Scene s = load_gltf(data("lights.gltf"));
+    ASSERT_EQ(s.punctual_lights.size(), 4u);
+    const dev::Light& point = s.punctual_lights[0];
+    EXPECT_EQ(point.type, LIGHT_POINT);
+    expect_vec3(point.position, 1, 2, 3);
+    expect_vec3(point.radiance, 10, 5, 2.5);
+    EXPECT_NEAR(point.power, 4 * kPi * 17.5 / 3, 1e-3);
+
+    const dev::Light& spot = s.punctual_lights[1];
+    EXPECT_EQ(spot.type, LIGHT_SPOT);
+    expect_vec3(spot.position, 1, 5, 0); // under the parent's translation
+    expect_vec3(spot.direction, 0, -1, 0);
+    expect_vec3(spot.radiance, 20, 20, 20);
+    EXPECT_NEAR(spot.cos_inner, std::cos(0.2), 1e-6);
+    EXPECT_NEAR(spot.cos_outer, std::cos(0.4), 1e-6);
+    EXPECT_NEAR(spot.power, 2 * kPi * 20 * (1 - 0.5 * (std::cos(0.2) + std::cos(0.4))), 1e-3);
+
+    const dev::Light& cone = s.punctual_lights[2];
+    expect_vec3(cone.direction, 0, 0, -1);
+    EXPECT_NEAR(cone.cos_inner, 1.0, 1e-6);
+    EXPECT_NEAR(cone.cos_outer, std::cos(kPi / 4), 1e-6);
+
+    const dev::Light& sun = s.punctual_lights[3];
+    EXPECT_EQ(sun.type, LIGHT_DIRECTIONAL);
+    expect_vec3(sun.direction, -1, 0, 0); // -Z turned 90 degrees about +Y
+    expect_vec3(sun.radiance, 3, 3, 3);
+    EXPECT_EQ(sun.power, 0.f);
+    EXPECT_TRUE(has_warning(s, "range is ignored"));
+}
+
+TEST(GltfCameras, PerspectiveCamerasInTraversalOrderWithExtras) {
+    Scene s = load_gltf(data("cameras.gltf"));
+    ASSERT_EQ(s.cameras.size(), 3u);
+    const CameraDesc& side = s.cameras[0];
+    EXPECT_EQ(side.name, "plain");
+    expect_vec3(side.position, 0, 0, 0);
+    expect_vec3(side.forward, -1, 0, 0);
+    expect_vec3(side.up, 0, 1, 0);
+    EXPECT_FLOAT_EQ(side.yfov, 0.8f);
+    EXPECT_EQ(side.aspect, 0.f); // aspectRatio absent
+    EXPECT_FLOAT_EQ(side.aperture_radius, 0.1f); // node extras
+    EXPECT_FLOAT_EQ(side.focus_distance, 2.f);
+
+    const CameraDesc& lens = s.cameras[1];
+    EXPECT_EQ(lens.name, "with_extras");
+    expect_vec3(lens.position, 0, 1, 5);
+    expect_vec3(lens.forward, 0, 0, -1);
+    EXPECT_FLOAT_EQ(lens.aspect, 1.5f);
+    EXPECT_FLOAT_EQ(lens.aperture_radius, 0.05f); // camera extras
+    EXPECT_FLOAT_EQ(lens.focus_distance, 4.f);
+
+    const CameraDesc& sheared = s.cameras[2];
+    expect_vec3(sheared.forward, 0, 0, -1);
+    expect_vec3(sheared.up, 0, 1, 0); // (0,1,1) made orthogonal to forward
+    EXPECT_FLOAT_EQ(sheared.aperture_radius, 0.f);
+    EXPECT_TRUE(has_warning(s, "orthographic"));
+}
+
+TEST(GltfCameras, NoCameraGivesAnEmptyList) {
+    Scene s = load_gltf(data("index_types.gltf"));
+    EXPECT_TRUE(s.cameras.empty());
+    EXPECT_TRUE(s.punctual_lights.empty()); // no lights is the renderer's concern
+}
+
+// ---- errors -------------------------------------------------------------------------------------
+
+TEST(GltfErrors, MissingFile) { expect_error("does_not_exist.gltf", "cannot open file"); }
+TEST(GltfErrors, MalformedJson) { expect_error("malformed.gltf", "malformed JSON"); }
+TEST(GltfErrors, NotGltf) { expect_error("not_gltf.gltf", "invalid glTF: \"asset\" object not found"); }
+TEST(GltfErrors, UnsupportedRequiredExtension) {
+    expect_error("ext_required.gltf", "required extension 'KHR_texture_transform' is not supported");
+}
+TEST(GltfErrors, AccessorIndexOutOfRange) { expect_error("accessor_range.gltf", "POSITION accessor 99 out of range"); }
+TEST(GltfErrors, IndexBeyondVertices) {
+    expect_error("index_range.gltf", "reference vertex 7 beyond the 3 vertices");
+}
+TEST(GltfErrors, AccessorPastBufferView) {
+    expect_error("accessor_past_view.gltf", "accessor 0 reads past the end of bufferView 0");
+}
+TEST(GltfErrors, BufferViewPastBuffer) {
+    expect_error("view_past_buffer.gltf", "bufferView 0 extends past the end of buffer 0");
+}
+TEST(GltfErrors, ImageBufferViewPastBuffer) {
+    expect_error("image_view_past_buffer.gltf", "bufferView 3 extends past the end of buffer 0");
+}
+TEST(GltfErrors, AbsurdAccessorCount) {
+    expect_error("huge_count.gltf", "accessor 0 count 3000000000 exceeds the limit of 2^31");
+}
+TEST(GltfErrors, NonFiniteNodeTransform) {
+    expect_error("nonfinite_node.gltf", "node 0 ('overflow') has a non-finite transform");
+}
+TEST(GltfErrors, NodeCycle) { expect_error("cycle.gltf", "node graph cycle: node 0 ('a') is its own ancestor"); }
+TEST(GltfErrors, NoTriangles) { expect_error("no_triangles.gltf", "no triangle geometry"); }
+TEST(GltfErrors, UriEscapingTheDirectory) {
+    expect_error("uri_parent.gltf", "buffer 0 URI '../outside.bin' points outside the scene directory");
+    expect_error("uri_absolute.gltf", "URI '/etc/passwd' points outside the scene directory");
+    expect_error("uri_sneaky.gltf", "points outside the scene directory");
+    expect_error("uri_image_parent.gltf", "image 0 URI '..%2F..%2Fsecret.png' points outside");
+}
+TEST(GltfErrors, MissingExternalBuffer) { expect_error("missing_bin.gltf", "File not found : missing.bin"); }
+TEST(GltfErrors, NonFiniteMaterialFactor) {
+    expect_error("nonfinite_material.gltf", "material 0 ('hot') has a non-finite baseColorFactor");
+}
+TEST(GltfErrors, DeeplyNestedJson) { expect_error("deep_json.gltf", "nested deeper than 64 levels"); }
+TEST(GltfErrors, TruncatedGlb) { expect_error("truncated.glb", "invalid GLB"); }
+
+TEST(GltfErrors, TextNamesTheDisplayNameAndRefusesFilesWithoutADirectory) {
+    try {
+        load_gltf_text("{\"asset\": ", "", "inline scene");
+        FAIL();
+    } catch (const Error& e) {
+        EXPECT_EQ(std::string(e.what()).rfind("inline scene: malformed JSON", 0), 0u) << e.what();
+    }
+    std::string text = read_text(data("external.gltf"));
+    try {
+        load_gltf_text(text, "", "inline scene");
+        FAIL();
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("external.bin' names an external file"), std::string::npos) << e.what();
+    }
+    EXPECT_EQ(load_gltf_text(text, CLPPM_TEST_DATA, "inline scene").num_triangles(), 2u);
+}
+
+// ---- robustness ---------------------------------------------------------------------------------
+
+// Deterministic mutations: digits changed or lengthened, bytes flipped, tails cut. Every result
+// must be a Scene or a one-line clppm::Error, never a crash, hang or exception of another type.
+std::string mutate(std::string s, uint64_t* state) {
+    auto next = [state] {
+        *state = *state * 6364136223846793005ull + 1442695040888963407ull;
+        return uint32_t(*state >> 33);
+    };
+    switch (next() % 4) {
+    case 0:
+        for (int k = 0; k < 3; ++k) {
+            size_t i = next() % s.size();
+            while (i < s.size() && !std::isdigit((unsigned char)s[i])) ++i;
+            if (i < s.size()) s[i] = char('0' + next() % 10);
+        }
+        break;
+    case 1: {
+        size_t i = next() % s.size();
+        while (i < s.size() && !std::isdigit((unsigned char)s[i])) ++i;
+        const char* big[] = {"99999", "0000000", "-1", "e9", ".5"};
+        if (i < s.size()) s.insert(i, big[next() % 5]);
+        break;
+    }
+    case 2:
+        for (int k = 0; k < 4; ++k) s[next() % s.size()] ^= char(1u << (next() % 8));
+        break;
+    default: s.resize(next() % s.size()); break;
+    }
+    return s;
+}
+
+TEST(GltfRobustness, MutatedFilesLoadOrFailCleanly) {
+    const char* files[] = {"hierarchy.gltf", "byte_stride.gltf", "texture.gltf", "lights.gltf", "cameras.gltf",
+                           "index_types.gltf", "box.glb"};
+    std::string dir = test::make_temp_dir("gltf_fuzz");
+    uint64_t state = 12345;
+    int loaded = 0, failed = 0;
+    for (const char* name : files) {
+        std::string original = read_text(data(name));
+        for (int i = 0; i < 300; ++i) {
+            std::string mutated = mutate(original, &state);
+            std::string path = dir + "/" + name;
+            std::ofstream(path, std::ios::binary) << mutated;
+            try {
+                Scene s = load_gltf(path);
+                ++loaded;
+                EXPECT_EQ(s.positions.size(), 3 * s.shading.size());
+                for (const dev::TriShading& t : s.shading) ASSERT_LT(t.material, s.materials.size());
+            } catch (const Error& e) {
+                ++failed;
+                std::string msg = e.what();
+                ASSERT_EQ(msg.rfind(path + ": ", 0), 0u) << msg;
+                ASSERT_EQ(msg.find('\n'), std::string::npos) << msg;
+            }
+        }
+    }
+    std::filesystem::remove_all(dir);
+    EXPECT_GT(loaded, 0);
+    EXPECT_GT(failed, 0);
+}
+
+// ---- shipped scenes -----------------------------------------------------------------------------
+
+bool has_kind(const Scene& s, uint32_t kind) {
+    for (const dev::Material& m : s.materials)
+        if (m.kind == kind) return true;
+    return false;
+}
+
+const dev::Material* emissive_material(const Scene& s) {
+    for (const dev::Material& m : s.materials)
+        if (m.emission[0] > 0 || m.emission[1] > 0 || m.emission[2] > 0) return &m;
+    return nullptr;
+}
+
+TEST(GltfDefaultScene, IsTheEmbeddedCornellBox) {
+    Scene s = load_default_scene();
+    EXPECT_EQ(s.source, "<default scene>");
+    EXPECT_EQ(s.num_triangles(), 5964u);
+    const dev::Material* light = emissive_material(s);
+    ASSERT_NE(light, nullptr);
+    expect_vec3(light->emission, 16, 16, 16);
+    ASSERT_EQ(s.cameras.size(), 1u);
+    expect_vec3(s.cameras[0].position, 0, 0, 3.9);
+    expect_vec3(s.cameras[0].forward, 0, 0, -1);
+    EXPECT_FLOAT_EQ(s.cameras[0].yfov, 0.68f);
+    EXPECT_TRUE(has_kind(s, MATERIAL_DIELECTRIC));
+    EXPECT_TRUE(has_kind(s, MATERIAL_MIRROR));
+    EXPECT_EQ(s.degenerate_triangles_skipped, 0u);
+    EXPECT_TRUE(s.warnings.empty()) << ::testing::PrintToString(s.warnings);
+    // The embedded copy is the shipped file.
+    EXPECT_EQ(load_gltf(scene_file("cornell_box.gltf")).num_triangles(), s.num_triangles());
+    EXPECT_LT(std::filesystem::file_size(scene_file("cornell_box.gltf")), 200u * 1024u);
+}
+
+TEST(GltfShippedScenes, AllLoadWithTheDocumentedContents) {
+    struct Expect {
+        const char* file;
+        size_t triangles, lights;
+    };
+    for (const Expect& e : {Expect{"cornell_box.gltf", 5964, 0}, Expect{"caustic.gltf", 6020, 1},
+                            Expect{"furnace.gltf", 960, 0}, Expect{"plane_point_light.gltf", 2, 1},
+                            Expect{"bunny_100k.gltf", 101772, 0}}) {
+        SCOPED_TRACE(e.file);
+        Scene s = load_gltf(scene_file(e.file));
+        EXPECT_EQ(s.num_triangles(), e.triangles);
+        EXPECT_EQ(s.punctual_lights.size(), e.lights);
+        EXPECT_EQ(s.cameras.size(), 1u);
+        EXPECT_EQ(s.degenerate_triangles_skipped, 0u);
+        EXPECT_EQ(s.meshes_without_normals, 0u);
+        EXPECT_TRUE(s.warnings.empty()) << ::testing::PrintToString(s.warnings);
+    }
+    EXPECT_LT(std::filesystem::file_size(scene_file("bunny_100k.bin")), 8u << 20);
+}
+
+TEST(GltfShippedScenes, FurnaceIsAnInwardFacingEmitterOfAlbedoHalf) {
+    Scene s = load_gltf(scene_file("furnace.gltf"));
+    ASSERT_EQ(s.materials.size(), 1u);
+    const dev::Material& m = s.materials[0];
+    expect_vec3(m.base_color, 0.5, 0.5, 0.5);
+    expect_vec3(m.emission, 1, 1, 1);
+    EXPECT_EQ(m.kind, MATERIAL_DIFFUSE);
+    EXPECT_EQ(m.flags, MATERIAL_FLAG_DOUBLE_SIDED);
+    expect_vec3(s.cameras[0].position, 0, 0, 0);
+    // Every normal points at the centre, where the camera is.
+    for (size_t t = 0; t < s.num_triangles(); ++t) {
+        const Vec3& p = s.positions[3 * t];
+        const float* n = s.shading[t].n0;
+        ASSERT_LT(p.x * n[0] + p.y * n[1] + p.z * n[2], 0.f) << t;
+    }
+}
+
+TEST(GltfShippedScenes, PlaneUnderPointLight) {
+    Scene s = load_gltf(scene_file("plane_point_light.gltf"));
+    const dev::Light& l = s.punctual_lights.at(0);
+    EXPECT_EQ(l.type, LIGHT_POINT);
+    expect_vec3(l.position, 0, 1, 0);
+    expect_vec3(l.radiance, 10, 10, 10);
+    expect_vec3(s.materials.at(0).base_color, 0.5, 0.5, 0.5);
+    expect_vec3(s.cameras.at(0).forward, 0, -1, 0);
+    expect_vec3(s.cameras.at(0).up, 0, 0, -1);
+    expect_vec3(s.shading.at(0).n0, 0, 1, 0);
+}
+
+TEST(GltfShippedScenes, CausticSpotAimsAtTheGlassSphere) {
+    Scene s = load_gltf(scene_file("caustic.gltf"));
+    const dev::Light& spot = s.punctual_lights.at(0);
+    EXPECT_EQ(spot.type, LIGHT_SPOT);
+    expect_vec3(spot.position, -3, 3.5, 0);
+    double r = 1 / std::sqrt(2.0);
+    expect_vec3(spot.direction, r, -r, 0);
+    EXPECT_TRUE(has_kind(s, MATERIAL_DIELECTRIC));
+}
+
+} // namespace
+} // namespace clppm
