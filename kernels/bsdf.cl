@@ -4,6 +4,12 @@
 #define CLPPM_BSDF_CL
 
 #include "scene.cl"
+#include "ggx.cl"
+
+/* Glossy surfaces at least this rough (GGX alpha = roughness^2) get hit points and are gathered
+ * with their BRDF; smoother ones are importance-sampled through like mirrors, where a density
+ * estimate would blur the reflection. */
+#define GLOSSY_HITPOINT_ALPHA 0.04f
 
 /* Unpolarised Fresnel reflectance for a dielectric; cos_i > 0 on the incident side and eta the
  * relative index n_t / n_i (pbrt-v4 FrDielectric). Returns 1 under total internal reflection. */
@@ -42,11 +48,16 @@ float dielectric_eta(SCENE_PARAMS, const Surface* s) {
     return s->front ? ior : 1.0f / ior;
 }
 
-/* The material kind at this surface once METAL_MIX has been resolved with u (mirror with
+float material_alpha(__global const Material* m) { return fmax(m->roughness * m->roughness, 1e-4f); }
+
+/* The kind of the metal part of a metallic surface: a mirror when perfectly smooth. */
+uint metal_kind(__global const Material* m) { return m->roughness > 0.0f ? MATERIAL_GLOSSY : MATERIAL_MIRROR; }
+
+/* The material kind at this surface once METAL_MIX has been resolved with u (the metal with
  * probability metallic, else diffuse). */
 uint resolve_kind(SCENE_PARAMS, const Surface* s, float u) {
     __global const Material* m = &materials[s->material];
-    if (m->kind == MATERIAL_METAL_MIX) return u < m->metallic ? MATERIAL_MIRROR : MATERIAL_DIFFUSE;
+    if (m->kind == MATERIAL_METAL_MIX) return u < m->metallic ? metal_kind(m) : MATERIAL_DIFFUSE;
     return m->kind;
 }
 

@@ -3,6 +3,7 @@
  * caustics only). */
 #include "rng.cl"
 #include "lights.cl"
+#include "hitpoint.cl"
 
 __kernel void direct_light(SCENE_PARAMS, ulong seed, ulong pass, __global const HitPoint* hitpoints,
                            __global HitStats* stats, uint num_hitpoints) {
@@ -11,7 +12,7 @@ __kernel void direct_light(SCENE_PARAMS, ulong seed, ulong pass, __global const 
     __global const HitPoint* hp = &hitpoints[i];
     if (hp->pixel == HITPOINT_NONE) return;
     Rng rng = rng_make(seed, pass, i, RNG_DIRECT);
-    float3 x = load3g(hp->pos), n = load3g(hp->normal), ng = oct_decode(hp->ng_oct);
+    float3 x = load3g(hp->pos), n = oct_decode(hp->normal_oct), ng = oct_decode(hp->ng_oct);
     float3 wi, contrib;
     float dist;
     if (!sample_light(SCENE_ARGS, x, &rng, &wi, &dist, &contrib)) return;
@@ -19,7 +20,7 @@ __kernel void direct_light(SCENE_PARAMS, ulong seed, ulong pass, __global const 
     if (cos_x <= 0.0f || dot(wi, ng) <= 0.0f) return;
     float3 org = offset_origin(SCENE_ARGS, x, ng);
     if (trace_occluded(SCENE_ARGS, org, wi, dist)) return;
-    float3 L = load3g(hp->weight) * contrib * cos_x; /* weight already holds throughput * albedo / pi */
+    float3 L = load3g(hp->weight) * hitpoint_brdf(hp, n, wi) * contrib * cos_x;
     stats[i].direct[0] += L.x;
     stats[i].direct[1] += L.y;
     stats[i].direct[2] += L.z;

@@ -1,15 +1,18 @@
 /* eye_pass.cl: the first pass of progressive photon mapping (Hachisuka et al. 2008, Sec. 4.1).
  * Each pixel sample follows specular chains from the camera to the first non-specular surfaces
- * and stores a hit point there. Where a dielectric or a partly metallic surface splits the path,
- * both branches are followed with their Fresnel / metallic weights while slots remain
- * (EYE_SLOTS per sample), so the stored set of hit points carries no sampling noise from those
- * choices; beyond that one branch is chosen at random with the same expected value.
- * Emission met on the way is added to the sample's radiance directly.
+ * (diffuse, or glossy at least GLOSSY_HITPOINT_ALPHA rough) and stores a hit point there.
+ * Smoother glossy surfaces are importance-sampled through (VNDF) like mirrors.
+ * Where a dielectric or a partly metallic surface splits the path, both branches are followed
+ * with their Fresnel / metallic weights while slots remain (EYE_SLOTS per sample), so the stored
+ * set of hit points carries no sampling noise from those choices; beyond that one branch is
+ * chosen at random with the same expected value. Emission met on the way is added to the
+ * sample's radiance directly.
  * Stochastic PPM and PPPM build this with EYE_SLOTS 1 and run it every pass with a new `pass`:
  * one visible point per pixel, every choice sampled, new jitter and lens position each pass. */
 #include "rng.cl"
 #include "camera.cl"
 #include "bsdf.cl"
+#include "hitpoint.cl"
 
 #ifndef EYE_SLOTS
 #define EYE_SLOTS 4
@@ -22,6 +25,80 @@ typedef struct {
     float path_length;
     uint depth;
 } EyeRay;
+
+/* One way an eye path can go on from a surface: a new ray, or a hit point here. */
+typedef struct {
+    float3 weight;
+    float3 dir;   /* ray branches */
+    bool below;   /* the ray leaves through the surface (refraction) */
+    bool hitpoint;
+    float3 color; /* hit point branches: albedo or F0 */
+    float alpha;
+} Branch;
+
+Branch no_branch(void) {
+    Branch b;
+    b.weight = (float3)(0.0f);
+    b.dir = (float3)(0.0f);
+    b.below = false;
+    b.hitpoint = false;
+    b.color = (float3)(0.0f);
+    b.alpha = 0.0f;
+    return b;
+}
+
+Branch hitpoint_branch(float3 weight, float3 color, float alpha) {
+    Branch b = no_branch();
+    b.weight = weight;
+    b.hitpoint = true;
+    b.color = color;
+    b.alpha = alpha;
+    return b;
+}
+
+Branch ray_branch(float3 weight, float3 dir, bool below) {
+    Branch b = no_branch();
+    b.weight = weight;
+    b.dir = dir;
+    b.below = below;
+    return b;
+}
+
+/* The metal part of a surface: mirror, glossy hit point, or a sampled glossy ray. */
+Branch metal_branch(SCENE_PARAMS, const Surface* sf, float3 in_dir, float3 weight, float3 base, Rng* rng) {
+    __global const Material* m = &materials[sf->material];
+    if (metal_kind(m) == MATERIAL_MIRROR) return ray_branch(weight * base, specular_reflect(sf, in_dir), false);
+    float alpha = material_alpha(m);
+    if (alpha >= GLOSSY_HITPOINT_ALPHA) return hitpoint_branch(weight, base, alpha);
+    float3 wi;
+    float3 w = ggx_sample(sf->ns, -in_dir, base, alpha, rng_float(rng), rng_float(rng), &wi);
+    if (dot(wi, sf->ng) <= 0.0f) w = (float3)(0.0f);
+    return ray_branch(weight * w, wi, false);
+}
+
+/* The (at most two) continuations of an eye path at a surface. */
+void surface_branches(SCENE_PARAMS, const Surface* sf, float3 in_dir, float3 weight, Rng* rng, Branch* a, Branch* b) {
+    __global const Material* m = &materials[sf->material];
+    float3 base = surface_base_color(SCENE_ARGS, sf);
+    *a = no_branch();
+    *b = no_branch();
+    if (m->kind == MATERIAL_DIFFUSE) {
+        *a = hitpoint_branch(weight, base, 0.0f);
+    } else if (m->kind == MATERIAL_MIRROR || m->kind == MATERIAL_GLOSSY) {
+        *a = metal_branch(SCENE_ARGS, sf, in_dir, weight, base, rng);
+    } else if (m->kind == MATERIAL_METAL_MIX) {
+        *a = metal_branch(SCENE_ARGS, sf, in_dir, weight * m->metallic, base, rng);
+        *b = hitpoint_branch(weight * (1.0f - m->metallic), base, 0.0f);
+    } else { /* MATERIAL_DIELECTRIC */
+        float eta = dielectric_eta(SCENE_ARGS, sf);
+        float F = fresnel_dielectric(-dot(in_dir, sf->ns), eta);
+        *a = ray_branch(weight * F, specular_reflect(sf, in_dir), false);
+        if (F < 1.0f) {
+            float3 t = refract_dir(in_dir, sf->ns, eta);
+            if (dot(t, sf->ng) < 0.0f) *b = ray_branch(weight * base * (1.0f - F), t, true);
+        }
+    }
+}
 
 __kernel void eye_pass(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong pass, uint first_sample, uint num_samples,
                        uint spp, __global HitPoint* hitpoints, __global float4* sample_emission) {
@@ -55,69 +132,38 @@ __kernel void eye_pass(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong p
         Surface sf = make_surface(SCENE_ARGS, r.dir, &hit);
         emitted += r.weight * surface_emission(SCENE_ARGS, &sf);
         if (r.depth + 1 >= info->max_bounces) continue;
-        __global const Material* m = &materials[sf.material];
-        float3 base = surface_base_color(SCENE_ARGS, &sf);
         float plen = r.path_length + sf.t;
 
-        /* The weights of the two possible continuations: a (specular) and b (the other). */
-        float3 wa = (float3)(0.0f), wb = (float3)(0.0f);
-        float3 da = (float3)(0.0f), db = (float3)(0.0f);
-        bool b_is_hitpoint = false;
-        if (m->kind == MATERIAL_DIFFUSE) {
-            wb = r.weight;
-            b_is_hitpoint = true;
-        } else if (m->kind == MATERIAL_MIRROR) {
-            wa = r.weight * base;
-            da = specular_reflect(&sf, r.dir);
-        } else if (m->kind == MATERIAL_METAL_MIX) {
-            wa = r.weight * base * m->metallic;
-            da = specular_reflect(&sf, r.dir);
-            wb = r.weight * (1.0f - m->metallic);
-            b_is_hitpoint = true;
-        } else { /* MATERIAL_DIELECTRIC */
-            float eta = dielectric_eta(SCENE_ARGS, &sf);
-            float F = fresnel_dielectric(-dot(r.dir, sf.ns), eta);
-            wa = r.weight * F;
-            da = specular_reflect(&sf, r.dir);
-            if (F < 1.0f) {
-                wb = r.weight * base * (1.0f - F);
-                db = refract_dir(r.dir, sf.ns, eta);
-                if (dot(db, sf.ng) >= 0.0f) wb = (float3)(0.0f); /* shading normal artefact */
-            }
-        }
-        float ma = max3(wa), mb = max3(wb);
-        bool take_a = ma > 0.0f, take_b = mb > 0.0f;
-        if (take_a && take_b) {
+        Branch br[2];
+        surface_branches(SCENE_ARGS, &sf, r.dir, r.weight, &rng, &br[0], &br[1]);
+        float m0 = max3(br[0].weight), m1 = max3(br[1].weight);
+        bool take0 = m0 > 0.0f, take1 = m1 > 0.0f;
+        if (take0 && take1) {
             /* Split only when a slot is free for the extra branch and both matter; otherwise keep
              * one, chosen in proportion to weight and reweighted (expected value unchanged). */
             bool room = top + stored + 2 <= EYE_SLOTS;
-            if (!room || fmin(ma, mb) < SPLIT_MIN_WEIGHT * max3(r.weight)) {
-                float pa = ma / (ma + mb);
-                if (rng_float(&rng) < pa) {
-                    take_b = false;
-                    wa /= pa;
+            if (!room || fmin(m0, m1) < SPLIT_MIN_WEIGHT * max3(r.weight)) {
+                float p0 = m0 / (m0 + m1);
+                if (rng_float(&rng) < p0) {
+                    take1 = false;
+                    br[0].weight /= p0;
                 } else {
-                    take_a = false;
-                    wb /= (1.0f - pa);
+                    take0 = false;
+                    br[1].weight /= (1.0f - p0);
                 }
             }
         }
-        if (take_b && b_is_hitpoint) {
-            __global HitPoint* hp = &out[stored++];
-            hp->pos[0] = sf.p.x; hp->pos[1] = sf.p.y; hp->pos[2] = sf.p.z;
-            hp->normal[0] = sf.ns.x; hp->normal[1] = sf.ns.y; hp->normal[2] = sf.ns.z;
-            hp->ng_oct = oct_encode(sf.ng);
-            float3 f = wb * base * INV_PI_F; /* path weight times the Lambertian BRDF */
-            hp->weight[0] = f.x; hp->weight[1] = f.y; hp->weight[2] = f.z;
-            hp->footprint = plen * pixel_angle;
-            hp->pixel = pixel;
-        } else if (take_b) {
-            EyeRay nb = {offset_origin(SCENE_ARGS, sf.p, -sf.ng), db, wb, plen, r.depth + 1};
-            stack[top++] = nb;
-        }
-        if (take_a) {
-            EyeRay na = {offset_origin(SCENE_ARGS, sf.p, sf.ng), da, wa, plen, r.depth + 1};
-            stack[top++] = na;
+        for (int k = 0; k < 2; ++k) {
+            if (!(k == 0 ? take0 : take1)) continue;
+            Branch b = br[k];
+            if (b.hitpoint) {
+                store_hitpoint(&out[stored++], pixel, sf.p, sf.ns, sf.ng, -r.dir, b.weight, b.color, b.alpha,
+                               plen * pixel_angle);
+            } else {
+                EyeRay nr = {offset_origin(SCENE_ARGS, sf.p, b.below ? -sf.ng : sf.ng), b.dir, b.weight, plen,
+                             r.depth + 1};
+                stack[top++] = nr;
+            }
         }
     }
     sample_emission[i] = (float4)(emitted, 0.0f);

@@ -1,8 +1,9 @@
 /* gather.cl: each hit point collects this pass's photons within its radius R(x) from the grid
  * cells its sphere overlaps (Hachisuka et al. 2008, Sec. 4.2: M(x) and Phi_M). One work item
- * writes one hit point: no atomics. PPPM passes one global radius instead (global_r2 > 0). Photons arriving from behind the surface, or lying on a
+ * writes one hit point: no atomics. Each photon is weighted by the BRDF at the hit point. PPPM passes one global radius instead (global_r2 > 0). Photons arriving from behind the surface, or lying on a
  * surface that faces the other way, are rejected. */
 #include "hash_grid.cl"
+#include "hitpoint.cl"
 
 __kernel void gather(__constant GridInfo* g, __global const Photon* sorted, __global const uint* starts,
                      __global const HitPoint* hitpoints, __global const HitStats* stats, uint num_hitpoints,
@@ -15,7 +16,7 @@ __kernel void gather(__constant GridInfo* g, __global const Photon* sorted, __gl
         out[i].m = 0;
         return;
     }
-    float3 x = load3g(hp->pos), n = load3g(hp->normal);
+    float3 x = load3g(hp->pos), n = oct_decode(hp->normal_oct);
     /* PPPM: one radius for every hit point this pass; (S)PPM: each hit point's own R(x). */
     float r2 = global_r2 > 0.0f ? global_r2 : (float)stats[i].r2;
     float r = sqrt(r2);
@@ -36,11 +37,14 @@ __kernel void gather(__constant GridInfo* g, __global const Photon* sorted, __gl
                     /* A bucket holds other cells too: count each photon only from its own cell. */
                     int3 pc = grid_cell(g, p);
                     if (pc.x != cx || pc.y != cy || pc.z != cz) continue;
-                    if (dot(n, oct_decode(ph->wi_oct)) <= 0.0f) continue;
+                    float3 wi = oct_decode(ph->wi_oct);
+                    if (dot(n, wi) <= 0.0f) continue;
                     if (dot(n, oct_decode(ph->normal_oct)) <= 0.0f) continue;
-                    acc0 += convert_long_rte((double)ph->flux[0] * FLUX_FIXED_SCALE);
-                    acc1 += convert_long_rte((double)ph->flux[1] * FLUX_FIXED_SCALE);
-                    acc2 += convert_long_rte((double)ph->flux[2] * FLUX_FIXED_SCALE);
+                    /* tau_M += f(x, w_p, w_o) Phi_p (Eq. 9); the path throughput is applied later. */
+                    float3 f = hitpoint_brdf(hp, n, wi);
+                    acc0 += convert_long_rte((double)(f.x * ph->flux[0]) * FLUX_FIXED_SCALE);
+                    acc1 += convert_long_rte((double)(f.y * ph->flux[1]) * FLUX_FIXED_SCALE);
+                    acc2 += convert_long_rte((double)(f.z * ph->flux[2]) * FLUX_FIXED_SCALE);
                     ++m;
                 }
             }

@@ -8,6 +8,27 @@
 #include "lights.cl"
 #include "bsdf.cl"
 
+/* Next-event estimation at x with BRDF f: one light sample, shadow-tested. */
+float3 path_nee_diffuse(SCENE_PARAMS, const Surface* sf, float3 base, Rng* rng) {
+    float3 wi, contrib;
+    float dist;
+    if (!sample_light(SCENE_ARGS, sf->p, rng, &wi, &dist, &contrib)) return (float3)(0.0f);
+    float cos_x = dot(wi, sf->ns);
+    if (cos_x <= 0.0f || dot(wi, sf->ng) <= 0.0f) return (float3)(0.0f);
+    if (trace_occluded(SCENE_ARGS, offset_origin(SCENE_ARGS, sf->p, sf->ng), wi, dist)) return (float3)(0.0f);
+    return base * INV_PI_F * contrib * cos_x;
+}
+
+float3 path_nee_glossy(SCENE_PARAMS, const Surface* sf, float3 wo, float3 f0, float alpha, Rng* rng) {
+    float3 wi, contrib;
+    float dist;
+    if (!sample_light(SCENE_ARGS, sf->p, rng, &wi, &dist, &contrib)) return (float3)(0.0f);
+    float cos_x = dot(wi, sf->ns);
+    if (cos_x <= 0.0f || dot(wi, sf->ng) <= 0.0f) return (float3)(0.0f);
+    if (trace_occluded(SCENE_ARGS, offset_origin(SCENE_ARGS, sf->p, sf->ng), wi, dist)) return (float3)(0.0f);
+    return ggx_eval(sf->ns, wo, wi, f0, alpha) * contrib * cos_x;
+}
+
 __kernel void path_trace(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong pass, uint num_pixels,
                          __global double* accum) {
     uint pixel = get_global_id(0);
@@ -27,14 +48,7 @@ __kernel void path_trace(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong
         float3 base = surface_base_color(SCENE_ARGS, &sf);
         uint kind = resolve_kind(SCENE_ARGS, &sf, rng_float(&rng));
         if (kind == MATERIAL_DIFFUSE) {
-            float3 wi, contrib;
-            float dist;
-            if (sample_light(SCENE_ARGS, sf.p, &rng, &wi, &dist, &contrib)) {
-                float cos_x = dot(wi, sf.ns);
-                if (cos_x > 0.0f && dot(wi, sf.ng) > 0.0f &&
-                    !trace_occluded(SCENE_ARGS, offset_origin(SCENE_ARGS, sf.p, sf.ng), wi, dist))
-                    L += beta * base * INV_PI_F * contrib * cos_x;
-            }
+            L += beta * path_nee_diffuse(SCENE_ARGS, &sf, base, &rng);
             count_emission = false;
             /* Russian roulette after the first bounces, survival by throughput. */
             float q = fmin(max3(beta * base), 1.0f);
@@ -46,6 +60,25 @@ __kernel void path_trace(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong
             }
             dir = sample_cosine_hemisphere(sf.ns, rng_float(&rng), rng_float(&rng));
             if (dot(dir, sf.ng) <= 0.0f) break;
+            org = offset_origin(SCENE_ARGS, sf.p, sf.ng);
+        } else if (kind == MATERIAL_GLOSSY) {
+            /* Rough glossy surfaces take next-event estimation like diffuse ones; smooth ones are
+             * treated like mirrors (emission found by the sampled ray counts). */
+            float alpha = material_alpha(&materials[sf.material]);
+            bool rough = alpha >= GLOSSY_HITPOINT_ALPHA;
+            if (rough) L += beta * path_nee_glossy(SCENE_ARGS, &sf, -dir, base, alpha, &rng);
+            count_emission = !rough;
+            float3 wi;
+            float3 w = ggx_sample(sf.ns, -dir, base, alpha, rng_float(&rng), rng_float(&rng), &wi);
+            if (dot(wi, sf.ng) <= 0.0f) break;
+            if (depth >= 2) {
+                float q = fmin(max3(beta * w), 1.0f);
+                if (!(rng_float(&rng) < q)) break;
+                beta *= w / q;
+            } else {
+                beta *= w;
+            }
+            dir = wi;
             org = offset_origin(SCENE_ARGS, sf.p, sf.ng);
         } else if (kind == MATERIAL_MIRROR) {
             beta *= base;

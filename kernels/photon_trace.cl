@@ -1,6 +1,7 @@
 /* photon_trace.cl: one refinement pass's photons (Hachisuka et al. 2008, Sec. 4.2). Each work
  * item emits one photon in proportion to light power, follows it through specular events and
- * diffuse bounces with Russian roulette, and stores every hit on a diffuse surface.
+ * diffuse and glossy bounces with Russian roulette, and stores every hit on a surface that gets
+ * hit points (diffuse, and glossy at least GLOSSY_HITPOINT_ALPHA rough).
  * With skip_direct set (explicit direct lighting at hit points), the first diffuse hit of a
  * photon that came straight from the light is not stored: that light is sampled directly. */
 #include "rng.cl"
@@ -43,6 +44,19 @@ __kernel void photon_trace(SCENE_PARAMS, ulong seed, ulong pass, uint first_phot
             flux *= base / q;
             dir = sample_cosine_hemisphere(sf.ns, rng_float(&rng), rng_float(&rng));
             if (dot(dir, sf.ng) <= 0.0f) return;
+            org = offset_origin(SCENE_ARGS, sf.p, sf.ng);
+        } else if (kind == MATERIAL_GLOSSY) {
+            float alpha = material_alpha(&materials[sf.material]);
+            /* Stored where the eye pass puts hit points (rough enough), as on diffuse surfaces. */
+            if (alpha >= GLOSSY_HITPOINT_ALPHA && !(skip_direct && bounce == 0))
+                store_photon(photons, capacity, counter, sf.p, sf.ns, flux, -dir);
+            float3 wo;
+            float3 w = ggx_sample(sf.ns, -dir, base, alpha, rng_float(&rng), rng_float(&rng), &wo);
+            if (dot(wo, sf.ng) <= 0.0f) return;
+            float q = fmin(max3(w), 1.0f);
+            if (!(rng_float(&rng) < q)) return;
+            flux *= w / q;
+            dir = wo;
             org = offset_origin(SCENE_ARGS, sf.p, sf.ng);
         } else if (kind == MATERIAL_MIRROR) {
             flux *= base;

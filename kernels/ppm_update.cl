@@ -1,7 +1,7 @@
 /* ppm_update.cl: the progressive radius and flux update (Hachisuka et al. 2008, Eqs. 7-10):
  *   N' = N + alpha M,  R'^2 = R^2 (N + alpha M) / (N + M),  tau' = (tau + tau_M) (N + alpha M) / (N + M)
- * in double precision. tau_M = f * Phi_M, where f (the hit point weight: path throughput times
- * the Lambertian BRDF) is constant over the gather disc. The host twin is src/ppm_stats.h. */
+ * in double precision. The gather summed f Phi over the photons; tau_M is that times the hit
+ * point's path throughput. */
 #include "shared_types.h"
 
 void ppm_update_stats(__global HitStats* s, double M, double3 tau_M, double alpha) {
@@ -28,8 +28,8 @@ __kernel __attribute__((reqd_work_group_size(PPM_UPDATE_WG, 1, 1))) void ppm_upd
         __global const PassFlux* pf = &pass[i];
         __global const HitPoint* hp = &hitpoints[i];
         double3 phi = (double3)((double)pf->flux[0], (double)pf->flux[1], (double)pf->flux[2]) / FLUX_FIXED_SCALE;
-        double3 f = (double3)(hp->weight[0], hp->weight[1], hp->weight[2]);
-        ppm_update_stats(&stats[i], (double)pf->m, f * phi, alpha);
+        double3 w = (double3)(hp->weight[0], hp->weight[1], hp->weight[2]);
+        ppm_update_stats(&stats[i], (double)pf->m, w * phi, alpha);
         float r = (float)sqrt(stats[i].r2);
         mine = (float2)(r, r);
     }

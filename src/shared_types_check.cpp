@@ -13,10 +13,11 @@ CLPPM_CHECK_SIZE(TriShading, 64);
 CLPPM_CHECK_OFFSET(TriShading, uv0, 36);
 CLPPM_CHECK_OFFSET(TriShading, material, 60);
 
-CLPPM_CHECK_SIZE(BvhNode, 128);
-CLPPM_CHECK_OFFSET(BvhNode, bmax_x, 48);
-CLPPM_CHECK_OFFSET(BvhNode, child, 96);
-CLPPM_CHECK_OFFSET(BvhNode, count, 112);
+CLPPM_CHECK_SIZE(BvhNode, 32 * BVH_WIDTH);
+CLPPM_CHECK_OFFSET(BvhNode, bmax_x, 12 * BVH_WIDTH);
+CLPPM_CHECK_OFFSET(BvhNode, child, 24 * BVH_WIDTH);
+CLPPM_CHECK_OFFSET(BvhNode, count, 28 * BVH_WIDTH);
+static_assert(BVH_WIDTH == 4 || BVH_WIDTH == 8, "bvh_traverse.cl has float4 and float8 node tests");
 
 CLPPM_CHECK_SIZE(Material, 64);
 CLPPM_CHECK_OFFSET(Material, emission, 16);
@@ -41,11 +42,14 @@ CLPPM_CHECK_OFFSET(SceneInfo, radius, 16);
 CLPPM_CHECK_OFFSET(SceneInfo, num_lights, 28);
 CLPPM_CHECK_OFFSET(SceneInfo, max_bounces, 40);
 
-CLPPM_CHECK_SIZE(HitPoint, 48);
+CLPPM_CHECK_SIZE(HitPoint, 64);
 CLPPM_CHECK_OFFSET(HitPoint, pixel, 12);
-CLPPM_CHECK_OFFSET(HitPoint, normal, 16);
-CLPPM_CHECK_OFFSET(HitPoint, weight, 32);
-CLPPM_CHECK_OFFSET(HitPoint, footprint, 44);
+CLPPM_CHECK_OFFSET(HitPoint, weight, 16);
+CLPPM_CHECK_OFFSET(HitPoint, footprint, 28);
+CLPPM_CHECK_OFFSET(HitPoint, color, 32);
+CLPPM_CHECK_OFFSET(HitPoint, alpha, 44);
+CLPPM_CHECK_OFFSET(HitPoint, normal_oct, 48);
+CLPPM_CHECK_OFFSET(HitPoint, wo_oct, 56);
 
 CLPPM_CHECK_SIZE(HitStats, 64);
 CLPPM_CHECK_OFFSET(HitStats, n, 8);

@@ -58,7 +58,9 @@ GatherCase make_case(float cell, float radius, uint32_t n_photons, uint32_t n_hi
             if (i % 2) z = -1.25f + cell * std::round((z + 1.25f) / cell);
         }
         h.pos[0] = x, h.pos[1] = 0, h.pos[2] = z;
-        h.normal[1] = 1;
+        h.normal_oct = oct(0, 1, 0);
+        h.color[0] = h.color[1] = h.color[2] = 1; // Lambertian, f = 1/pi
+        h.weight[0] = h.weight[1] = h.weight[2] = 1;
         h.pixel = i;
         c.hitpoints.push_back(h);
         float r = radius * (0.5f + u01(rng)); // radii vary around the nominal one
@@ -85,7 +87,8 @@ std::vector<dev::PassFlux> brute_force(const GatherCase& c) {
             // encodings put y in the upper 16 bits, above the midpoint for positive y.
             bool wi_up = (p.wi_oct >> 16) > 32768, n_up = (p.normal_oct >> 16) > 32768;
             if (!wi_up || !n_up) continue;
-            for (int k = 0; k < 3; ++k) out[i].flux[k] += std::llrint(double(p.flux[k]) * FLUX_FIXED_SCALE);
+            const float f = 1.0f * 0.31830988618379067154f; // albedo 1 / pi, in float as the kernel
+            for (int k = 0; k < 3; ++k) out[i].flux[k] += std::llrint(double(f * p.flux[k]) * FLUX_FIXED_SCALE);
             out[i].m += 1;
         }
     }

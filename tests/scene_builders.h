@@ -10,13 +10,13 @@
 namespace clppm::test {
 
 inline uint32_t add_material(Scene& s, float r, float g, float b, float emission = 0.f, bool double_sided = false,
-                             uint32_t kind = MATERIAL_DIFFUSE, float ior = 1.5f) {
+                             uint32_t kind = MATERIAL_DIFFUSE, float ior = 1.5f, float roughness = 1.f) {
     dev::Material m{};
     m.base_color[0] = r, m.base_color[1] = g, m.base_color[2] = b, m.base_color[3] = 1;
     m.emission[0] = m.emission[1] = m.emission[2] = emission;
-    m.roughness = 1;
+    m.roughness = kind == MATERIAL_MIRROR ? 0.f : roughness;
     m.ior = ior;
-    m.metallic = kind == MATERIAL_MIRROR ? 1.f : 0.f;
+    m.metallic = kind == MATERIAL_MIRROR || kind == MATERIAL_GLOSSY ? 1.f : 0.f;
     m.transmission = kind == MATERIAL_DIELECTRIC ? 1.f : 0.f;
     m.base_color_tex = -1;
     m.flags = double_sided ? MATERIAL_FLAG_DOUBLE_SIDED : 0u;
@@ -140,6 +140,18 @@ inline Scene furnace(float rho, float le) {
     return s;
 }
 
+// The furnace with a glossy metal enclosure (GGX, F0 = rho): energy must not grow beyond
+// Le / (1 - rho), the bound a white-ish conductor's albedo (<= F0 at normal incidence... and
+// below 1 everywhere) allows.
+inline Scene glossy_furnace(float f0, float roughness, float le) {
+    Scene s;
+    s.source = "<glossy furnace>";
+    uint32_t m = add_material(s, f0, f0, f0, le, true, MATERIAL_GLOSSY, 1.5f, roughness);
+    add_sphere(s, {0, 0, 0}, 1.f, 24, 48, m, true);
+    add_camera(s, {0, 0, 0.2f}, {0, 0, -1}, {0, 1, 0}, 1.0f);
+    return s;
+}
+
 // A closed diffuse box with coloured walls and a square ceiling light: the diffuse-only scene PPM
 // and path tracing must agree on.
 inline Scene diffuse_box(bool with_blocks = true) {
@@ -164,6 +176,24 @@ inline Scene diffuse_box(bool with_blocks = true) {
         add_quad(s, {x1, -1, z0}, {x1, y1, z0}, {x1, y1, z1}, {x1, -1, z1}, white);
     }
     add_camera(s, {0, 0, 0.95f}, {0, 0, -1}, {0, 1, 0}, 1.3f);
+    return s;
+}
+
+// The diffuse box with a rough glossy back wall (hit points, gathered with the GGX BRDF) and a
+// smooth glossy block (sampled through by eye paths).
+inline Scene glossy_box() {
+    Scene s = diffuse_box(false);
+    s.source = "<glossy box>";
+    uint32_t rough = add_material(s, 0.9f, 0.8f, 0.6f, 0.f, false, MATERIAL_GLOSSY, 1.5f, 0.5f);
+    uint32_t smooth = add_material(s, 0.8f, 0.8f, 0.9f, 0.f, false, MATERIAL_GLOSSY, 1.5f, 0.12f);
+    // The back wall (triangles 4 and 5 of diffuse_box) becomes rough metal.
+    s.shading[4].material = s.shading[5].material = rough;
+    float x0 = -0.6f, x1 = 0.0f, z0 = -0.5f, z1 = 0.1f, y1 = -0.2f;
+    add_quad(s, {x0, y1, z0}, {x0, y1, z1}, {x1, y1, z1}, {x1, y1, z0}, smooth);
+    add_quad(s, {x0, -1, z1}, {x1, -1, z1}, {x1, y1, z1}, {x0, y1, z1}, smooth);
+    add_quad(s, {x0, -1, z0}, {x0, y1, z0}, {x1, y1, z0}, {x1, -1, z0}, smooth);
+    add_quad(s, {x0, -1, z0}, {x0, -1, z1}, {x0, y1, z1}, {x0, y1, z0}, smooth);
+    add_quad(s, {x1, -1, z0}, {x1, y1, z0}, {x1, y1, z1}, {x1, -1, z1}, smooth);
     return s;
 }
 

@@ -26,7 +26,8 @@ namespace {
     X(sizeof(Camera)) X(offsetof(Camera, width)) X(offsetof(Camera, focus_distance))                  \
     X(sizeof(SceneInfo)) X(offsetof(SceneInfo, radius)) X(offsetof(SceneInfo, total_power))           \
     X(offsetof(SceneInfo, max_bounces))                                                               \
-    X(sizeof(HitPoint)) X(offsetof(HitPoint, normal)) X(offsetof(HitPoint, weight)) X(offsetof(HitPoint, footprint)) \
+    X(sizeof(HitPoint)) X(offsetof(HitPoint, weight)) X(offsetof(HitPoint, footprint)) X(offsetof(HitPoint, alpha)) \
+    X(offsetof(HitPoint, normal_oct)) X(offsetof(HitPoint, wo_oct)) \
     X(sizeof(PassFlux)) X(offsetof(PassFlux, m))                                                      \
     X(sizeof(HitStats)) X(offsetof(HitStats, n)) X(offsetof(HitStats, tau)) X(offsetof(HitStats, direct)) \
     X(sizeof(Photon)) X(offsetof(Photon, flux)) X(offsetof(Photon, wi_oct))                           \
