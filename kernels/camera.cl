@@ -23,12 +23,28 @@ void camera_ray(__constant Camera* cam, float px, float py, float2 lens_u, float
     *dir = normalize(d);
 }
 
-/* Sub-pixel offset of sample `s` of `spp`: pixel centre for one sample, else stratified jitter. */
-float2 pixel_sample_offset(uint s, uint spp, Rng* rng) {
-    if (spp == 1) return (float2)(0.5f, 0.5f);
+/* The pixel filter by importance sampling (filter importance sampling: every sample weighs the
+ * same): box (default) over the pixel, or with -DPIXEL_FILTER_TENT a separable tent of radius one
+ * pixel around its centre, through the inverse of its CDF. u in [0,1) -> offset from the pixel's
+ * left/top edge. */
+float filter_warp(float u) {
+#ifdef PIXEL_FILTER_TENT
+    float x = u < 0.5f ? sqrt(2.0f * u) - 1.0f : 1.0f - sqrt(2.0f * (1.0f - u));
+    return 0.5f + x;
+#else
+    return u;
+#endif
+}
+
+/* Sub-pixel offset of sample `s` of `spp`. Fixed hit points (PPM) with one sample per pixel take
+ * the pixel centre; otherwise strata of the unit square are jittered and warped by the filter.
+ * `stochastic` (SPPM/PPPM: a new sample every pass) jitters even a single sample. */
+float2 pixel_sample_offset(uint s, uint spp, bool stochastic, Rng* rng) {
+    if (spp == 1 && !stochastic) return (float2)(0.5f, 0.5f);
     uint n = (uint)ceil(sqrt((float)spp));
     uint sx = s % n, sy = (s / n) % n;
-    return (float2)(((float)sx + rng_float(rng)) / (float)n, ((float)sy + rng_float(rng)) / (float)n);
+    float2 u = (float2)(((float)sx + rng_float(rng)) / (float)n, ((float)sy + rng_float(rng)) / (float)n);
+    return (float2)(filter_warp(u.x), filter_warp(u.y));
 }
 
 #endif

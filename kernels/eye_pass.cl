@@ -108,7 +108,7 @@ __kernel void eye_pass(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong p
     uint pixel = gsample / spp, s = gsample % spp;
     Rng rng = rng_make(seed, pass, gsample, RNG_EYE);
 
-    float2 off = pixel_sample_offset(s, spp, &rng);
+    float2 off = pixel_sample_offset(s, spp, EYE_SLOTS == 1, &rng);
     float2 lens = (float2)(rng_float(&rng), rng_float(&rng));
     float px = (float)(pixel % cam->width) + off.x, py = (float)(pixel / cam->width) + off.y;
     /* Pixel footprint per unit distance: the angle one pixel subtends (initial radius heuristic). */

@@ -34,7 +34,7 @@ __kernel void path_trace(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong
     uint pixel = get_global_id(0);
     if (pixel >= num_pixels) return;
     Rng rng = rng_make(seed, pass, pixel, RNG_PATH);
-    float2 off = (float2)(rng_float(&rng), rng_float(&rng));
+    float2 off = pixel_sample_offset(0, 1, true, &rng);
     float2 lens = (float2)(rng_float(&rng), rng_float(&rng));
     float3 org, dir;
     camera_ray(cam, (float)(pixel % cam->width) + off.x, (float)(pixel / cam->width) + off.y, lens, &org, &dir);

@@ -32,9 +32,12 @@ std::string integrator_build_options(const RenderSettings& settings, const Devic
         throw Error("device " + device.name +
                     " lacks double precision (cl_khr_fp64), which clppm's hit point statistics need; pick another "
                     "with --device");
+    std::string options;
     // SPPM and PPPM keep one visible point per pixel and pass; PPM splits into up to four.
-    if (settings.integrator == Integrator::SPPM || settings.integrator == Integrator::PPPM) return "-DEYE_SLOTS=1";
-    return "-DEYE_SLOTS=4";
+    if (settings.integrator == Integrator::SPPM || settings.integrator == Integrator::PPPM) options += "-DEYE_SLOTS=1";
+    else options += "-DEYE_SLOTS=4";
+    if (settings.filter == PixelFilter::Tent) options += " -DPIXEL_FILTER_TENT";
+    return options;
 }
 
 void enqueue_1d(const cl::CommandQueue& queue, const cl::Kernel& kernel, size_t n, cl::Event* event) {

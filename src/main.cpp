@@ -46,6 +46,7 @@ RenderSettings settings_from(const Options& o) {
     s.seed = o.seed;
     s.max_bounces = unsigned(o.max_bounces);
     s.aperture = o.aperture;
+    s.filter = o.filter;
     s.focus_distance = o.focus_distance;
     return s;
 }

@@ -174,6 +174,14 @@ const OptionSpec kOptions[] = {
     {"--spp", nullptr, "N", "Hit points (samples) per pixel per pass",
      "an integer in 1..256", "1",
      [](ParseState& st, const Arg& a) { st.options.spp = static_cast<int>(parse_int(a, 1, 256)); }},
+    {"--filter", nullptr, "NAME",
+     "Pixel filter, importance-sampled: box = the pixel's square, tent = separable tent of radius 1 pixel",
+     "box or tent", "box",
+     [](ParseState& st, const Arg& a) {
+         if (a.value == "box") st.options.filter = PixelFilter::Box;
+         else if (a.value == "tent") st.options.filter = PixelFilter::Tent;
+         else bad_value(a);
+     }},
     {"--aperture", nullptr, "R", "Thin-lens aperture radius in scene units (depth of field)",
      "a finite number >= 0 (0 = pinhole)", "the camera's, else 0",
      [](ParseState& st, const Arg& a) { st.options.aperture = parse_real(a, [](double x) { return x >= 0; }); }},
@@ -278,6 +286,8 @@ const char* to_string(Integrator integrator) {
     default: return "ppm";
     }
 }
+
+const char* to_string(PixelFilter filter) { return filter == PixelFilter::Tent ? "tent" : "box"; }
 
 const char* to_string(DirectLighting direct) { return direct == DirectLighting::Photons ? "photons" : "sample"; }
 

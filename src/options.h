@@ -9,9 +9,11 @@ namespace clppm {
 
 enum class Integrator { PPM, SPPM, PPPM, PT }; // --integrator ppm|sppm|pppm|pt
 enum class DirectLighting { Photons, Sample }; // --direct photons|sample
+enum class PixelFilter { Box, Tent };          // --filter box|tent
 
 const char* to_string(Integrator integrator);  // "ppm", "pt"
 const char* to_string(DirectLighting direct);  // "photons", "sample"
+const char* to_string(PixelFilter filter);     // "box", "tent"
 
 struct Options {
     std::string scene;                  // .gltf/.glb; empty = the embedded Cornell box
@@ -33,6 +35,7 @@ struct Options {
     Integrator integrator = Integrator::PPM;
     DirectLighting direct = DirectLighting::Sample;
     int spp = 1;                        // PPM hit points (samples) per pixel, 1..256
+    PixelFilter filter = PixelFilter::Box;
     double aperture = -1.0;             // thin-lens aperture radius; < 0 = the camera's (0 = pinhole)
     double focus_distance = 0.0;        // thin-lens focus distance; 0 = the camera's
     int max_bounces = 16;               // 1..1024

@@ -18,6 +18,7 @@ struct RenderSettings {
     double radius = 0;              // initial radius in world units; 0: heuristic
     uint64_t seed = 1;
     unsigned max_bounces = 16;
+    PixelFilter filter = PixelFilter::Box;
     double aperture = -1;           // thin-lens radius; < 0: the camera's own (0: pinhole)
     double focus_distance = 0;      // 0: the camera's own, else the distance to the scene centre
 };

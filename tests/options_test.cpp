@@ -107,6 +107,19 @@ TEST_P(BothForms, RangeEnds) {
     EXPECT_EQ(o.max_bounces, 1);
 }
 
+TEST_P(BothForms, DistributedEffectOptions) {
+    Options o = parse({"--integrator", "sppm", "--filter", "tent", "--aperture", "0.05", "--focus-distance", "3.5"});
+    EXPECT_EQ(o.integrator, Integrator::SPPM);
+    EXPECT_EQ(o.filter, PixelFilter::Tent);
+    EXPECT_EQ(o.aperture, 0.05);
+    EXPECT_EQ(o.focus_distance, 3.5);
+    EXPECT_EQ(parse({"--integrator", "pppm"}).integrator, Integrator::PPPM);
+    Options d = parse({});
+    EXPECT_EQ(d.filter, PixelFilter::Box);
+    EXPECT_LT(d.aperture, 0.0); // the camera's own
+    EXPECT_EQ(d.focus_distance, 0.0);
+}
+
 INSTANTIATE_TEST_SUITE_P(Options, BothForms, ::testing::Values(false, true),
                          [](const auto& info) { return info.param ? "Equals" : "Separate"; });
 
@@ -192,6 +205,9 @@ INSTANTIATE_TEST_SUITE_P(
         BadValue{{"--camera", "-1"}, "--camera -1: must be an integer >= 0"},
         BadValue{{"--stats-json="}, "--stats-json '': must be a file name"},
         BadValue{{"--integrator", "bdpt"}, "--integrator bdpt: must be ppm, sppm, pppm or pt"},
+        BadValue{{"--filter", "mitchell"}, "--filter mitchell: must be box or tent"},
+        BadValue{{"--aperture", "-1"}, "--aperture -1: must be a finite number >= 0 (0 = pinhole)"},
+        BadValue{{"--focus-distance", "0"}, "--focus-distance 0: must be a finite number > 0"},
         BadValue{{"--direct", "both"}, "--direct both: must be photons or sample"},
         BadValue{{"--spp", "0"}, "--spp 0: must be an integer in 1..256"},
         BadValue{{"--spp", "257"}, "--spp 257: must be an integer in 1..256"},
