@@ -1,0 +1,639 @@
+// The BVH (src/bvh_build.cpp) and its traversal (kernels/bvh_traverse.cl, run through
+// kernels/trace_rays.cl on the test device) against a brute-force double-precision reference.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <map>
+#include <memory>
+#include <random>
+#include <string>
+
+#include "bvh_build.h"
+#include "bvh_trace.h"
+#include "test_util.h"
+
+namespace clppm {
+namespace {
+
+using Tris = std::vector<Vec3>; // 3 per triangle
+
+// ---- the reference: double-precision Moller-Trumbore over every triangle --------------------------
+
+struct D3 {
+    double x, y, z;
+};
+D3 d3(const Vec3& v) { return {v.x, v.y, v.z}; }
+D3 d3(const float* v) { return {v[0], v[1], v[2]}; }
+D3 operator-(D3 a, D3 b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+D3 operator+(D3 a, D3 b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
+D3 operator*(D3 a, double s) { return {a.x * s, a.y * s, a.z * s}; }
+double dot(D3 a, D3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+D3 cross(D3 a, D3 b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
+double length(D3 a) { return std::sqrt(dot(a, a)); }
+
+// Where a ray meets one triangle's plane: t, barycentrics of v1 and v2, and how far outside the
+// triangle that point is (0 inside; else the most negative barycentric, as a positive number).
+struct RefHit {
+    double t = -1, u = 0, v = 0, outside = 1e30, cos = 0;
+    double extent = 0; // longest edge, in ray-parameter units
+};
+
+RefHit ref_triangle(const Tris& tris, size_t prim, D3 org, D3 dir) {
+    const D3 v0 = d3(tris[3 * prim]), e1 = d3(tris[3 * prim + 1]) - v0, e2 = d3(tris[3 * prim + 2]) - v0;
+    const D3 p = cross(dir, e2);
+    const double det = dot(e1, p);
+    RefHit h;
+    const D3 n = cross(e1, e2);
+    if (det == 0 || length(n) == 0) return h;
+    const D3 s = org - v0;
+    const D3 q = cross(s, e1);
+    h.u = dot(s, p) / det;
+    h.v = dot(dir, q) / det;
+    h.t = dot(e2, q) / det;
+    h.outside = std::max({0.0, -h.u, -h.v, h.u + h.v - 1.0});
+    h.cos = std::fabs(dot(n, dir)) / (length(n) * length(dir));
+    h.extent = std::max({length(e1), length(e2), length(e2 - e1)}) / length(dir);
+    return h;
+}
+
+// Every triangle's plane hit for one ray; the comparisons below decide what counts.
+std::vector<RefHit> ref_all(const Tris& tris, const TraceRay& r) {
+    std::vector<RefHit> out(tris.size() / 3);
+    for (size_t i = 0; i < out.size(); ++i) out[i] = ref_triangle(tris, i, d3(r.org), d3(r.dir));
+    return out;
+}
+
+// ---- test scenes ------------------------------------------------------------------------------
+
+std::mt19937 rng(12345);
+double uniform(double a = 0, double b = 1) { return std::uniform_real_distribution<double>(a, b)(rng); }
+
+void add_tri(Tris& t, Vec3 a, Vec3 b, Vec3 c) { t.insert(t.end(), {a, b, c}); }
+Vec3 v3(double x, double y, double z) { return {float(x), float(y), float(z)}; }
+
+Tris random_soup(int n) {
+    Tris t;
+    for (int i = 0; i < n; ++i) {
+        const double cx = uniform(), cy = uniform(), cz = uniform(), s = uniform(0.01, 0.15);
+        auto p = [&] { return v3(cx + s * uniform(-1, 1), cy + s * uniform(-1, 1), cz + s * uniform(-1, 1)); };
+        add_tri(t, p(), p(), p());
+    }
+    return t;
+}
+
+// An icosphere: closed, every vertex bitwise shared by its triangles.
+Tris icosphere(int subdivisions, double radius) {
+    const double g = (1 + std::sqrt(5.0)) / 2;
+    std::vector<D3> v = {{-1, g, 0}, {1, g, 0}, {-1, -g, 0}, {1, -g, 0}, {0, -1, g}, {0, 1, g},
+                         {0, -1, -g}, {0, 1, -g}, {g, 0, -1}, {g, 0, 1}, {-g, 0, -1}, {-g, 0, 1}};
+    std::vector<std::array<int, 3>> f = {{0, 11, 5}, {0, 5, 1}, {0, 1, 7}, {0, 7, 10}, {0, 10, 11},
+                                         {1, 5, 9}, {5, 11, 4}, {11, 10, 2}, {10, 7, 6}, {7, 1, 8},
+                                         {3, 9, 4}, {3, 4, 2}, {3, 2, 6}, {3, 6, 8}, {3, 8, 9},
+                                         {4, 9, 5}, {2, 4, 11}, {6, 2, 10}, {8, 6, 7}, {9, 8, 1}};
+    for (int s = 0; s < subdivisions; ++s) {
+        std::vector<std::array<int, 3>> next;
+        std::map<std::pair<int, int>, int> mid;
+        auto midpoint = [&](int a, int b) {
+            auto key = std::minmax(a, b);
+            auto it = mid.find(key);
+            if (it != mid.end()) return it->second;
+            v.push_back((v[a] + v[b]) * 0.5);
+            return mid[key] = int(v.size()) - 1;
+        };
+        for (auto& t : f) {
+            int a = midpoint(t[0], t[1]), b = midpoint(t[1], t[2]), c = midpoint(t[2], t[0]);
+            next.insert(next.end(), {{t[0], a, c}, {t[1], b, a}, {t[2], c, b}, {a, b, c}});
+        }
+        f = next;
+    }
+    std::vector<Vec3> pos;
+    for (D3 p : v) {
+        p = p * (radius / length(p));
+        pos.push_back(v3(p.x, p.y, p.z));
+    }
+    Tris t;
+    for (auto& tri : f) add_tri(t, pos[tri[0]], pos[tri[1]], pos[tri[2]]);
+    return t;
+}
+
+// The cube [-1,1]^3 with each face an n x n grid of quad pairs; grid points are computed from
+// integers the same way on every face, so the cube's edges and corners are shared exactly.
+Tris grid_cube(int n) {
+    Tris t;
+    auto c = [&](int i) { return float(-1.0 + 2.0 * i / n); };
+    for (int axis = 0; axis < 3; ++axis)
+        for (int side = 0; side <= n; side += n)
+            for (int i = 0; i < n; ++i)
+                for (int j = 0; j < n; ++j) {
+                    auto p = [&](int a, int b) {
+                        float q[3];
+                        q[axis] = c(side);
+                        q[(axis + 1) % 3] = c(a);
+                        q[(axis + 2) % 3] = c(b);
+                        return Vec3{q[0], q[1], q[2]};
+                    };
+                    add_tri(t, p(i, j), p(i + 1, j), p(i + 1, j + 1));
+                    add_tri(t, p(i, j), p(i + 1, j + 1), p(i, j + 1));
+                }
+    return t;
+}
+
+// Coplanar triangles in z = 0 over [0,1]^2, diagonals alternating, all edges shared exactly.
+Tris coplanar_grid(int n) {
+    Tris t;
+    auto p = [&](int i, int j) { return Vec3{float(i) / n, float(j) / n, 0.0f}; };
+    for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j) {
+            if ((i + j) % 2) {
+                add_tri(t, p(i, j), p(i + 1, j), p(i + 1, j + 1));
+                add_tri(t, p(i, j), p(i + 1, j + 1), p(i, j + 1));
+            } else {
+                add_tri(t, p(i, j), p(i + 1, j), p(i, j + 1));
+                add_tri(t, p(i + 1, j), p(i + 1, j + 1), p(i, j + 1));
+            }
+        }
+    return t;
+}
+
+Tris transformed(const Tris& t, double scale, double offset) {
+    Tris out;
+    for (const Vec3& p : t) out.push_back(v3(p.x * scale + offset, p.y * scale + offset * 0.5, p.z * scale - offset));
+    return out;
+}
+
+// ---- rays ---------------------------------------------------------------------------------------
+
+D3 random_dir() {
+    for (;;) {
+        D3 d{uniform(-1, 1), uniform(-1, 1), uniform(-1, 1)};
+        const double l = length(d);
+        if (l > 0.1 && l <= 1) return d * (1 / l);
+    }
+}
+
+// Every few rays a direction with zero components (axis-parallel or in a coordinate plane).
+D3 maybe_axis_parallel(D3 d, int i) {
+    switch (i % 8) {
+    case 0: return {d.x > 0 ? 1.0 : -1.0, 0, 0};
+    case 1: return {0, d.y > 0 ? 1.0 : -1.0, 0};
+    case 2: return {0, 0, d.z > 0 ? 1.0 : -1.0};
+    case 3: return d.z = 0, d * (1 / std::max(length(d), 1e-9));
+    case 4: return d.x = -0.0, d * (1 / std::max(length(d), 1e-9));
+    default: return d;
+    }
+}
+
+TraceRay make_ray(D3 o, D3 d, double tmax = INFINITY, bool any = false) {
+    return TraceRay{{float(o.x), float(o.y), float(o.z)}, float(tmax), {float(d.x), float(d.y), float(d.z)},
+                    any ? 1.0f : 0.0f};
+}
+
+D3 tri_point(const Tris& t, size_t prim, double u, double v) {
+    const D3 a = d3(t[3 * prim]), b = d3(t[3 * prim + 1]), c = d3(t[3 * prim + 2]);
+    return a + (b - a) * u + (c - a) * v;
+}
+
+D3 tri_normal(const Tris& t, size_t prim) {
+    const D3 a = d3(t[3 * prim]), n = cross(d3(t[3 * prim + 1]) - a, d3(t[3 * prim + 2]) - a);
+    const double l = length(n);
+    return l > 0 ? n * (1 / l) : D3{0, 0, 1};
+}
+
+struct Bounds {
+    D3 lo{1e30, 1e30, 1e30}, hi{-1e30, -1e30, -1e30};
+    D3 center() const { return (lo + hi) * 0.5; }
+    double size() const { return length(hi - lo); }
+};
+Bounds bounds_of(const Tris& t) {
+    Bounds b;
+    for (const Vec3& p : t) {
+        b.lo = {std::min(b.lo.x, double(p.x)), std::min(b.lo.y, double(p.y)), std::min(b.lo.z, double(p.z))};
+        b.hi = {std::max(b.hi.x, double(p.x)), std::max(b.hi.y, double(p.y)), std::max(b.hi.z, double(p.z))};
+    }
+    if (t.empty()) b.lo = b.hi = {0, 0, 0};
+    return b;
+}
+
+// A mix: rays from outside the bounds towards them, rays from inside, rays leaving a surface
+// point with a small offset (as the renderer's bounces do), and grazing rays along a triangle.
+std::vector<TraceRay> mixed_rays(const Tris& t, int n) {
+    std::vector<TraceRay> rays;
+    const Bounds b = bounds_of(t);
+    const double size = std::max(b.size(), 1e-30);
+    const size_t ntris = t.size() / 3;
+    for (int i = 0; i < n; ++i) {
+        const int kind = ntris ? i % 4 : i % 2;
+        D3 o, d;
+        if (kind == 0) { // from a sphere around the scene towards a point inside the bounds
+            o = b.center() + random_dir() * size;
+            D3 target{uniform(b.lo.x, b.hi.x), uniform(b.lo.y, b.hi.y), uniform(b.lo.z, b.hi.z)};
+            d = target - o;
+            d = d * (1 / length(d));
+            if (i % 16 == 0) d = maybe_axis_parallel(d, i / 16);
+        } else if (kind == 1) { // from inside the bounds, any direction
+            const double pad = 0.01 * size; // off flat bounds: a ray starting on a triangle is ill-posed
+            o = {uniform(b.lo.x - pad, b.hi.x + pad), uniform(b.lo.y - pad, b.hi.y + pad),
+                 uniform(b.lo.z - pad, b.hi.z + pad)};
+            d = maybe_axis_parallel(random_dir(), i);
+        } else { // leaving a surface
+            const size_t prim = size_t(uniform(0, double(ntris))) % ntris;
+            double u = uniform(), v = uniform();
+            if (u + v > 1) u = 1 - u, v = 1 - v;
+            D3 nrm = tri_normal(t, prim);
+            if (uniform() < 0.5) nrm = nrm * -1.0;
+            o = tri_point(t, prim, u, v) + nrm * (1e-4 * size);
+            if (kind == 2) {
+                d = random_dir();
+                if (dot(d, nrm) < 0) d = d * -1.0;
+            } else { // grazing: nearly in the triangle's plane
+                D3 tangent = cross(nrm, random_dir());
+                tangent = tangent * (1 / std::max(length(tangent), 1e-12));
+                d = tangent + nrm * uniform(-1e-3, 1e-3);
+            }
+            if (i % 16 == 2) d = maybe_axis_parallel(d, i / 16);
+        }
+        rays.push_back(make_ray(o, d));
+    }
+    return rays;
+}
+
+// ---- comparison -------------------------------------------------------------------------------
+
+// Barycentric slack for "the ray passes this close to an edge": float traversal and the double
+// reference may then disagree about which side it lands on.
+constexpr double kEdgeSlack = 2e-5;
+
+// t of the kernel against the reference: relative to t, or to the triangle's size when the hit is
+// much closer than that (float vertex offsets round at the triangle's scale), and looser for
+// grazing rays whose plane distance is ill-conditioned.
+bool t_close(double t_kernel, const RefHit& ref) {
+    return std::fabs(t_kernel - ref.t) <= 1e-5 * std::max(ref.t, ref.extent) / std::max(ref.cos, 1e-3);
+}
+
+struct Compare {
+    int checked = 0, ambiguous = 0;
+    std::vector<std::string> failures;
+    void fail(size_t i, const TraceRay& r, const std::string& why) {
+        if (failures.size() < 10) {
+            char buf[512];
+            std::snprintf(buf, sizeof buf, "ray %zu o=(%.9g %.9g %.9g) d=(%.9g %.9g %.9g) tmax=%g any=%g: %s", i,
+                          r.org[0], r.org[1], r.org[2], r.dir[0], r.dir[1], r.dir[2], r.tmax, r.any_hit, why.c_str());
+            failures.push_back(buf);
+        } else if (failures.size() == 10) {
+            failures.push_back("...");
+        }
+    }
+};
+
+// Checks one kernel result. must_hit: the ray cannot escape (inside a closed mesh, or aimed at a
+// shared edge of a grid), so no edge ambiguity excuses a miss.
+void check_ray(const Tris& tris, size_t i, const TraceRay& r, const TraceHit& k, bool must_hit, Compare& c) {
+    const std::vector<RefHit> ref = ref_all(tris, r);
+    const double tmax = r.tmax;
+    const bool any = r.any_hit != 0;
+    auto in_range = [&](const RefHit& h) { return h.t > 0 && h.t < tmax; };
+    auto strict = [&](const RefHit& h) { return in_range(h) && h.outside == 0; };
+    auto loose = [&](const RefHit& h) { return h.t > 0 && h.t < tmax * (1 + 1e-6) && h.outside <= kEdgeSlack; };
+    // Borderline: within the slack of an edge, or of tmax.
+    // Borderline: within the slack of an edge, of tmax, or of the origin (a ray starting on the
+    // surface, which callers avoid by offsetting).
+    auto self_hit = [&](const RefHit& h) { return std::fabs(h.t) <= 1e-6 * h.extent && h.outside <= kEdgeSlack; };
+    auto borderline = [&](const RefHit& h) {
+        if (self_hit(h)) return true;
+        if (!loose(h)) return false;
+        const double inner = std::min({h.u, h.v, 1 - h.u - h.v});
+        return inner <= kEdgeSlack || std::fabs(h.t - tmax) <= 1e-6 * tmax;
+    };
+    double best = INFINITY;
+    size_t best_prim = ~size_t(0);
+    bool all_borderline = true;
+    for (size_t p = 0; p < ref.size(); ++p) {
+        if (!strict(ref[p])) continue;
+        if (ref[p].t < best) best = ref[p].t, best_prim = p;
+        all_borderline = all_borderline && borderline(ref[p]);
+    }
+    ++c.checked;
+    if (!k.hit()) {
+        if (best_prim == ~size_t(0)) return;
+        if (all_borderline && !must_hit) {
+            ++c.ambiguous;
+            return;
+        }
+        c.fail(i, r, "missed; reference hits triangle " + std::to_string(best_prim) + " at t=" + std::to_string(best));
+        return;
+    }
+    if (k.prim >= ref.size()) return c.fail(i, r, "hit reports triangle " + std::to_string(k.prim));
+    const RefHit& h = ref[k.prim];
+    if (self_hit(h) && !must_hit) {
+        ++c.ambiguous;
+        return;
+    }
+    if (!loose(h)) {
+        c.fail(i, r, "hit triangle " + std::to_string(k.prim) + " at t=" + std::to_string(k.t) +
+                         " which the reference misses (outside " + std::to_string(h.outside) + ", t " +
+                         std::to_string(h.t) + ")");
+        return;
+    }
+    if (!t_close(k.t, h)) return c.fail(i, r, "t=" + std::to_string(k.t) + " vs reference " + std::to_string(h.t));
+    if (!(k.t > 0 && k.t < tmax)) return c.fail(i, r, "t out of (0, tmax)");
+    if (h.outside == 0 && h.cos > 1e-2 && (std::fabs(k.u - h.u) > 1e-4 || std::fabs(k.v - h.v) > 1e-4))
+        return c.fail(i, r, "barycentrics differ");
+    if (any) return;
+    if (best_prim == ~size_t(0) || k.prim == best_prim) return;
+    // Another triangle than the reference's nearest: fine when the two are tied within 1e-6
+    // (shared edges, coplanar) or the nearer one is only grazed at an edge.
+    if (h.t <= best * (1 + 1e-6)) return;
+    if (borderline(ref[best_prim]) && !must_hit) {
+        ++c.ambiguous;
+        return;
+    }
+    c.fail(i, r, "hit triangle " + std::to_string(k.prim) + " at t=" + std::to_string(h.t) +
+                     " but reference's nearest is " + std::to_string(best_prim) + " at t=" + std::to_string(best));
+}
+
+// ---- fixtures ---------------------------------------------------------------------------------
+
+class BvhTest : public ::testing::Test {
+protected:
+    static void SetUpTestSuite() {
+        dc_ = std::make_unique<DeviceContext>(test::test_device());
+        tracer_ = std::make_unique<RayTracer>(*dc_);
+    }
+    static void TearDownTestSuite() {
+        tracer_.reset();
+        dc_.reset();
+    }
+
+    // Builds, traces on the device (in the permuted order) and compares with the reference.
+    void trace_and_compare(const Tris& input, std::vector<TraceRay> rays, bool must_hit, const char* what) {
+        const BvhBuildResult bvh = build_bvh(input);
+        check_structure(input, bvh);
+        Tris tris;
+        for (uint32_t i : bvh.tri_order)
+            for (int k = 0; k < 3; ++k) tris.push_back(input[3 * i + k]);
+        DeviceBvh dbvh(*dc_, bvh.nodes, bvh_triangle_data(tris));
+        Compare c;
+        for (int any = 0; any < 2; ++any) {
+            std::vector<TraceRay> batch = rays;
+            if (any) {
+                // Any-hit: half unlimited, half with tmax somewhere along the reference's nearest hit.
+                const std::vector<TraceHit> closest = tracer_->trace(dbvh, rays);
+                for (size_t i = 0; i < batch.size(); ++i) {
+                    batch[i].any_hit = 1;
+                    if (i % 2 && closest[i].hit()) batch[i].tmax = float(closest[i].t * uniform(0.3, 1.7));
+                }
+            }
+            const std::vector<TraceHit> hits = tracer_->trace(dbvh, batch);
+            for (size_t i = 0; i < batch.size(); ++i) check_ray(tris, i, batch[i], hits[i], must_hit && !any, c);
+        }
+        std::string all;
+        for (const std::string& f : c.failures) all += f + "\n";
+        EXPECT_TRUE(c.failures.empty()) << what << ": " << c.failures.size() << " failures of " << c.checked << "\n"
+                                        << all;
+        // Edge ambiguity must stay rare, or it would hide real misses.
+        EXPECT_LE(c.ambiguous, c.checked / 200 + 2) << what;
+        std::printf("%-20s %6d rays checked, %d at an edge or the origin (either answer accepted)\n", what,
+                    c.checked, c.ambiguous);
+    }
+
+    // Host-side invariants of the flattened tree.
+    static void check_structure(const Tris& tris, const BvhBuildResult& bvh) {
+        const size_t n = tris.size() / 3;
+        ASSERT_FALSE(bvh.nodes.empty());
+        ASSERT_EQ(bvh.tri_order.size(), n);
+        std::vector<int> seen(n, 0);
+        for (uint32_t i : bvh.tri_order) {
+            ASSERT_LT(i, n);
+            ++seen[i];
+        }
+        for (size_t i = 0; i < n; ++i) ASSERT_EQ(seen[i], 1) << "input triangle " << i;
+
+        std::vector<int> covered(n, 0), node_refs(bvh.nodes.size(), 0);
+        size_t leaves = 0;
+        unsigned max_depth = 0;
+        auto contains = [](const dev::BvhNode& nd, int s, const Vec3& p) {
+            return p.x >= nd.bmin_x[s] && p.x <= nd.bmax_x[s] && p.y >= nd.bmin_y[s] && p.y <= nd.bmax_y[s] &&
+                   p.z >= nd.bmin_z[s] && p.z <= nd.bmax_z[s];
+        };
+        std::vector<std::pair<int32_t, unsigned>> todo = {{0, 1}};
+        node_refs[0] = 1;
+        while (!todo.empty()) {
+            auto [index, depth] = todo.back();
+            todo.pop_back();
+            max_depth = std::max(max_depth, depth);
+            const dev::BvhNode& nd = bvh.nodes[size_t(index)];
+            for (int s = 0; s < BVH_WIDTH; ++s) {
+                if (nd.child[s] < 0) {
+                    const uint32_t first = ~uint32_t(nd.child[s]);
+                    if (nd.count[s] == 0) {
+                        EXPECT_EQ(nd.child[s], -1) << "empty slot";
+                        continue;
+                    }
+                    ++leaves;
+                    ASSERT_LE(size_t(first) + nd.count[s], n);
+                    for (uint32_t t = first; t < first + nd.count[s]; ++t) {
+                        ++covered[t];
+                        const uint32_t in = bvh.tri_order[t];
+                        for (int k = 0; k < 3; ++k)
+                            ASSERT_TRUE(contains(nd, s, tris[3 * in + k])) << "leaf bounds miss triangle " << t;
+                    }
+                } else {
+                    ASSERT_LT(size_t(nd.child[s]), bvh.nodes.size());
+                    ++node_refs[size_t(nd.child[s])];
+                    const dev::BvhNode& ch = bvh.nodes[size_t(nd.child[s])];
+                    for (int cs = 0; cs < BVH_WIDTH; ++cs) {
+                        if (ch.child[cs] == -1 && ch.count[cs] == 0) continue;
+                        const Vec3 lo{ch.bmin_x[cs], ch.bmin_y[cs], ch.bmin_z[cs]},
+                            hi{ch.bmax_x[cs], ch.bmax_y[cs], ch.bmax_z[cs]};
+                        ASSERT_TRUE(contains(nd, s, lo) && contains(nd, s, hi)) << "parent bounds miss a child";
+                    }
+                    todo.push_back({nd.child[s], depth + 1});
+                }
+            }
+        }
+        for (size_t i = 0; i < n; ++i) ASSERT_EQ(covered[i], 1) << "triangle " << i << " leaf references";
+        for (size_t i = 0; i < node_refs.size(); ++i) ASSERT_EQ(node_refs[i], 1) << "node " << i << " references";
+        EXPECT_EQ(leaves, bvh.leaf_count);
+        EXPECT_EQ(max_depth, bvh.max_depth);
+        EXPECT_LE(bvh.max_depth, unsigned(BVH_MAX_DEPTH));
+    }
+
+    static std::unique_ptr<DeviceContext> dc_;
+    static std::unique_ptr<RayTracer> tracer_;
+};
+std::unique_ptr<DeviceContext> BvhTest::dc_;
+std::unique_ptr<RayTracer> BvhTest::tracer_;
+
+// Rays from inside a closed mesh towards `targets` or in random directions: all must hit.
+std::vector<TraceRay> rays_from_inside(const Tris& t, double inner_radius, int n, const std::vector<D3>& targets) {
+    std::vector<TraceRay> rays;
+    for (int i = 0; i < n; ++i) {
+        const D3 o = random_dir() * (inner_radius * uniform());
+        D3 d;
+        if (!targets.empty() && i % 2) {
+            d = targets[size_t(uniform(0, double(targets.size()))) % targets.size()] - o;
+            if (i % 4 == 1) d = d * (1 / length(d));
+        } else {
+            d = maybe_axis_parallel(random_dir(), i);
+        }
+        rays.push_back(make_ray(o, d));
+    }
+    return rays;
+}
+
+TEST_F(BvhTest, RandomSoup) { trace_and_compare(random_soup(3000), mixed_rays(random_soup(3000), 6000), false, "soup"); }
+
+TEST_F(BvhTest, RandomSoupScaled) {
+    const Tris soup = random_soup(1500);
+    for (double scale : {1e-4, 1e4}) {
+        const Tris t = transformed(soup, scale, 3 * scale);
+        trace_and_compare(t, mixed_rays(t, 4000), false, scale < 1 ? "soup 1e-4" : "soup 1e4");
+    }
+}
+
+TEST_F(BvhTest, ClosedSphereFromInside) {
+    const Tris sphere = icosphere(3, 1.0);
+    std::vector<D3> targets; // the sphere's vertices: where 5 or 6 triangles meet
+    for (const Vec3& p : sphere) targets.push_back(d3(p));
+    trace_and_compare(sphere, rays_from_inside(sphere, 0.5, 6000, targets), true, "sphere");
+    trace_and_compare(sphere, mixed_rays(sphere, 2000), false, "sphere mixed");
+}
+
+TEST_F(BvhTest, ClosedCubeEdgesAndCorners) {
+    const int n = 6;
+    const Tris cube = grid_cube(n);
+    std::vector<D3> targets; // grid vertices and edge midpoints on every face, cube edges and corners included
+    for (const Vec3& p : cube) targets.push_back(d3(p));
+    for (size_t i = 0; i < cube.size(); i += 3)
+        for (int k = 0; k < 3; ++k) targets.push_back((d3(cube[i + k]) + d3(cube[i + (k + 1) % 3])) * 0.5);
+    trace_and_compare(cube, rays_from_inside(cube, 0.9, 8000, targets), true, "cube");
+    for (double scale : {1e-4, 1e4}) {
+        const Tris t = transformed(cube, scale, 0);
+        std::vector<D3> st;
+        for (const D3& p : targets) st.push_back(p * scale);
+        trace_and_compare(t, rays_from_inside(t, 0.9 * scale, 4000, st), true, scale < 1 ? "cube 1e-4" : "cube 1e4");
+    }
+}
+
+TEST_F(BvhTest, CoplanarGridSharedEdges) {
+    const int n = 16;
+    const Tris grid = coplanar_grid(n);
+    std::vector<TraceRay> rays;
+    for (int r = 0; r < 8000; ++r) {
+        // An interior vertex, edge midpoint or diagonal midpoint (all exact in binary).
+        const int i = 1 + int(uniform(0, 2 * n - 3)), j = 1 + int(uniform(0, 2 * n - 3));
+        const D3 target{i * 0.5 / n, j * 0.5 / n, 0};
+        D3 o = {uniform(-0.5, 1.5), uniform(-0.5, 1.5), uniform(0.05, 1.0) * (r % 2 ? 1 : -1)};
+        if (r % 5 == 0) o = {target.x, target.y, o.z};                   // straight down or up: d.x = d.y = 0
+        if (r % 7 == 0) o = {target.x, target.y + 0.7, o.z * 1e-3 * (r % 3 ? 1 : 10)}; // grazing, d.x = 0
+        D3 d = target - o;
+        if (r % 3 == 0) d = d * (1 / length(d));
+        rays.push_back(make_ray(o, d));
+    }
+    trace_and_compare(grid, rays, true, "coplanar grid");
+}
+
+TEST_F(BvhTest, SingleTriangle) {
+    Tris t;
+    add_tri(t, {0, 0, 0}, {1, 0, 0}, {0, 1, 0});
+    trace_and_compare(t, mixed_rays(t, 2000), false, "single triangle");
+    // Straight through the vertices and edges from both sides.
+    std::vector<TraceRay> rays;
+    for (D3 target : std::vector<D3>{{0.25, 0.25, 0}, {0.5, 0.5, 0}, {0.5, 0, 0}, {0, 0.5, 0}, {0.1, 0.2, 0}})
+        for (double z : {1.0, -1.0}) rays.push_back(make_ray({target.x, target.y, z}, {0, 0, -z}));
+    const BvhBuildResult bvh = build_bvh(t);
+    DeviceBvh dbvh(*dc_, bvh.nodes, bvh_triangle_data(t));
+    const std::vector<TraceHit> hits = tracer_->trace(dbvh, rays);
+    for (size_t i = 0; i < hits.size(); ++i) {
+        ASSERT_TRUE(hits[i].hit()) << "ray " << i;
+        EXPECT_EQ(hits[i].prim, 0u);
+        EXPECT_FLOAT_EQ(hits[i].t, 1.0f);
+        EXPECT_NEAR(hits[i].u, rays[i].org[0], 1e-6);
+        EXPECT_NEAR(hits[i].v, rays[i].org[1], 1e-6);
+    }
+    // Behind the origin, at t = 0 exactly, and beyond tmax: no hit.
+    std::vector<TraceRay> misses = {make_ray({0.2, 0.2, -1}, {0, 0, -1}), make_ray({0.2, 0.2, 0}, {0, 0, 1}),
+                                    make_ray({0.2, 0.2, 1}, {0, 0, -1}, 0.999), make_ray({0.2, 0.2, 1}, {0, 0, -1}, 1.0),
+                                    make_ray({0.2, 0.2, 1}, {0, 0, -1}, 0.5, true)};
+    for (const TraceHit& h : tracer_->trace(dbvh, misses)) EXPECT_FALSE(h.hit()) << "t=" << h.t;
+}
+
+TEST_F(BvhTest, EmptyScene) {
+    const BvhBuildResult bvh = build_bvh({});
+    ASSERT_EQ(bvh.nodes.size(), 1u);
+    EXPECT_EQ(bvh.leaf_count, 0u);
+    DeviceBvh dbvh(*dc_, bvh.nodes, bvh_triangle_data({}));
+    std::vector<TraceRay> rays;
+    for (int i = 0; i < 100; ++i) rays.push_back(make_ray(random_dir(), maybe_axis_parallel(random_dir(), i), INFINITY, i % 2));
+    for (const TraceHit& h : tracer_->trace(dbvh, rays)) {
+        EXPECT_FALSE(h.hit());
+        EXPECT_EQ(h.prim, ~0u);
+    }
+}
+
+TEST_F(BvhTest, IdenticalCentroids) {
+    // 2000 copies of one triangle, plus copies of another rotated about the same centre.
+    Tris t;
+    for (int i = 0; i < 1000; ++i) {
+        add_tri(t, {-1, -1, 0}, {1, -1, 0}, {0, 1, 0});
+        add_tri(t, {-1, 0, -1}, {1, 0, -1}, {0, 0, 1});
+    }
+    const BvhBuildResult bvh = build_bvh(t);
+    EXPECT_LE(bvh.max_depth, unsigned(BVH_MAX_DEPTH));
+    trace_and_compare(t, mixed_rays(t, 500), false, "identical centroids");
+}
+
+TEST_F(BvhTest, DepthStaysBoundedOnExponentialSpacing) {
+    // Triangles at x = 2^(i/8): SAH alone would build a chain; the depth cap must hold.
+    Tris t;
+    for (int i = 0; i < 4000; ++i) {
+        const float x = float(std::ldexp(1.0, i / 8 - 250)) * (1 + (i % 8) / 8.0f);
+        add_tri(t, {x, 0, 0}, {x, 1, 0}, {x, 0, 1});
+    }
+    const BvhBuildResult bvh = build_bvh(t);
+    check_structure(t, bvh);
+    EXPECT_LE(bvh.max_depth, unsigned(BVH_MAX_DEPTH));
+}
+
+TEST_F(BvhTest, SahBeatsMedianSplit) {
+    for (const Tris& t : {random_soup(20000), icosphere(5, 1.0)}) {
+        const double sah = bvh_sah_cost(build_bvh(t).nodes);
+        BvhBuildOptions median;
+        median.sah = false;
+        const BvhBuildResult m = build_bvh(t, median);
+        check_structure(t, m);
+        const double med = bvh_sah_cost(m.nodes);
+        EXPECT_LT(sah, med) << "SAH " << sah << " vs median " << med;
+        std::printf("SAH cost %.2f, median-split cost %.2f (%zu triangles)\n", sah, med, t.size() / 3);
+    }
+}
+
+TEST_F(BvhTest, TriangleDataReconstructsVertices) {
+    // The kernel recomputes v1 = v0 + e1: mostly bitwise exact, else within the bound in v0.w.
+    for (const Tris& mesh : {icosphere(3, 1.0), transformed(icosphere(3, 1.0), 7.3, 1.7), grid_cube(5)}) {
+        const auto data = bvh_triangle_data(mesh);
+        size_t exact = 0, total = 0;
+        for (size_t t = 0; t < mesh.size() / 3; ++t) {
+            const float* v0 = data[3 * t].data();
+            EXPECT_EQ(v0[0], mesh[3 * t].x);
+            for (int k = 1; k < 3; ++k) {
+                const float* e = data[3 * t + k].data();
+                const Vec3& p = mesh[3 * t + k];
+                const float r[3] = {v0[0] + e[0], v0[1] + e[1], v0[2] + e[2]};
+                exact += r[0] == p.x && r[1] == p.y && r[2] == p.z;
+                ++total;
+                EXPECT_LE(std::fabs(r[0] - p.x), v0[3]);
+                EXPECT_LE(std::fabs(r[1] - p.y), v0[3]);
+                EXPECT_LE(std::fabs(r[2] - p.z), v0[3]);
+                EXPECT_EQ(e[3], 0.0f);
+            }
+        }
+        std::printf("%zu of %zu reconstructed vertices exact\n", exact, total);
+    }
+}
+
+} // namespace
+} // namespace clppm
