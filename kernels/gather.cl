@@ -7,13 +7,15 @@
 
 __kernel void gather(__constant GridInfo* g, __global const Photon* sorted, __global const uint* starts,
                      __global const HitPoint* hitpoints, __global const HitStats* stats, uint num_hitpoints,
-                     float global_r2, __global PassFlux* out) {
+                     float global_r2, uint accumulate, __global PassFlux* out) {
     uint i = get_global_id(0);
     if (i >= num_hitpoints) return;
     __global const HitPoint* hp = &hitpoints[i];
     if (hp->pixel == HITPOINT_NONE) { /* SPPM/PPPM: this pixel's eye path found no surface */
-        out[i].flux[0] = out[i].flux[1] = out[i].flux[2] = 0;
-        out[i].m = 0;
+        if (!accumulate) {
+            out[i].flux[0] = out[i].flux[1] = out[i].flux[2] = 0;
+            out[i].m = 0;
+        }
         return;
     }
     float3 x = load3g(hp->pos), n = oct_decode(hp->normal_oct);
@@ -48,6 +50,14 @@ __kernel void gather(__constant GridInfo* g, __global const Photon* sorted, __gl
                     ++m;
                 }
             }
+    /* A pass traced in several photon batches adds them up: integer sums, so the result is the
+     * same as for one batch. */
+    if (accumulate) {
+        acc0 += out[i].flux[0];
+        acc1 += out[i].flux[1];
+        acc2 += out[i].flux[2];
+        m += out[i].m;
+    }
     out[i].flux[0] = acc0;
     out[i].flux[1] = acc1;
     out[i].flux[2] = acc2;

@@ -25,6 +25,8 @@ struct IntegratorStats {
     double mean_radius = 0;            // current mean R over hit points (PPM)
     std::map<std::string, double> phase_seconds; // device time per phase, from profiling events
     size_t device_bytes = 0;           // integrator buffers (scene buffers are counted apart)
+    size_t photon_bytes = 0;           // photon and grid buffers
+    uint32_t photon_batches = 0;       // batches the last pass's photons were traced in
     // Kernel events of the current pass, resolved into phase_seconds at the pass's end so that
     // timing never adds a synchronisation point inside the pass.
     std::vector<std::pair<std::string, cl::Event>> pending_events;

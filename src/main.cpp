@@ -105,7 +105,11 @@ Json make_stats(const Options& opt, const DeviceContext& dc, const DeviceScene& 
     j["kernel_build"] = {{"seconds", build.seconds}, {"from_cache", build.from_cache}};
     j["bvh"] = {{"build_seconds", ds.bvh_build_seconds}, {"nodes", ds.bvh_nodes}, {"triangles", ds.num_triangles}};
     j["lights"] = ds.lights.size();
-    j["device_memory_bytes"] = {{"scene", ds.device_bytes}, {"integrator", st.device_bytes}};
+    j["device_memory_bytes"] = {{"scene", ds.device_bytes},
+                                {"integrator", st.device_bytes},
+                                {"photons", st.photon_bytes},
+                                {"total", ds.device_bytes + st.device_bytes + st.photon_bytes}};
+    j["photon_batches_per_pass"] = st.photon_batches;
     j["degenerate_triangles_skipped"] = scene.degenerate_triangles_skipped;
     j["nonfinite_pixels"] = count_nonfinite(img);
     j["mean_radiance"] = mean_radiance(img);

@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
+
+#include "error.h"
 
 namespace clppm {
 
@@ -18,7 +21,7 @@ uint32_t next_pow2(uint32_t v) {
 } // namespace
 
 PhotonMap::PhotonMap(const DeviceContext& dc, const DeviceScene& scene, const RenderSettings& settings,
-                     const cl::Program& program, IntegratorStats& stats)
+                     const cl::Program& program, IntegratorStats& stats, uint64_t max_batch_photons)
     : dc_(dc), scene_(scene), settings_(settings), stats_(stats) {
     k_photon_ = cl::Kernel(program, "photon_trace");
     k_count_ = cl::Kernel(program, "grid_count");
@@ -27,48 +30,79 @@ PhotonMap::PhotonMap(const DeviceContext& dc, const DeviceScene& scene, const Re
     k_gather_ = cl::Kernel(program, "gather");
     counter_ = cl::Buffer(dc.context, CL_MEM_READ_WRITE, sizeof(cl_uint));
     grid_info_ = cl::Buffer(dc.context, CL_MEM_READ_ONLY, sizeof(dev::GridInfo));
+    // The budget: one photon buffer within the device's largest allocation, and both of them
+    // (traced and sorted) within a quarter of its memory.
+    max_capacity_ = std::min<uint64_t>({dc.info.max_alloc / sizeof(dev::Photon),
+                                        dc.info.global_mem / 4 / (2 * sizeof(dev::Photon)), 0x7fffffffu});
+    uint64_t batch = settings.photons;
+    if (max_batch_photons > 0) batch = std::min(batch, max_batch_photons);
+    if (const char* e = std::getenv("CLPPM_PHOTON_BATCH"); e && *e) batch = std::min<uint64_t>(batch, std::strtoull(e, nullptr, 10));
+    batch = std::min<uint64_t>(batch, std::max<uint64_t>(1, max_capacity_ / kStoredPerEmitted));
+    batch_ = uint32_t(std::max<uint64_t>(1, batch));
 }
 
 size_t PhotonMap::device_bytes() const {
     return 2 * size_t(capacity_) * sizeof(dev::Photon) + (2 * size_t(table_size_) + 1) * sizeof(cl_uint);
 }
 
-void PhotonMap::trace(uint64_t pass) {
+void PhotonMap::allocate(uint32_t capacity) {
+    capacity_ = capacity;
+    photons_ = cl::Buffer(dc_.context, CL_MEM_READ_WRITE, size_t(capacity_) * sizeof(dev::Photon));
+    sorted_ = cl::Buffer(dc_.context, CL_MEM_READ_WRITE, size_t(capacity_) * sizeof(dev::Photon));
+}
+
+void PhotonMap::run_pass(uint64_t pass, const cl::Buffer& hitpoints, const cl::Buffer& stats, uint32_t n,
+                         float global_r2, double typical_radius, double max_radius, const cl::Buffer& out) {
     const uint32_t M = uint32_t(settings_.photons);
-    if (capacity_ == 0) capacity_ = uint32_t(std::clamp<uint64_t>(uint64_t(M) * 3, 1024, 0x7fffffffu));
-    for (;;) {
-        if (!photons_()) {
-            photons_ = cl::Buffer(dc_.context, CL_MEM_READ_WRITE, size_t(capacity_) * sizeof(dev::Photon));
-            sorted_ = cl::Buffer(dc_.context, CL_MEM_READ_WRITE, size_t(capacity_) * sizeof(dev::Photon));
+    if (capacity_ == 0)
+        allocate(uint32_t(std::clamp<uint64_t>(uint64_t(batch_) * kStoredPerEmitted, 1024, std::max<uint64_t>(1024, max_capacity_))));
+    batches_ = 0;
+    for (uint32_t first = 0; first < M;) {
+        const uint32_t count = std::min(batch_, M - first);
+        if (!trace(pass, first, count)) {
+            // More stored photons than the buffer holds: grow it within the budget, else trace
+            // fewer photons at a time. Either way the same photons are traced again.
+            uint64_t want = uint64_t(stored_) * 5 / 4 + 1024;
+            if (want <= max_capacity_) allocate(uint32_t(want));
+            else if (batch_ > 1) batch_ = std::max<uint32_t>(1, batch_ / 2);
+            else throw Error("photon pass: a single photon stores more hits than the device memory budget allows");
+            continue;
         }
-        dc_.queue.enqueueFillBuffer(counter_, cl_uint(0), 0, sizeof(cl_uint));
-        int a = scene_.set_scene_args(k_photon_);
-        k_photon_.setArg(a++, cl_ulong(settings_.seed));
-        k_photon_.setArg(a++, cl_ulong(pass));
-        k_photon_.setArg(a++, cl_uint(0));
-        k_photon_.setArg(a++, cl_uint(M));
-        k_photon_.setArg(a++, cl_uint(settings_.direct == DirectLighting::Sample ? 1 : 0));
-        k_photon_.setArg(a++, photons_);
-        k_photon_.setArg(a++, cl_uint(capacity_));
-        k_photon_.setArg(a++, counter_);
-        cl::Event ev;
-        enqueue_1d(dc_.queue, k_photon_, M, &ev);
-        cl_uint stored = 0;
-        dc_.queue.enqueueReadBuffer(counter_, CL_TRUE, 0, sizeof(cl_uint), &stored);
-        add_event_time(stats_, "photon_trace", ev);
-        if (stored <= capacity_) {
-            stored_ = stored;
-            stats_.photons_stored += stored;
-            return;
-        }
-        capacity_ = uint32_t(std::min<uint64_t>(uint64_t(stored) * 5 / 4 + 1024, 0x7fffffffu));
-        photons_ = cl::Buffer();
+        build_grid(typical_radius, max_radius);
+        gather(hitpoints, stats, n, global_r2, batches_ > 0, out);
+        stats_.photons_stored += stored_;
+        ++batches_;
+        first += count;
     }
+    stats_.photon_bytes = device_bytes();
+    stats_.photon_batches = batches_;
+}
+
+bool PhotonMap::trace(uint64_t pass, uint32_t first, uint32_t count) {
+    dc_.queue.enqueueFillBuffer(counter_, cl_uint(0), 0, sizeof(cl_uint));
+    int a = scene_.set_scene_args(k_photon_);
+    k_photon_.setArg(a++, cl_ulong(settings_.seed));
+    k_photon_.setArg(a++, cl_ulong(pass));
+    k_photon_.setArg(a++, cl_uint(first));
+    k_photon_.setArg(a++, cl_uint(count));
+    k_photon_.setArg(a++, cl_uint(settings_.direct == DirectLighting::Sample ? 1 : 0));
+    k_photon_.setArg(a++, photons_);
+    k_photon_.setArg(a++, cl_uint(capacity_));
+    k_photon_.setArg(a++, counter_);
+    cl::Event ev;
+    enqueue_1d(dc_.queue, k_photon_, count, &ev);
+    cl_uint stored = 0;
+    dc_.queue.enqueueReadBuffer(counter_, CL_TRUE, 0, sizeof(cl_uint), &stored);
+    add_event_time(stats_, "photon_trace", ev);
+    stored_ = stored;
+    return stored <= capacity_;
 }
 
 void PhotonMap::build_grid(double typical_radius, double max_radius) {
     const uint32_t n = stored_;
-    dev::GridInfo g{};
+    // A member, not a local: the non-blocking write below reads it after this function returns.
+    dev::GridInfo& g = grid_host_;
+    g = dev::GridInfo{};
     const double extent = 2.0 * scene_.info.radius;
     const double cell = std::max({2.0 * typical_radius, max_radius / 4.0, extent / double(1 << 20)});
     for (int k = 0; k < 3; ++k) g.origin[k] = scene_.bounds_min[k];
@@ -97,14 +131,13 @@ void PhotonMap::build_grid(double typical_radius, double max_radius) {
     k_scatter_.setArg(3, counts_);
     k_scatter_.setArg(4, sorted_);
     enqueue_1d(dc_.queue, k_scatter_, n, &e3);
-    e3.wait();
     add_event_time(stats_, "grid_build", e1);
     add_event_time(stats_, "grid_build", e2);
     add_event_time(stats_, "grid_build", e3);
 }
 
 void PhotonMap::gather(const cl::Buffer& hitpoints, const cl::Buffer& stats, uint32_t n, float global_r2,
-                       const cl::Buffer& out) {
+                       bool accumulate, const cl::Buffer& out) {
     if (n == 0) return;
     k_gather_.setArg(0, grid_info_);
     k_gather_.setArg(1, sorted_);
@@ -113,10 +146,10 @@ void PhotonMap::gather(const cl::Buffer& hitpoints, const cl::Buffer& stats, uin
     k_gather_.setArg(4, stats);
     k_gather_.setArg(5, cl_uint(n));
     k_gather_.setArg(6, cl_float(global_r2));
-    k_gather_.setArg(7, out);
+    k_gather_.setArg(7, cl_uint(accumulate ? 1 : 0));
+    k_gather_.setArg(8, out);
     cl::Event ev;
     enqueue_1d(dc_.queue, k_gather_, n, &ev);
-    ev.wait();
     add_event_time(stats_, "gather", ev);
 }
 
@@ -132,7 +165,6 @@ void enqueue_direct_light(const DeviceContext& dc, const DeviceScene& scene, cl:
     kernel.setArg(a++, cl_uint(n));
     cl::Event ev;
     enqueue_1d(dc.queue, kernel, n, &ev);
-    ev.wait();
     add_event_time(istats, "direct_light", ev);
 }
 

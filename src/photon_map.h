@@ -1,8 +1,10 @@
 // One pass's photons and the hashed grid over them (Hachisuka et al. 2008, Secs. 4.2-4.3), shared
 // by every photon-mapping integrator: trace M photons, sort them into the grid, and let a set of
-// hit points gather from it.
+// hit points gather from it. When M photons do not fit the device at once, the pass is traced in
+// batches whose gathers add up exactly (fixed-point sums), giving the same image.
 #pragma once
 #include <cstdint>
+#include <vector>
 
 #include "cl.h"
 #include "device.h"
@@ -12,37 +14,46 @@
 
 namespace clppm {
 
+// Stored photons per emitted photon a buffer starts out sized for; it grows if a scene stores more.
+constexpr uint32_t kStoredPerEmitted = 3;
+
 class PhotonMap {
 public:
+    // max_batch_photons bounds the photons traced at once (0: as many as the device memory
+    // budget allows; CLPPM_PHOTON_BATCH overrides it, for tests).
     PhotonMap(const DeviceContext& dc, const DeviceScene& scene, const RenderSettings& settings,
-              const cl::Program& program, IntegratorStats& stats);
+              const cl::Program& program, IntegratorStats& stats, uint64_t max_batch_photons = 0);
 
-    // Traces settings.photons photons for pass `pass` (1-based; the RNG stream). Stored hits that
-    // outgrow the buffer make it grow and the pass be traced again with the same streams.
-    void trace(uint64_t pass);
+    // Pass `pass` (1-based: the RNG streams): traces settings.photons photons, in batches when
+    // needed, and for each batch builds the grid (cells sized for radii around typical_radius,
+    // no smaller than a quarter of max_radius) and lets the n hit points gather into out (their
+    // radius is stats[i].r2, or global_r2 when > 0).
+    void run_pass(uint64_t pass, const cl::Buffer& hitpoints, const cl::Buffer& stats, uint32_t n, float global_r2,
+                  double typical_radius, double max_radius, const cl::Buffer& out);
 
-    // Builds the grid with cells sized for hit point radii around `typical_radius`, no smaller
-    // than a quarter of `max_radius` (so no hit point visits more than 9^3 cells).
-    void build_grid(double typical_radius, double max_radius);
-
-    // Each of n hit points gathers the photons within its radius (stats[i].r2, or global_r2 when
-    // > 0) into out[i].
-    void gather(const cl::Buffer& hitpoints, const cl::Buffer& stats, uint32_t n, float global_r2,
-                const cl::Buffer& out);
-
-    uint32_t stored() const { return stored_; }
+    uint32_t batches_last_pass() const { return batches_; }
     size_t device_bytes() const;
 
 private:
+    bool trace(uint64_t pass, uint32_t first, uint32_t count); // false: overflowed the buffer
+    void build_grid(double typical_radius, double max_radius);
+    void gather(const cl::Buffer& hitpoints, const cl::Buffer& stats, uint32_t n, float global_r2, bool accumulate,
+                const cl::Buffer& out);
+    void allocate(uint32_t capacity);
+
     const DeviceContext& dc_;
     const DeviceScene& scene_;
     const RenderSettings& settings_;
     IntegratorStats& stats_;
     cl::Kernel k_photon_, k_count_, k_scan_, k_scatter_, k_gather_;
     cl::Buffer photons_, sorted_, counter_, grid_info_, counts_, starts_;
+    dev::GridInfo grid_host_{};
+    uint64_t max_capacity_ = 0; // stored photons the memory budget allows
     uint32_t capacity_ = 0;
+    uint32_t batch_ = 0;        // photons emitted per batch
     uint32_t stored_ = 0;
     uint32_t table_size_ = 0;
+    uint32_t batches_ = 0;
 };
 
 // Explicit direct lighting: one light sample per hit point, added to stats[i].direct.

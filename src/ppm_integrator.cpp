@@ -137,9 +137,8 @@ void PpmIntegrator::eye_pass() {
     radius_partials_ = make(CL_MEM_WRITE_ONLY, radius_partials_bytes(num_hitpoints_), nullptr);
 }
 
-// Sec. 4.2: M(x) and Phi_M(x) from this pass's photons, explicit direct light, then Eqs. 7-10.
+// Explicit direct light, then Eqs. 7-10 with this pass's M(x) and Phi_M(x).
 void PpmIntegrator::update() {
-    photon_map_->gather(hitpoints_, stats_buf_, num_hitpoints_, 0.f, passflux_);
     if (settings_.direct == DirectLighting::Sample)
         enqueue_direct_light(dc_, scene_, k_direct_, settings_.seed, stats_.passes + 1, hitpoints_, stats_buf_,
                              num_hitpoints_, stats_);
@@ -149,8 +148,8 @@ void PpmIntegrator::update() {
 }
 
 void PpmIntegrator::run_pass() {
-    photon_map_->trace(stats_.passes + 1);
-    photon_map_->build_grid(typical_radius_, max_radius_);
+    photon_map_->run_pass(stats_.passes + 1, hitpoints_, stats_buf_, num_hitpoints_, 0.f, typical_radius_, max_radius_,
+                          passflux_);
     update();
     collect_event_times(stats_);
     stats_.passes += 1;

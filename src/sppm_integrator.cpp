@@ -73,11 +73,9 @@ void SppmIntegrator::run_pass() {
     if (settings_.direct == DirectLighting::Sample)
         enqueue_direct_light(dc_, scene_, k_direct_, settings_.seed, pass, hitpoints_, stats_buf_, num_pixels_, stats_);
 
-    photon_map_->trace(pass);
     if (probabilistic_) {
         const double r = std::sqrt(r2_);
-        photon_map_->build_grid(r, r);
-        photon_map_->gather(hitpoints_, stats_buf_, num_pixels_, float(r2_), passflux_);
+        photon_map_->run_pass(pass, hitpoints_, stats_buf_, num_pixels_, float(r2_), r, r, passflux_);
         k_accumulate_.setArg(0, passflux_);
         k_accumulate_.setArg(1, hitpoints_);
         k_accumulate_.setArg(2, stats_buf_);
@@ -90,8 +88,7 @@ void SppmIntegrator::run_pass() {
         r2_ = next_pppm_radius2(r2_, pass, settings_.alpha);
         stats_.mean_radius = std::sqrt(r2_);
     } else {
-        photon_map_->build_grid(typical_radius_, max_radius_);
-        photon_map_->gather(hitpoints_, stats_buf_, num_pixels_, 0.f, passflux_);
+        photon_map_->run_pass(pass, hitpoints_, stats_buf_, num_pixels_, 0.f, typical_radius_, max_radius_, passflux_);
         auto [mean, mx] = enqueue_ppm_update(dc_, k_update_, passflux_, hitpoints_, stats_buf_, num_pixels_,
                                              settings_.alpha, radius_partials_, stats_);
         stats_.mean_radius = typical_radius_ = mean;

@@ -56,16 +56,27 @@ TEST(Cli, NoPngWritesOnlyTheExr) {
     EXPECT_FALSE(exists(dir + "/c.png"));
 }
 
-TEST(Cli, ImageDoesNotDependOnWorkGroupSize) {
-    std::string dir = make_temp_dir("cli"), out;
-    const std::string args = std::string(kSmall) + " --no-png --seed 7";
-    ASSERT_EQ(run_command("CLPPM_LOCAL_SIZE=1 " + clppm_binary() + " -o " + dir + "/a.exr" + args, &out), 0) << out;
-    ASSERT_EQ(run_command("CLPPM_LOCAL_SIZE=64 " + clppm_binary() + " -o " + dir + "/b.exr" + args, &out), 0) << out;
-    ASSERT_EQ(run_clppm("-o " + dir + "/c.exr" + args, &out), 0) << out;
-    Image a = read_exr(dir + "/a.exr"), b = read_exr(dir + "/b.exr"), c = read_exr(dir + "/c.exr");
-    ASSERT_EQ(a.rgb.size(), b.rgb.size());
-    EXPECT_EQ(a.rgb, b.rgb);
-    EXPECT_EQ(a.rgb, c.rgb);
+// Same seed, same device: the same image bit for bit, whatever the work-group size and however
+// many batches a pass's photons are traced in.
+TEST(Cli, ImageDoesNotDependOnWorkGroupSizeOrPhotonBatches) {
+    for (const char* integrator : {"ppm", "sppm"}) {
+        std::string dir = make_temp_dir("cli"), out;
+        const std::string args = std::string(kSmall) + " --no-png --seed 7 --integrator " + integrator;
+        ASSERT_EQ(run_command("CLPPM_LOCAL_SIZE=1 " + clppm_binary() + " -o " + dir + "/a.exr" + args, &out), 0) << out;
+        ASSERT_EQ(run_command("CLPPM_LOCAL_SIZE=64 " + clppm_binary() + " -o " + dir + "/b.exr" + args, &out), 0) << out;
+        ASSERT_EQ(run_clppm("-o " + dir + "/c.exr" + args, &out), 0) << out;
+        ASSERT_EQ(run_command("CLPPM_PHOTON_BATCH=777 " + clppm_binary() + " -o " + dir + "/d.exr" + args +
+                                  " --stats-json " + dir + "/d.json", &out), 0) << out;
+        Image a = read_exr(dir + "/a.exr"), b = read_exr(dir + "/b.exr"), c = read_exr(dir + "/c.exr"),
+              d = read_exr(dir + "/d.exr");
+        ASSERT_EQ(a.rgb.size(), b.rgb.size());
+        EXPECT_EQ(a.rgb, b.rgb) << integrator;
+        EXPECT_EQ(a.rgb, c.rgb) << integrator;
+        EXPECT_EQ(a.rgb, d.rgb) << integrator << ": batched photons";
+        std::ifstream js(dir + "/d.json");
+        std::string json((std::istreambuf_iterator<char>(js)), std::istreambuf_iterator<char>());
+        EXPECT_NE(json.find("\"photon_batches_per_pass\": 7"), std::string::npos) << json; // 5000 / 777
+    }
 }
 
 TEST(Cli, PathTracerRendersToo) {
