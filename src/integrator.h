@@ -8,6 +8,7 @@
 #include <utility>
 #include <vector>
 
+#include "checkpoint.h"
 #include "cl.h"
 #include "device.h"
 #include "image_io.h"
@@ -42,6 +43,11 @@ public:
     virtual Image image() = 0;
     const IntegratorStats& stats() const { return stats_; }
 
+    // The progressive state after the last pass, and its restoration after prepare(): the
+    // render then continues exactly as if it had never stopped.
+    virtual void save(Checkpoint& ck);
+    virtual void restore(const Checkpoint& ck);
+
 protected:
     IntegratorStats stats_;
 };
@@ -52,6 +58,18 @@ std::unique_ptr<IntegratorBase> make_integrator(const DeviceContext& dc, const D
 // The kernel program an integrator needs, with its build options.
 std::string integrator_program_file(const RenderSettings& settings);
 std::string integrator_build_options(const RenderSettings& settings, const DeviceInfo& device);
+
+// Reads a whole device buffer of n elements into a vector, and writes one back.
+template <class T>
+std::vector<T> read_buffer(const cl::CommandQueue& q, const cl::Buffer& b, size_t n) {
+    std::vector<T> v(n);
+    if (n) q.enqueueReadBuffer(b, CL_TRUE, 0, n * sizeof(T), v.data());
+    return v;
+}
+template <class T>
+void write_buffer(const cl::CommandQueue& q, const cl::Buffer& b, const std::vector<T>& v) {
+    if (!v.empty()) q.enqueueWriteBuffer(b, CL_TRUE, 0, v.size() * sizeof(T), v.data());
+}
 
 // Launches a 1-D kernel over n work items (the kernel ignores ids >= n). The work-group size is
 // the driver's choice unless CLPPM_LOCAL_SIZE is set, which the tests use to show that images do

@@ -198,6 +198,25 @@ const OptionSpec kOptions[] = {
      [](ParseState& st, const Arg& a) {
          st.options.progressive_output = static_cast<uint64_t>(parse_int(a, 0, INT64_MAX));
      }},
+    {"--checkpoint", nullptr, "FILE",
+     "Save the complete progressive state to FILE (atomically) periodically, on Ctrl-C and at the end",
+     "a file name", "none",
+     [](ParseState& st, const Arg& a) { st.options.checkpoint = non_empty(a); }},
+    {"--checkpoint-every", nullptr, "K", "Save the checkpoint every K passes",
+     "an integer >= 0 (0 = off)", "0",
+     [](ParseState& st, const Arg& a) {
+         st.options.checkpoint_every = static_cast<uint64_t>(parse_int(a, 0, INT64_MAX));
+     }},
+    {"--checkpoint-interval", nullptr, "SECONDS", "Save the checkpoint every SECONDS of rendering",
+     "a number of seconds > 0", "300",
+     [](ParseState& st, const Arg& a) {
+         st.options.checkpoint_interval = parse_real(a, [](double x) { return x > 0; });
+     }},
+    {"--resume", nullptr, "FILE",
+     "Continue the render saved in checkpoint FILE (same scene and image-shaping options; --passes and "
+     "--time count from the start of the original render)",
+     "a checkpoint file", "none",
+     [](ParseState& st, const Arg& a) { st.options.resume = non_empty(a); }},
     {"--kernel-dir", nullptr, "DIR", "Load kernels from DIR instead of the embedded copies",
      "a directory", "embedded",
      [](ParseState& st, const Arg& a) { st.options.kernel_dir = non_empty(a); }},

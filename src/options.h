@@ -40,6 +40,10 @@ struct Options {
     double focus_distance = 0.0;        // thin-lens focus distance; 0 = the camera's
     int max_bounces = 16;               // 1..1024
     uint64_t progressive_output = 0;    // save every K passes; 0 = off
+    std::string checkpoint;             // --checkpoint FILE: save the progressive state here
+    uint64_t checkpoint_every = 0;      // ... every K passes (0: off)
+    double checkpoint_interval = 300.0; // ... and every T seconds of rendering
+    std::string resume;                 // --resume FILE: continue a checkpointed render
     std::string kernel_dir;             // load kernels from here instead of the embedded copies
     std::string dump_kernel_source;     // write the assembled kernel source and build options here
     bool help = false;                  // -h/--help: print usage() and exit

@@ -156,6 +156,25 @@ void PpmIntegrator::run_pass() {
     stats_.photons_emitted += settings_.photons;
 }
 
+// Hit points are part of the state too: on resume they must be the ones the statistics belong to.
+void PpmIntegrator::save(Checkpoint& ck) {
+    IntegratorBase::save(ck);
+    const size_t n = std::max<size_t>(1, num_hitpoints_);
+    ck.put("hitpoints", read_buffer<dev::HitPoint>(dc_.queue, hitpoints_, n));
+    ck.put("stats", read_buffer<dev::HitStats>(dc_.queue, stats_buf_, n));
+    ck.header["typical_radius"] = typical_radius_;
+    ck.header["max_radius"] = max_radius_;
+}
+
+void PpmIntegrator::restore(const Checkpoint& ck) {
+    IntegratorBase::restore(ck);
+    const size_t n = std::max<size_t>(1, num_hitpoints_);
+    write_buffer(dc_.queue, hitpoints_, ck.get<dev::HitPoint>("hitpoints", n));
+    write_buffer(dc_.queue, stats_buf_, ck.get<dev::HitStats>("stats", n));
+    typical_radius_ = ck.header.value("typical_radius", typical_radius_);
+    max_radius_ = ck.header.value("max_radius", max_radius_);
+}
+
 Image PpmIntegrator::image() {
     k_film_.setArg(0, stats_buf_);
     k_film_.setArg(1, pixel_first_);

@@ -17,6 +17,8 @@ public:
     void prepare() override;
     void run_pass() override;
     Image image() override;
+    void save(Checkpoint& ck) override;
+    void restore(const Checkpoint& ck) override;
 
 private:
     void eye_pass();

@@ -18,6 +18,7 @@ void PtIntegrator::prepare() {
     dc_.queue.enqueueFillBuffer(accum_, cl_double(0), 0, bytes);
     image_buf_ = cl::Buffer(dc_.context, CL_MEM_WRITE_ONLY, size_t(num_pixels_) * sizeof(cl_float4));
     stats_.device_bytes = bytes + size_t(num_pixels_) * sizeof(cl_float4);
+    stats_.hitpoints = num_pixels_;
 }
 
 void PtIntegrator::run_pass() {
@@ -32,6 +33,16 @@ void PtIntegrator::run_pass() {
     add_event_time(stats_, "path_trace", ev);
     collect_event_times(stats_);
     stats_.passes += 1;
+}
+
+void PtIntegrator::save(Checkpoint& ck) {
+    IntegratorBase::save(ck);
+    ck.put("accum", read_buffer<cl_double>(dc_.queue, accum_, size_t(num_pixels_) * 3));
+}
+
+void PtIntegrator::restore(const Checkpoint& ck) {
+    IntegratorBase::restore(ck);
+    write_buffer(dc_.queue, accum_, ck.get<cl_double>("accum", size_t(num_pixels_) * 3));
 }
 
 Image PtIntegrator::image() {

@@ -99,6 +99,23 @@ void SppmIntegrator::run_pass() {
     stats_.photons_emitted += settings_.photons;
 }
 
+// Visible points are drawn anew every pass from (seed, pass): only the statistics are state.
+void SppmIntegrator::save(Checkpoint& ck) {
+    IntegratorBase::save(ck);
+    ck.put("stats", read_buffer<dev::HitStats>(dc_.queue, stats_buf_, num_pixels_));
+    ck.header["pppm_r2"] = r2_;
+    ck.header["typical_radius"] = typical_radius_;
+    ck.header["max_radius"] = max_radius_;
+}
+
+void SppmIntegrator::restore(const Checkpoint& ck) {
+    IntegratorBase::restore(ck);
+    write_buffer(dc_.queue, stats_buf_, ck.get<dev::HitStats>("stats", num_pixels_));
+    r2_ = ck.header.value("pppm_r2", r2_);
+    typical_radius_ = ck.header.value("typical_radius", typical_radius_);
+    max_radius_ = ck.header.value("max_radius", max_radius_);
+}
+
 Image SppmIntegrator::image() {
     int a = 0;
     k_film_.setArg(a++, stats_buf_);

@@ -17,6 +17,8 @@ public:
     void prepare() override;
     void run_pass() override;
     Image image() override;
+    void save(Checkpoint& ck) override;
+    void restore(const Checkpoint& ck) override;
 
     // Knaus and Zwicker 2011, Eq. 20: r_{i+1}^2 = r_i^2 (i + alpha) / (i + 1), i the 1-based pass.
     static double next_pppm_radius2(double r2, uint64_t i, double alpha) { return r2 * (double(i) + alpha) / double(i + 1); }

@@ -20,8 +20,6 @@ bool exists(const std::string& path) {
     return ::stat(path.c_str(), &st) == 0;
 }
 
-int run_clppm(const std::string& args, std::string* out) { return run_command(clppm_binary() + " " + args, out); }
-
 // The message a failing clppm prints: exactly one line starting with "clppm: error: ".
 void expect_one_line_error(const std::string& out, const std::string& must_contain) {
     EXPECT_EQ(out.rfind("clppm: error: ", 0), 0u) << out;

@@ -44,6 +44,8 @@ int run_command(const std::string& cmd, std::string* output) {
 
 std::string clppm_binary() { return CLPPM_BINARY; }
 
+int run_clppm(const std::string& args, std::string* output) { return run_command(clppm_binary() + " " + args, output); }
+
 } // namespace clppm::test
 
 #include "kernel_program.h"

@@ -19,6 +19,9 @@ int run_command(const std::string& cmd, std::string* output);
 // Path of the clppm executable under test.
 std::string clppm_binary();
 
+// Runs the clppm executable with `args` (a shell-quoted string); like run_command.
+int run_clppm(const std::string& args, std::string* output);
+
 } // namespace clppm::test
 
 #include "image_io.h"

@@ -1,0 +1,262 @@
+#include "render_session.h"
+
+#include <chrono>
+#include <cstdio>
+#include <memory>
+
+#include "checkpoint.h"
+#include "device.h"
+#include "error.h"
+#include "gltf_load.h"
+#include "image_io.h"
+#include "integrator.h"
+#include "interrupt.h"
+#include "kernel_program.h"
+#include "progress.h"
+#include "render_scene.h"
+#include "stats_json.h"
+#include "version.h"
+
+namespace clppm {
+
+namespace {
+
+struct Clock {
+    std::chrono::steady_clock::time_point t0 = std::chrono::steady_clock::now();
+    double seconds() const { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); }
+};
+
+void note(const Options& opt, const std::string& msg) {
+    if (!opt.quiet) std::fprintf(stderr, "clppm: %s\n", msg.c_str());
+}
+
+RenderSettings settings_from(const Options& o) {
+    RenderSettings s;
+    s.integrator = o.integrator;
+    s.direct = o.direct;
+    s.width = unsigned(o.width);
+    s.height = unsigned(o.height);
+    s.camera = unsigned(o.camera);
+    s.spp = unsigned(o.spp);
+    s.photons = o.photons_per_pass;
+    s.alpha = o.alpha;
+    s.radius = o.radius;
+    s.seed = o.seed;
+    s.max_bounces = unsigned(o.max_bounces);
+    s.aperture = o.aperture;
+    s.focus_distance = o.focus_distance;
+    s.filter = o.filter;
+    return s;
+}
+
+// The device a render runs on: the first --device spec, else the first GPU, else device 0.
+const DeviceInfo& choose_device(const Options& opt, const std::vector<DeviceInfo>& devices) {
+    if (opt.devices.size() > 1)
+        throw Error("--device given " + std::to_string(opt.devices.size()) +
+                    " times: rendering on several devices at once is not supported yet; give one --device");
+    if (!opt.devices.empty()) return select_device(devices, opt.devices[0]);
+    for (const DeviceInfo& d : devices)
+        if (d.type & CL_DEVICE_TYPE_GPU) return d;
+    return select_device(devices, "0");
+}
+
+// Every file the render will write is checked before hours of rendering, not after.
+void check_outputs(const Options& opt) {
+    check_writable(opt.output);
+    if (opt.write_png) check_writable(png_path_for(opt.output));
+    if (!opt.stats_json.empty()) check_writable(opt.stats_json);
+    if (!opt.checkpoint.empty()) check_writable(opt.checkpoint);
+}
+
+void save_images(const Options& opt, const Image& img) {
+    write_exr(opt.output, img);
+    if (opt.write_png) write_png(png_path_for(opt.output), img);
+}
+
+// What a checkpoint must agree on to be resumed: everything that shapes the image.
+Json image_fingerprint(const Options& o, const DeviceScene& ds, uint64_t scene_hash, const std::string& kernel_source) {
+    char hex[17];
+    std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(scene_hash));
+    char khex[17];
+    std::snprintf(khex, sizeof khex, "%016llx", fnv1a64(kernel_source));
+    Json j;
+    j["scene"] = hex;
+    j["kernels"] = khex;
+    j["--integrator"] = to_string(o.integrator);
+    j["--direct"] = to_string(o.direct);
+    j["--width"] = ds.camera.width;
+    j["--height"] = ds.camera.height;
+    j["--camera"] = o.camera;
+    j["--spp"] = o.spp;
+    j["--photons"] = o.photons_per_pass;
+    j["--alpha"] = o.alpha;
+    j["--radius"] = o.radius;
+    j["--seed"] = o.seed;
+    j["--max-bounces"] = o.max_bounces;
+    j["--filter"] = to_string(o.filter);
+    j["--aperture"] = o.aperture;
+    j["--focus-distance"] = o.focus_distance;
+    return j;
+}
+
+Json make_stats(const Options& opt, const DeviceContext& dc, const DeviceScene& ds, const Scene& scene,
+                const IntegratorBase& integ, const ProgramBuildStats& build, double render_s, double total_s,
+                const Image& img, int signal) {
+    const IntegratorStats& st = integ.stats();
+    Json j;
+    j["version"] = kVersion;
+    j["scene"] = scene.source;
+    j["integrator"] = integ.name();
+    j["direct"] = to_string(opt.direct);
+    j["device"] = {{"index", dc.info.index}, {"name", dc.info.name}, {"platform", dc.info.platform_name},
+                   {"type", dc.info.type_name()}, {"driver", dc.info.driver_version}};
+    j["width"] = ds.camera.width;
+    j["height"] = ds.camera.height;
+    j["passes"] = st.passes;
+    j["photons_per_pass"] = opt.photons_per_pass;
+    j["photons_emitted"] = st.photons_emitted;
+    j["photons_stored"] = st.photons_stored;
+    j["hitpoints"] = st.hitpoints;
+    j["alpha"] = opt.alpha;
+    j["seed"] = opt.seed;
+    j["initial_radius"] = st.initial_radius;
+    j["mean_radius"] = st.mean_radius;
+    j["render_seconds"] = render_s;
+    j["total_seconds"] = total_s;
+    j["passes_per_second"] = render_s > 0 ? double(st.passes) / render_s : 0.0;
+    j["photons_per_second"] = render_s > 0 ? double(st.photons_emitted) / render_s : 0.0;
+    Json phases = Json::object();
+    for (const auto& [k, v] : st.phase_seconds) phases[k] = v;
+    j["phase_seconds"] = phases;
+    j["kernel_build"] = {{"seconds", build.seconds}, {"from_cache", build.from_cache}};
+    j["bvh"] = {{"build_seconds", ds.bvh_build_seconds}, {"nodes", ds.bvh_nodes}, {"triangles", ds.num_triangles}};
+    j["lights"] = ds.lights.size();
+    j["device_memory_bytes"] = {{"scene", ds.device_bytes},
+                                {"integrator", st.device_bytes},
+                                {"photons", st.photon_bytes},
+                                {"total", ds.device_bytes + st.device_bytes + st.photon_bytes}};
+    j["photon_batches_per_pass"] = st.photon_batches;
+    j["degenerate_triangles_skipped"] = scene.degenerate_triangles_skipped;
+    j["nonfinite_pixels"] = count_nonfinite(img);
+    j["mean_radiance"] = mean_radiance(img);
+    j["interrupted"] = signal != 0;
+    return j;
+}
+
+Scene load_scene(const Options& opt) {
+    Scene scene = opt.scene.empty() ? load_default_scene() : load_gltf(opt.scene);
+    for (const std::string& w : scene.warnings) note(opt, "warning: " + scene.source + ": " + w);
+    if (scene.degenerate_triangles_skipped)
+        note(opt, scene.source + ": skipped " + std::to_string(scene.degenerate_triangles_skipped) + " degenerate triangle(s)");
+    if (scene.meshes_without_normals)
+        note(opt, scene.source + ": computed normals for " + std::to_string(scene.meshes_without_normals) +
+                      " primitive(s) without normals");
+    return scene;
+}
+
+// Reads --resume's checkpoint and refuses it when the scene or an image-shaping option differs.
+Checkpoint open_resume(const Options& opt, const Json& fingerprint) {
+    Checkpoint ck = read_checkpoint(opt.resume);
+    if (!ck.header.contains("fingerprint")) throw Error(opt.resume + ": checkpoint has no fingerprint");
+    std::string diff = checkpoint_differences(ck.header["fingerprint"], fingerprint);
+    if (!diff.empty()) throw Error("--resume " + opt.resume + ": cannot continue this render: " + diff);
+    return ck;
+}
+
+void save_checkpoint(const Options& opt, IntegratorBase& integ, const Json& fingerprint, const DeviceContext& dc) {
+    Checkpoint ck;
+    ck.header["version"] = kVersion;
+    ck.header["fingerprint"] = fingerprint;
+    ck.header["device"] = dc.info.name + " / " + dc.info.driver_version;
+    integ.save(ck);
+    write_checkpoint(opt.checkpoint, ck);
+}
+
+} // namespace
+
+int render_session(const Options& opt) {
+    Clock total;
+    install_interrupt_handlers();
+    if (!opt.kernel_dir.empty()) set_kernel_dir(opt.kernel_dir);
+    std::vector<DeviceInfo> devices = list_devices();
+    const DeviceInfo& info = choose_device(opt, devices);
+    check_outputs(opt);
+
+    Scene scene = load_scene(opt);
+    const uint64_t scene_hash = scene_fingerprint(scene);
+    DeviceContext dc(info);
+    RenderSettings settings = settings_from(opt);
+    DeviceScene ds = upload_scene(dc, scene, settings);
+    for (const std::string& n : ds.notes) note(opt, n);
+
+    const std::string program_file = integrator_program_file(settings);
+    const std::string build_options = integrator_build_options(settings, dc.info);
+    const std::string kernel_source = assemble_kernel_source(program_file);
+    if (!opt.dump_kernel_source.empty())
+        write_file_atomic(opt.dump_kernel_source, "// build options: " + build_options + "\n" + kernel_source);
+    const Json fingerprint = image_fingerprint(opt, ds, scene_hash, kernel_source + build_options);
+    Checkpoint resume_from;
+    if (!opt.resume.empty()) resume_from = open_resume(opt, fingerprint);
+
+    ProgramBuildStats build;
+    cl::Program program = build_program(dc, program_file, build_options, &build);
+    note(opt, "device [" + std::to_string(dc.info.index) + "] " + dc.info.name + ", " + std::to_string(ds.camera.width) +
+                  "x" + std::to_string(ds.camera.height) + ", " + std::to_string(ds.num_triangles) + " triangles, " +
+                  std::to_string(ds.lights.size()) + " lights, kernels " + (build.from_cache ? "cached" : "built") +
+                  " in " + std::to_string(build.seconds).substr(0, 5) + " s");
+
+    std::unique_ptr<IntegratorBase> integ = make_integrator(dc, ds, settings, program);
+    Clock render_clock;
+    integ->prepare();
+    if (!opt.resume.empty()) {
+        if (resume_from.header.value("device", std::string()) != dc.info.name + " / " + dc.info.driver_version)
+            note(opt, "warning: resuming on another device than the checkpoint's (" +
+                          resume_from.header.value("device", std::string("unknown")) + "): the image will not be bit-identical");
+        integ->restore(resume_from);
+        note(opt, "resumed " + opt.resume + " at pass " + std::to_string(integ->stats().passes));
+    }
+
+    // --passes counts from the start of the original render (a total), --time this session only.
+    Progress progress(opt.quiet, opt.passes, opt.time_limit);
+    double last_checkpoint = 0;
+    int signal = 0;
+    auto more = [&] {
+        const uint64_t p = integ->stats().passes;
+        if (opt.passes > 0 && p >= opt.passes) return false;
+        if (opt.time_limit > 0 && render_clock.seconds() >= opt.time_limit) return false;
+        return (signal = interrupt_signal()) == 0;
+    };
+    while (more()) {
+        integ->run_pass();
+        const IntegratorStats& st = integ->stats();
+        progress.update(st.passes, st.photons_emitted, st.mean_radius, render_clock.seconds());
+        if (opt.progressive_output > 0 && st.passes % opt.progressive_output == 0) save_images(opt, integ->image());
+        if (!opt.checkpoint.empty() &&
+            ((opt.checkpoint_every > 0 && st.passes % opt.checkpoint_every == 0) ||
+             render_clock.seconds() - last_checkpoint >= opt.checkpoint_interval)) {
+            save_checkpoint(opt, *integ, fingerprint, dc);
+            last_checkpoint = render_clock.seconds();
+        }
+    }
+    const double render_s = render_clock.seconds();
+    const IntegratorStats& st = integ->stats();
+    progress.finish(st.passes, st.photons_emitted, st.mean_radius, render_s);
+
+    Image img = integ->image();
+    save_images(opt, img);
+    if (!opt.checkpoint.empty()) save_checkpoint(opt, *integ, fingerprint, dc);
+    if (size_t bad = count_nonfinite(img)) note(opt, "warning: " + std::to_string(bad) + " pixel(s) are NaN or Inf");
+    if (!opt.stats_json.empty())
+        write_stats_json(opt.stats_json,
+                         make_stats(opt, dc, ds, scene, *integ, build, render_s, total.seconds(), img, signal));
+    note(opt, "wrote " + opt.output + (opt.write_png ? " and " + png_path_for(opt.output) : std::string()) +
+                  (opt.checkpoint.empty() ? std::string() : " and " + opt.checkpoint));
+    if (signal) {
+        note(opt, "interrupted after pass " + std::to_string(st.passes) +
+                      (opt.checkpoint.empty() ? std::string() : "; continue with --resume " + opt.checkpoint));
+        return interrupted_exit_status(signal);
+    }
+    return 0;
+}
+
+} // namespace clppm

@@ -1,0 +1,114 @@
+// Nothing a user rendered is lost: a checkpointed render resumes to the same image bit for bit,
+// Ctrl-C and SIGTERM stop cleanly with the images and statistics written, a second Ctrl-C quits at
+// once, and a checkpoint that does not belong to this render is refused with the reason.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <sstream>
+
+#include "image_io.h"
+#include "test_util.h"
+
+using namespace clppm;
+using namespace clppm::test;
+
+namespace {
+
+const std::string kArgs = " --width 24 --height 24 --photons 4000 --quiet --no-png";
+
+std::string slurp(const std::string& path) {
+    std::ifstream f(path, std::ios::binary);
+    std::ostringstream ss;
+    ss << f.rdbuf();
+    return ss.str();
+}
+
+} // namespace
+
+TEST(Resume, StoppedAndResumedEqualsNeverStopped) {
+    for (const char* integrator : {"ppm", "sppm", "pppm", "pt"}) {
+        std::string d = make_temp_dir("resume"), out;
+        const std::string a = kArgs + " --integrator " + integrator;
+        ASSERT_EQ(run_clppm(a + " --passes 5 -o " + d + "/full.exr", &out), 0) << out;
+        ASSERT_EQ(run_clppm(a + " --passes 2 -o " + d + "/part.exr --checkpoint " + d + "/c.ck", &out), 0) << out;
+        ASSERT_EQ(run_clppm(a + " --passes 5 -o " + d + "/res.exr --resume " + d + "/c.ck", &out), 0) << out;
+        Image full = read_exr(d + "/full.exr"), res = read_exr(d + "/res.exr"), part = read_exr(d + "/part.exr");
+        EXPECT_EQ(full.rgb, res.rgb) << integrator << ": resumed render differs";
+        EXPECT_NE(full.rgb, part.rgb) << integrator << ": the test must compare different pass counts";
+    }
+}
+
+TEST(Resume, RefusesACheckpointOfAnotherRenderSayingWhatDiffers) {
+    std::string d = make_temp_dir("resume"), out;
+    ASSERT_EQ(run_clppm(kArgs + " --passes 1 -o " + d + "/a.exr --checkpoint " + d + "/c.ck", &out), 0) << out;
+    EXPECT_EQ(run_clppm(kArgs + " --passes 2 -o " + d + "/b.exr --alpha 0.5 --resume " + d + "/c.ck", &out), 1);
+    EXPECT_NE(out.find("--alpha 0.7 in the checkpoint, 0.5 now"), std::string::npos) << out;
+    EXPECT_EQ(run_clppm(std::string(CLPPM_SCENES_DIR) + "/furnace.gltf" + kArgs + " --passes 2 -o " + d +
+                        "/b.exr --resume " + d + "/c.ck",
+                    &out),
+              1);
+    EXPECT_NE(out.find("scene"), std::string::npos) << out;
+    EXPECT_EQ(run_clppm(kArgs + " --passes 2 -o " + d + "/b.exr --seed 9 --resume " + d + "/c.ck", &out), 1);
+    EXPECT_NE(out.find("--seed 1 in the checkpoint, 9 now"), std::string::npos) << out;
+}
+
+TEST(Resume, DamagedOrForeignCheckpointsAreErrors) {
+    std::string d = make_temp_dir("resume"), out;
+    ASSERT_EQ(run_clppm(kArgs + " --passes 1 -o " + d + "/a.exr --checkpoint " + d + "/c.ck", &out), 0) << out;
+    std::string bytes = slurp(d + "/c.ck");
+    bytes[bytes.size() / 2] ^= 0x5a;
+    std::ofstream(d + "/damaged.ck", std::ios::binary) << bytes;
+    EXPECT_EQ(run_clppm(kArgs + " --passes 2 -o " + d + "/b.exr --resume " + d + "/damaged.ck", &out), 1);
+    EXPECT_NE(out.find("damaged.ck: checkpoint is damaged"), std::string::npos) << out;
+    std::ofstream(d + "/short.ck", std::ios::binary) << bytes.substr(0, 20);
+    EXPECT_EQ(run_clppm(kArgs + " --passes 2 -o " + d + "/b.exr --resume " + d + "/short.ck", &out), 1);
+    EXPECT_NE(out.find("short.ck"), std::string::npos) << out;
+    EXPECT_EQ(run_clppm(kArgs + " --passes 2 -o " + d + "/b.exr --resume " + d + "/a.exr", &out), 1);
+    EXPECT_NE(out.find("a.exr: not a clppm checkpoint"), std::string::npos) << out;
+    EXPECT_EQ(run_clppm(kArgs + " --passes 2 -o " + d + "/b.exr --resume " + d + "/missing.ck", &out), 1);
+    EXPECT_NE(out.find("missing.ck"), std::string::npos) << out;
+}
+
+// Ctrl-C: the pass in flight finishes, the image, statistics and checkpoint are written, the exit
+// status is 130; resuming to N passes then equals a render of N passes that was never stopped.
+TEST(Resume, InterruptWritesEverythingAndResumesExactly) {
+    for (const char* sig : {"INT", "TERM"}) {
+        std::string d = make_temp_dir("interrupt"), out;
+        const std::string run = clppm_binary() + kArgs + " --passes 1000000 --progressive-output 1 -o " + d +
+                                "/i.exr --checkpoint " + d + "/c.ck --stats-json " + d + "/s.json";
+        // Wait for the first progressive image, so that the signal lands mid-render.
+        const std::string script = run + " & pid=$!; for i in $(seq 1 600); do [ -f " + d +
+                                   "/i.exr ] && break; sleep 0.05; done; sleep 0.3; kill -" + sig +
+                                   " $pid; wait $pid; echo \"status=$?\"";
+        ASSERT_EQ(run_command("bash -c '" + script + "'", &out), 0) << out;
+        EXPECT_NE(out.find(std::string("status=") + (std::string(sig) == "INT" ? "130" : "143")), std::string::npos)
+            << out;
+        Image img = read_exr(d + "/i.exr");
+        EXPECT_EQ(count_nonfinite(img), 0u);
+        std::string stats = slurp(d + "/s.json");
+        EXPECT_NE(stats.find("\"interrupted\": true"), std::string::npos) << stats;
+        size_t at = stats.find("\"passes\": ");
+        ASSERT_NE(at, std::string::npos) << stats;
+        const uint64_t passes = std::stoull(stats.substr(at + 10));
+        ASSERT_GE(passes, 1u);
+        const std::string target = std::to_string(passes + 2);
+        ASSERT_EQ(run_clppm(kArgs + " --passes " + target + " -o " + d + "/r.exr --resume " + d + "/c.ck", &out), 0) << out;
+        ASSERT_EQ(run_clppm(kArgs + " --passes " + target + " -o " + d + "/n.exr", &out), 0) << out;
+        EXPECT_EQ(read_exr(d + "/r.exr").rgb, read_exr(d + "/n.exr").rgb) << sig;
+    }
+}
+
+// A second Ctrl-C quits at once; whatever was written before stays a complete image.
+TEST(Resume, SecondInterruptQuitsAtOnceWithoutCorruptingFiles) {
+    std::string d = make_temp_dir("interrupt2"), out;
+    const std::string run = clppm_binary() + " --width 64 --height 64 --photons 200000 --quiet --no-png" +
+                            " --passes 1000000 --progressive-output 1 -o " + d + "/i.exr";
+    const std::string script = run + " & pid=$!; for i in $(seq 1 600); do [ -f " + d +
+                               "/i.exr ] && break; sleep 0.05; done; kill -INT $pid; kill -INT $pid; wait $pid; "
+                               "echo \"status=$?\"";
+    ASSERT_EQ(run_command("bash -c '" + script + "'", &out), 0) << out;
+    EXPECT_NE(out.find("status=130"), std::string::npos) << out;
+    Image img = read_exr(d + "/i.exr");
+    EXPECT_EQ(img.width, 64);
+    EXPECT_EQ(count_nonfinite(img), 0u);
+}
