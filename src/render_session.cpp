@@ -12,6 +12,7 @@
 #include "integrator.h"
 #include "interrupt.h"
 #include "kernel_program.h"
+#include "memory_estimate.h"
 #include "progress.h"
 #include "render_scene.h"
 #include "stats_json.h"
@@ -184,8 +185,14 @@ int render_session(const Options& opt) {
 
     Scene scene = load_scene(opt);
     const uint64_t scene_hash = scene_fingerprint(scene);
-    DeviceContext dc(info);
     RenderSettings settings = settings_from(opt);
+    {
+        // Refuse a render the device cannot hold before allocating anything.
+        float bmin[3] = {0, 0, 0}, bmax[3] = {1, 1, 1};
+        dev::Camera cam = make_camera(scene, settings, bmin, bmax, nullptr);
+        check_memory_fits(estimate_memory(scene, settings, cam.width, cam.height, info), info);
+    }
+    DeviceContext dc(info);
     DeviceScene ds = upload_scene(dc, scene, settings);
     for (const std::string& n : ds.notes) note(opt, n);
 

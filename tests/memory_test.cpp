@@ -1,0 +1,74 @@
+// Device memory: estimated before allocation, honest against what a render really allocates, and
+// within 1 GiB for SPPM and PPPM at 1920x1080 with a million photons per pass.
+#include <gtest/gtest.h>
+
+#include "error.h"
+#include "memory_estimate.h"
+#include "scene_builders.h"
+#include "test_util.h"
+
+using namespace clppm;
+using namespace clppm::test;
+
+namespace {
+
+DeviceInfo fake_device(size_t mem, size_t max_alloc) {
+    DeviceInfo d;
+    d.name = "test device";
+    d.global_mem = mem;
+    d.max_alloc = max_alloc;
+    return d;
+}
+
+constexpr size_t GiB = size_t(1) << 30;
+
+} // namespace
+
+TEST(Memory, SppmAndPppmAt1080pWithAMillionPhotonsFitInOneGiB) {
+    Scene scene = diffuse_box();
+    for (Integrator integ : {Integrator::SPPM, Integrator::PPPM}) {
+        RenderSettings s;
+        s.integrator = integ;
+        s.photons = 1000000;
+        MemoryEstimate m = estimate_memory(scene, s, 1920, 1080, fake_device(8 * GiB, 2 * GiB));
+        EXPECT_LT(m.total(), GiB) << to_string(integ) << ": " << m.total() / (1 << 20) << " MiB";
+        EXPECT_NO_THROW(check_memory_fits(m, fake_device(GiB + GiB / 8, GiB / 2)));
+    }
+}
+
+// The estimate is what the integrators allocate: SPPM's per-pixel buffers exactly, PPM's hit
+// points within the splitting allowance.
+TEST(Memory, EstimateMatchesWhatARenderAllocates) {
+    for (Integrator integ : {Integrator::PPM, Integrator::SPPM, Integrator::PT}) {
+        RenderSettings s;
+        s.integrator = integ;
+        s.width = s.height = 40;
+        s.photons = 20000;
+        IntegratorStats st;
+        render_passes(diffuse_box(), s, 1, &st);
+        MemoryEstimate m = estimate_memory(diffuse_box(), s, 40, 40, test_device());
+        const double ratio = double(st.device_bytes) / double(m.integrator);
+        if (integ == Integrator::PPM) {
+            EXPECT_GT(ratio, 0.6) << "PPM hit points underestimated";
+            EXPECT_LE(ratio, 1.05) << "PPM hit points overestimated";
+        } else {
+            EXPECT_NEAR(ratio, 1.0, 0.02) << to_string(integ);
+        }
+        if (integ != Integrator::PT) EXPECT_LE(st.photon_bytes, m.photons) << to_string(integ);
+    }
+}
+
+TEST(Memory, TooLargeForTheDeviceIsAClearError) {
+    RenderSettings s;
+    s.spp = 16;
+    MemoryEstimate m = estimate_memory(diffuse_box(), s, 4096, 4096, fake_device(GiB, GiB / 4));
+    try {
+        check_memory_fits(m, fake_device(GiB, GiB / 4));
+        FAIL() << "no error";
+    } catch (const Error& e) {
+        std::string msg = e.what();
+        EXPECT_NE(msg.find("test device has 1024 MiB"), std::string::npos) << msg;
+        EXPECT_NE(msg.find("--width/--height or --spp"), std::string::npos) << msg;
+        EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
+    }
+}
