@@ -51,13 +51,18 @@ float dielectric_eta(SCENE_PARAMS, const Surface* s) {
 float material_alpha(__global const Material* m) { return fmax(m->roughness * m->roughness, 1e-4f); }
 
 /* The kind of the metal part of a metallic surface: a mirror when perfectly smooth. */
-uint metal_kind(__global const Material* m) { return m->roughness > 0.0f ? MATERIAL_GLOSSY : MATERIAL_MIRROR; }
+uint metal_kind(__global const Material* m) {
+    if (!HAS_GLOSSY) return MATERIAL_MIRROR;
+    if (!HAS_MIRROR) return MATERIAL_GLOSSY;
+    return m->roughness > 0.0f ? MATERIAL_GLOSSY : MATERIAL_MIRROR;
+}
 
 /* The material kind at this surface once METAL_MIX has been resolved with u (the metal with
  * probability metallic, else diffuse). */
 uint resolve_kind(SCENE_PARAMS, const Surface* s, float u) {
     __global const Material* m = &materials[s->material];
-    if (m->kind == MATERIAL_METAL_MIX) return u < m->metallic ? metal_kind(m) : MATERIAL_DIFFUSE;
+    if (!HAS_NON_DIFFUSE) return MATERIAL_DIFFUSE;
+    if (HAS_METAL_MIX && m->kind == MATERIAL_METAL_MIX) return u < m->metallic ? metal_kind(m) : MATERIAL_DIFFUSE;
     return m->kind;
 }
 

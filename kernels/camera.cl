@@ -11,7 +11,7 @@ void camera_ray(__constant Camera* cam, float px, float py, float2 lens_u, float
     float sy = 1.0f - 2.0f * py / (float)cam->height;
     float3 d = load3c(cam->forward) + load3c(cam->right) * sx + load3c(cam->up) * sy;
     float3 o = load3c(cam->origin);
-    if (cam->lens_radius > 0.0f) {
+    if (HAS_THIN_LENS && cam->lens_radius > 0.0f) {
         /* Thin lens: all rays through a pixel meet on the plane of focus (pbrt-v4 PerspectiveCamera). */
         float3 focus = o + d * cam->focus_distance;
         float r = cam->lens_radius * sqrt(lens_u.x), phi = 2.0f * PI_F * lens_u.y;

@@ -67,7 +67,7 @@ Branch ray_branch(float3 weight, float3 dir, bool below) {
 /* The metal part of a surface: mirror, glossy hit point, or a sampled glossy ray. */
 Branch metal_branch(SCENE_PARAMS, const Surface* sf, float3 in_dir, float3 weight, float3 base, Rng* rng) {
     __global const Material* m = &materials[sf->material];
-    if (metal_kind(m) == MATERIAL_MIRROR) return ray_branch(weight * base, specular_reflect(sf, in_dir), false);
+    if (!HAS_GLOSSY || metal_kind(m) == MATERIAL_MIRROR) return ray_branch(weight * base, specular_reflect(sf, in_dir), false);
     float alpha = material_alpha(m);
     if (alpha >= GLOSSY_HITPOINT_ALPHA) return hitpoint_branch(weight, base, alpha);
     float3 wi;
@@ -82,14 +82,14 @@ void surface_branches(SCENE_PARAMS, const Surface* sf, float3 in_dir, float3 wei
     float3 base = surface_base_color(SCENE_ARGS, sf);
     *a = no_branch();
     *b = no_branch();
-    if (m->kind == MATERIAL_DIFFUSE) {
+    if (!HAS_NON_DIFFUSE || m->kind == MATERIAL_DIFFUSE) {
         *a = hitpoint_branch(weight, base, 0.0f);
-    } else if (m->kind == MATERIAL_MIRROR || m->kind == MATERIAL_GLOSSY) {
+    } else if ((HAS_MIRROR || HAS_GLOSSY) && (m->kind == MATERIAL_MIRROR || m->kind == MATERIAL_GLOSSY)) {
         *a = metal_branch(SCENE_ARGS, sf, in_dir, weight, base, rng);
-    } else if (m->kind == MATERIAL_METAL_MIX) {
+    } else if (HAS_METAL_MIX && m->kind == MATERIAL_METAL_MIX) {
         *a = metal_branch(SCENE_ARGS, sf, in_dir, weight * m->metallic, base, rng);
         *b = hitpoint_branch(weight * (1.0f - m->metallic), base, 0.0f);
-    } else { /* MATERIAL_DIELECTRIC */
+    } else if (HAS_DIELECTRIC) {
         float eta = dielectric_eta(SCENE_ARGS, sf);
         float F = fresnel_dielectric(-dot(in_dir, sf->ns), eta);
         *a = ray_branch(weight * F, specular_reflect(sf, in_dir), false);

@@ -33,7 +33,8 @@ void emit_photon(SCENE_PARAMS, Rng* rng, float3* org, float3* dir, float3* flux)
     __global const Light* L = &lights[l];
     float pick = light_pick_pdf(SCENE_ARGS, l);
     float3 rad = load3g(L->radiance);
-    if (L->type == LIGHT_TRIANGLE) {
+    *org = *dir = *flux = (float3)(0.0f);
+    if (HAS_AREA_LIGHTS && L->type == LIGHT_TRIANGLE) {
         float3 v0 = tris[3 * L->prim].xyz, e1 = tris[3 * L->prim + 1].xyz, e2 = tris[3 * L->prim + 2].xyz;
         float2 b = sample_triangle(rng_float(rng), rng_float(rng));
         float3 n = normalize(cross(e1, e2));
@@ -47,20 +48,20 @@ void emit_photon(SCENE_PARAMS, Rng* rng, float3* org, float3* dir, float3* flux)
         *org = offset_origin(SCENE_ARGS, p, n);
         /* Le cos / (pick * (1/A) * (1/sides) * cos/pi) = Le A pi sides / pick */
         *flux = rad * (L->area * PI_F * sides / (pick * info->total_power));
-    } else if (L->type == LIGHT_POINT) {
+    } else if (HAS_POINT_LIGHTS && L->type == LIGHT_POINT) {
         float z = 1.0f - 2.0f * rng_float(rng);
         float r = sqrt(fmax(0.0f, 1.0f - z * z));
         float phi = 2.0f * PI_F * rng_float(rng);
         *org = load3g(L->position);
         *dir = (float3)(r * cos(phi), r * sin(phi), z);
         *flux = rad * (4.0f * PI_F / (pick * info->total_power)); /* I / (pick / 4pi) */
-    } else if (L->type == LIGHT_SPOT) {
+    } else if (HAS_SPOT_LIGHTS && L->type == LIGHT_SPOT) {
         float3 axis = load3g(L->direction);
         *org = load3g(L->position);
         *dir = sample_cone(axis, L->cos_outer, rng_float(rng), rng_float(rng));
         float solid_angle = 2.0f * PI_F * (1.0f - L->cos_outer);
         *flux = rad * (spot_falloff(L, dot(*dir, axis)) * solid_angle / (pick * info->total_power));
-    } else { /* LIGHT_DIRECTIONAL: a disc covering the scene's bounding sphere, outside it */
+    } else if (HAS_DIRECTIONAL_LIGHTS) { /* a disc covering the scene's bounding sphere, outside it */
         float3 d = load3g(L->direction);
         float3 t, b;
         make_frame(d, &t, &b);
@@ -83,7 +84,7 @@ bool sample_light(SCENE_PARAMS, float3 x, Rng* rng, float3* wi, float* dist, flo
     __global const Light* L = &lights[l];
     float pick = light_pick_pdf(SCENE_ARGS, l);
     float3 rad = load3g(L->radiance);
-    if (L->type == LIGHT_TRIANGLE) {
+    if (HAS_AREA_LIGHTS && L->type == LIGHT_TRIANGLE) {
         float3 v0 = tris[3 * L->prim].xyz, e1 = tris[3 * L->prim + 1].xyz, e2 = tris[3 * L->prim + 2].xyz;
         float2 b = sample_triangle(rng_float(rng), rng_float(rng));
         float3 y = v0 + e1 * b.x + e2 * b.y;
@@ -103,19 +104,20 @@ bool sample_light(SCENE_PARAMS, float3 x, Rng* rng, float3* wi, float* dist, flo
         *dist = len - 2.0f * (info->ray_eps + 4e-6f * m);
         return *dist > 0.0f;
     }
-    if (L->type == LIGHT_DIRECTIONAL) {
+    if (HAS_DIRECTIONAL_LIGHTS && L->type == LIGHT_DIRECTIONAL) {
         *wi = -load3g(L->direction);
         *dist = 4.0f * info->radius + length(x - load3c(info->center));
         *contrib = rad / pick;
         return true;
     }
+    if (!(HAS_POINT_LIGHTS || HAS_SPOT_LIGHTS)) return false;
     float3 d = load3g(L->position) - x;
     float d2 = dot(d, d);
     if (!(d2 > 0.0f)) return false;
     float len = sqrt(d2);
     *wi = d / len;
     float falloff = 1.0f;
-    if (L->type == LIGHT_SPOT) falloff = spot_falloff(L, -dot(*wi, load3g(L->direction)));
+    if (HAS_SPOT_LIGHTS && L->type == LIGHT_SPOT) falloff = spot_falloff(L, -dot(*wi, load3g(L->direction)));
     if (falloff <= 0.0f) return false;
     *dist = len;
     *contrib = rad * (falloff / (d2 * pick)); /* I / d^2 */

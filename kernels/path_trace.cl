@@ -61,7 +61,7 @@ __kernel void path_trace(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong
             dir = sample_cosine_hemisphere(sf.ns, rng_float(&rng), rng_float(&rng));
             if (dot(dir, sf.ng) <= 0.0f) break;
             org = offset_origin(SCENE_ARGS, sf.p, sf.ng);
-        } else if (kind == MATERIAL_GLOSSY) {
+        } else if (HAS_GLOSSY && kind == MATERIAL_GLOSSY) {
             /* Rough glossy surfaces take next-event estimation like diffuse ones; smooth ones are
              * treated like mirrors (emission found by the sampled ray counts). */
             float alpha = material_alpha(&materials[sf.material]);
@@ -80,12 +80,12 @@ __kernel void path_trace(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong
             }
             dir = wi;
             org = offset_origin(SCENE_ARGS, sf.p, sf.ng);
-        } else if (kind == MATERIAL_MIRROR) {
+        } else if (HAS_MIRROR && kind == MATERIAL_MIRROR) {
             beta *= base;
             dir = specular_reflect(&sf, dir);
             org = offset_origin(SCENE_ARGS, sf.p, sf.ng);
             count_emission = true;
-        } else {
+        } else if (HAS_DIELECTRIC) {
             float eta = dielectric_eta(SCENE_ARGS, &sf);
             float F = fresnel_dielectric(-dot(dir, sf.ns), eta);
             if (rng_float(&rng) < F) {

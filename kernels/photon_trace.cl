@@ -45,7 +45,7 @@ __kernel void photon_trace(SCENE_PARAMS, ulong seed, ulong pass, uint first_phot
             dir = sample_cosine_hemisphere(sf.ns, rng_float(&rng), rng_float(&rng));
             if (dot(dir, sf.ng) <= 0.0f) return;
             org = offset_origin(SCENE_ARGS, sf.p, sf.ng);
-        } else if (kind == MATERIAL_GLOSSY) {
+        } else if (HAS_GLOSSY && kind == MATERIAL_GLOSSY) {
             float alpha = material_alpha(&materials[sf.material]);
             /* Stored where the eye pass puts hit points (rough enough), as on diffuse surfaces. */
             if (alpha >= GLOSSY_HITPOINT_ALPHA && !(skip_direct && bounce == 0))
@@ -58,11 +58,11 @@ __kernel void photon_trace(SCENE_PARAMS, ulong seed, ulong pass, uint first_phot
             flux *= w / q;
             dir = wo;
             org = offset_origin(SCENE_ARGS, sf.p, sf.ng);
-        } else if (kind == MATERIAL_MIRROR) {
+        } else if (HAS_MIRROR && kind == MATERIAL_MIRROR) {
             flux *= base;
             dir = specular_reflect(&sf, dir);
             org = offset_origin(SCENE_ARGS, sf.p, sf.ng);
-        } else { /* MATERIAL_DIELECTRIC: reflect with probability F, else refract (weights cancel) */
+        } else if (HAS_DIELECTRIC) { /* reflect with probability F, else refract (weights cancel) */
             float eta = dielectric_eta(SCENE_ARGS, &sf);
             float F = fresnel_dielectric(-dot(dir, sf.ns), eta);
             if (rng_float(&rng) < F) {

@@ -94,7 +94,7 @@ float3 texture_lookup(SCENE_PARAMS, int index, float2 uv) {
 float3 surface_base_color(SCENE_PARAMS, const Surface* s) {
     __global const Material* m = &materials[s->material];
     float3 c = load3g(m->base_color);
-    if (m->base_color_tex >= 0) c *= texture_lookup(SCENE_ARGS, m->base_color_tex, s->uv);
+    if (HAS_TEXTURES && m->base_color_tex >= 0) c *= texture_lookup(SCENE_ARGS, m->base_color_tex, s->uv);
     return c;
 }
 

@@ -9,6 +9,10 @@
 
 #ifdef __OPENCL_VERSION__
 #pragma OPENCL EXTENSION cl_khr_fp64 : enable
+/* No fused multiply-add contraction: a specialised program and the generic one, or two work-group
+ * sizes, must round alike (images are reproducible bit for bit). */
+#pragma OPENCL FP_CONTRACT OFF
+#include "kernel_features.h"
 typedef uint u32;
 typedef int i32;
 typedef ulong u64;

@@ -27,7 +27,8 @@ std::string integrator_program_file(const RenderSettings& settings) {
     }
 }
 
-std::string integrator_build_options(const RenderSettings& settings, const DeviceInfo& device) {
+std::string integrator_build_options(const RenderSettings& settings, const DeviceInfo& device,
+                                     const std::string& features) {
     if (!device.fp64)
         throw Error("device " + device.name +
                     " lacks double precision (cl_khr_fp64), which clppm's hit point statistics need; pick another "
@@ -37,6 +38,7 @@ std::string integrator_build_options(const RenderSettings& settings, const Devic
     if (settings.integrator == Integrator::SPPM || settings.integrator == Integrator::PPPM) options += "-DEYE_SLOTS=1";
     else options += "-DEYE_SLOTS=4";
     if (settings.filter == PixelFilter::Tent) options += " -DPIXEL_FILTER_TENT";
+    if (!features.empty()) options += " " + features;
     return options;
 }
 

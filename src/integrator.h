@@ -57,7 +57,10 @@ std::unique_ptr<IntegratorBase> make_integrator(const DeviceContext& dc, const D
 
 // The kernel program an integrator needs, with its build options.
 std::string integrator_program_file(const RenderSettings& settings);
-std::string integrator_build_options(const RenderSettings& settings, const DeviceInfo& device);
+// The build options of an integrator's program; `features` (feature_build_options) specialises it
+// for a scene, "" builds the generic program.
+std::string integrator_build_options(const RenderSettings& settings, const DeviceInfo& device,
+                                     const std::string& features = "");
 
 // Reads a whole device buffer of n elements into a vector, and writes one back.
 template <class T>

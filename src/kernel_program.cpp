@@ -132,6 +132,7 @@ cl::Program build_program(const DeviceContext& dc, const std::string& entry_file
         if (stats) {
             stats->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
             stats->from_cache = cached;
+            stats->options = full_options;
         }
         return p;
     };
@@ -156,6 +157,7 @@ cl::Program build_program(const DeviceContext& dc, const std::string& entry_file
         throw Error("kernel build failed for " + entry_file + " on " + dc.info.name + " (" + full_options +
                     "):\n" + log);
     }
+    if (std::getenv("CLPPM_BUILD_LOG")) std::fprintf(stderr, "%s\n", build_log(program, device).c_str());
     if (!cache_file.empty()) {
         try {
             std::vector<std::vector<unsigned char>> bins = program.getInfo<CL_PROGRAM_BINARIES>();

@@ -21,6 +21,7 @@ std::string assemble_kernel_source(const std::string& name);
 struct ProgramBuildStats {
     double seconds = 0;
     bool from_cache = false;
+    std::string options; // as passed to the compiler
 };
 
 // Builds (or loads from the cache) the program for `entry_file` with `options`. Throws Error with

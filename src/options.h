@@ -44,6 +44,7 @@ struct Options {
     uint64_t checkpoint_every = 0;      // ... every K passes (0: off)
     double checkpoint_interval = 300.0; // ... and every T seconds of rendering
     std::string resume;                 // --resume FILE: continue a checkpointed render
+    bool generic_kernels = false;       // --generic-kernels: no scene specialisation
     std::string kernel_dir;             // load kernels from here instead of the embedded copies
     std::string dump_kernel_source;     // write the assembled kernel source and build options here
     bool help = false;                  // -h/--help: print usage() and exit

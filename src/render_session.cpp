@@ -15,6 +15,7 @@
 #include "memory_estimate.h"
 #include "progress.h"
 #include "render_scene.h"
+#include "scene_features.h"
 #include "stats_json.h"
 #include "version.h"
 
@@ -129,7 +130,7 @@ Json make_stats(const Options& opt, const DeviceContext& dc, const DeviceScene& 
     Json phases = Json::object();
     for (const auto& [k, v] : st.phase_seconds) phases[k] = v;
     j["phase_seconds"] = phases;
-    j["kernel_build"] = {{"seconds", build.seconds}, {"from_cache", build.from_cache}};
+    j["kernel_build"] = {{"seconds", build.seconds}, {"from_cache", build.from_cache}, {"options", build.options}};
     j["bvh"] = {{"build_seconds", ds.bvh_build_seconds}, {"nodes", ds.bvh_nodes}, {"triangles", ds.num_triangles}};
     j["lights"] = ds.lights.size();
     j["device_memory_bytes"] = {{"scene", ds.device_bytes},
@@ -197,7 +198,9 @@ int render_session(const Options& opt) {
     for (const std::string& n : ds.notes) note(opt, n);
 
     const std::string program_file = integrator_program_file(settings);
-    const std::string build_options = integrator_build_options(settings, dc.info);
+    const SceneFeatures features = scene_features(scene, ds);
+    const std::string build_options = integrator_build_options(
+        settings, dc.info, opt.generic_kernels ? std::string() : feature_build_options(features));
     const std::string kernel_source = assemble_kernel_source(program_file);
     if (!opt.dump_kernel_source.empty())
         write_file_atomic(opt.dump_kernel_source, "// build options: " + build_options + "\n" + kernel_source);
@@ -209,8 +212,9 @@ int render_session(const Options& opt) {
     cl::Program program = build_program(dc, program_file, build_options, &build);
     note(opt, "device [" + std::to_string(dc.info.index) + "] " + dc.info.name + ", " + std::to_string(ds.camera.width) +
                   "x" + std::to_string(ds.camera.height) + ", " + std::to_string(ds.num_triangles) + " triangles, " +
-                  std::to_string(ds.lights.size()) + " lights, kernels " + (build.from_cache ? "cached" : "built") +
-                  " in " + std::to_string(build.seconds).substr(0, 5) + " s");
+                  std::to_string(ds.lights.size()) + " lights, kernels " +
+                  (opt.generic_kernels ? std::string("generic") : "for " + describe_features(features)) + " " +
+                  (build.from_cache ? "cached" : "built") + " in " + std::to_string(build.seconds).substr(0, 5) + " s");
 
     std::unique_ptr<IntegratorBase> integ = make_integrator(dc, ds, settings, program);
     Clock render_clock;

@@ -1,0 +1,46 @@
+// Kernels specialised for a scene's features give the same image as the generic kernels, bit for
+// bit with the same seed, on every shipped scene; and the specialisation really removes features.
+#include <gtest/gtest.h>
+
+#include "gltf_load.h"
+#include "image_io.h"
+#include "scene_features.h"
+#include "test_util.h"
+
+using namespace clppm;
+using namespace clppm::test;
+
+TEST(Specialization, SameImageAsGenericKernelsOnEveryShippedScene) {
+    const std::string scenes = CLPPM_SCENES_DIR;
+    for (const std::string scene : {std::string(), scenes + "/caustic.gltf", scenes + "/furnace.gltf",
+                                    scenes + "/plane_point_light.gltf", scenes + "/bunny_100k.gltf"}) {
+        // SPPM shares every kernel that specialisation touches with PPM; one scene checks it too.
+        for (const char* integrator : {"ppm", "sppm"}) {
+            if (std::string(integrator) == "sppm" && !scene.empty()) continue;
+            std::string d = make_temp_dir("spec"), out;
+            const std::string args = scene + " --width 32 --height 24 --passes 3 --photons 20000 --quiet --no-png" +
+                                     " --integrator " + integrator;
+            ASSERT_EQ(run_clppm(args + " -o " + d + "/s.exr --stats-json " + d + "/s.json", &out), 0) << out;
+            ASSERT_EQ(run_clppm(args + " -o " + d + "/g.exr --generic-kernels", &out), 0) << out;
+            Image s = read_exr(d + "/s.exr"), g = read_exr(d + "/g.exr");
+            EXPECT_EQ(s.rgb, g.rgb) << (scene.empty() ? "default scene" : scene) << ", " << integrator;
+            EXPECT_GT(mean_radiance(s), 0.0) << scene;
+        }
+    }
+}
+
+TEST(Specialization, BuildOptionsRemoveWhatTheSceneDoesNotUse) {
+    Scene box = load_default_scene();
+    Scene furnace = load_gltf(std::string(CLPPM_SCENES_DIR) + "/furnace.gltf");
+    DeviceScene ds; // only lights and camera are read
+    dev::Light area{};
+    area.type = LIGHT_TRIANGLE;
+    ds.lights.push_back(area);
+    SceneFeatures fb = scene_features(box, ds), ff = scene_features(furnace, ds);
+    EXPECT_TRUE(fb.mirror && fb.dielectric && fb.area_lights);
+    EXPECT_FALSE(fb.glossy || fb.textures || fb.spot_lights || fb.point_lights || fb.thin_lens);
+    EXPECT_EQ(feature_build_options(ff),
+              "-DHAS_MIRROR=0 -DHAS_GLOSSY=0 -DHAS_DIELECTRIC=0 -DHAS_METAL_MIX=0 -DHAS_TEXTURES=0 "
+              "-DHAS_POINT_LIGHTS=0 -DHAS_SPOT_LIGHTS=0 -DHAS_DIRECTIONAL_LIGHTS=0 -DHAS_THIN_LENS=0");
+    EXPECT_EQ(feature_build_options(SceneFeatures{true, true, true, true, true, true, true, true, true, true}), "");
+}
