@@ -11,11 +11,12 @@
 namespace clppm {
 
 std::unique_ptr<IntegratorBase> make_integrator(const DeviceContext& dc, const DeviceScene& scene,
-                                                const RenderSettings& settings, const cl::Program& program) {
+                                                const RenderSettings& settings, const cl::Program& program,
+                                                const SecondaryDevices& secondaries) {
     if (settings.integrator == Integrator::PT) return std::make_unique<PtIntegrator>(dc, scene, settings, program);
     if (settings.integrator == Integrator::SPPM || settings.integrator == Integrator::PPPM)
-        return std::make_unique<SppmIntegrator>(dc, scene, settings, program);
-    return std::make_unique<PpmIntegrator>(dc, scene, settings, program);
+        return std::make_unique<SppmIntegrator>(dc, scene, settings, program, secondaries);
+    return std::make_unique<PpmIntegrator>(dc, scene, settings, program, secondaries);
 }
 
 std::string integrator_program_file(const RenderSettings& settings) {

@@ -28,6 +28,7 @@ struct IntegratorStats {
     size_t device_bytes = 0;           // integrator buffers (scene buffers are counted apart)
     size_t photon_bytes = 0;           // photon and grid buffers
     uint32_t photon_batches = 0;       // batches the last pass's photons were traced in
+    std::vector<uint32_t> device_photons; // photons each device traced in the last pass, primary first
     // Kernel events of the current pass, resolved into phase_seconds at the pass's end so that
     // timing never adds a synchronisation point inside the pass.
     std::vector<std::pair<std::string, cl::Event>> pending_events;
@@ -52,8 +53,16 @@ protected:
     IntegratorStats stats_;
 };
 
+// Further devices a photon-mapping integrator shares its photons with, and how to build their
+// program (the primary's program file and options).
+struct SecondaryDevices {
+    std::vector<DeviceInfo> devices;
+    std::string program_file, build_options;
+};
+
 std::unique_ptr<IntegratorBase> make_integrator(const DeviceContext& dc, const DeviceScene& scene,
-                                                const RenderSettings& settings, const cl::Program& program);
+                                                const RenderSettings& settings, const cl::Program& program,
+                                                const SecondaryDevices& secondaries = {});
 
 // The kernel program an integrator needs, with its build options.
 std::string integrator_program_file(const RenderSettings& settings);

@@ -51,14 +51,20 @@ void PhotonMap::allocate(uint32_t capacity) {
     sorted_ = cl::Buffer(dc_.context, CL_MEM_READ_WRITE, size_t(capacity_) * sizeof(dev::Photon));
 }
 
-void PhotonMap::run_pass(uint64_t pass, const cl::Buffer& hitpoints, const cl::Buffer& stats, uint32_t n,
-                         float global_r2, double typical_radius, double max_radius, const cl::Buffer& out) {
-    const uint32_t M = uint32_t(settings_.photons);
+void PhotonMap::run_pass(uint64_t pass, uint32_t first_photon, uint32_t count_photons, const cl::Buffer& hitpoints,
+                         const cl::Buffer& stats, uint32_t n, float global_r2, double typical_radius, double max_radius,
+                         const cl::Buffer& out) {
+    if (count_photons == 0) {
+        if (n > 0) dc_.queue.enqueueFillBuffer(out, cl_uchar(0), 0, size_t(n) * sizeof(dev::PassFlux));
+        batches_ = 0;
+        return;
+    }
+    const uint32_t end = first_photon + count_photons;
     if (capacity_ == 0)
         allocate(uint32_t(std::clamp<uint64_t>(uint64_t(batch_) * kStoredPerEmitted, 1024, std::max<uint64_t>(1024, max_capacity_))));
     batches_ = 0;
-    for (uint32_t first = 0; first < M;) {
-        const uint32_t count = std::min(batch_, M - first);
+    for (uint32_t first = first_photon; first < end;) {
+        const uint32_t count = std::min(batch_, end - first);
         if (!trace(pass, first, count)) {
             // More stored photons than the buffer holds: grow it within the budget, else trace
             // fewer photons at a time. Either way the same photons are traced again.

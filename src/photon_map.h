@@ -24,12 +24,13 @@ public:
     PhotonMap(const DeviceContext& dc, const DeviceScene& scene, const RenderSettings& settings,
               const cl::Program& program, IntegratorStats& stats, uint64_t max_batch_photons = 0);
 
-    // Pass `pass` (1-based: the RNG streams): traces settings.photons photons, in batches when
-    // needed, and for each batch builds the grid (cells sized for radii around typical_radius,
-    // no smaller than a quarter of max_radius) and lets the n hit points gather into out (their
-    // radius is stats[i].r2, or global_r2 when > 0).
-    void run_pass(uint64_t pass, const cl::Buffer& hitpoints, const cl::Buffer& stats, uint32_t n, float global_r2,
-                  double typical_radius, double max_radius, const cl::Buffer& out);
+    // Pass `pass` (1-based: the RNG streams): traces photons [first, first + count) of the pass's
+    // settings.photons, in batches when needed, and for each batch builds the grid (cells sized
+    // for radii around typical_radius, no smaller than a quarter of max_radius) and lets the n hit
+    // points gather into out (their radius is stats[i].r2, or global_r2 when > 0). With count 0,
+    // out is cleared.
+    void run_pass(uint64_t pass, uint32_t first, uint32_t count, const cl::Buffer& hitpoints, const cl::Buffer& stats,
+                  uint32_t n, float global_r2, double typical_radius, double max_radius, const cl::Buffer& out);
 
     uint32_t batches_last_pass() const { return batches_; }
     size_t device_bytes() const;

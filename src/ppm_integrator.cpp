@@ -54,9 +54,10 @@ Image read_image(const DeviceContext& dc, const cl::Buffer& buffer, unsigned wid
 }
 
 PpmIntegrator::PpmIntegrator(const DeviceContext& dc, const DeviceScene& scene, const RenderSettings& settings,
-                             const cl::Program& program)
+                             const cl::Program& program, const SecondaryDevices& secondaries)
     : dc_(dc), scene_(scene), settings_(settings) {
-    photon_map_ = std::make_unique<PhotonMap>(dc, scene, settings_, program, stats_);
+    photons_ = std::make_unique<PhotonPasses>(dc, scene, settings_, program, stats_, secondaries.devices,
+                                              secondaries.program_file, secondaries.build_options);
     k_eye_ = cl::Kernel(program, "eye_pass");
     k_direct_ = cl::Kernel(program, "direct_light");
     k_update_ = cl::Kernel(program, "ppm_update");
@@ -148,8 +149,8 @@ void PpmIntegrator::update() {
 }
 
 void PpmIntegrator::run_pass() {
-    photon_map_->run_pass(stats_.passes + 1, hitpoints_, stats_buf_, num_hitpoints_, 0.f, typical_radius_, max_radius_,
-                          passflux_);
+    photons_->run_pass(stats_.passes + 1, hitpoints_, stats_buf_, num_hitpoints_, 0.f, typical_radius_, max_radius_,
+                       passflux_);
     update();
     collect_event_times(stats_);
     stats_.passes += 1;

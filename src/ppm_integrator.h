@@ -5,14 +5,14 @@
 #include <vector>
 
 #include "integrator.h"
-#include "photon_map.h"
+#include "photon_passes.h"
 
 namespace clppm {
 
 class PpmIntegrator : public IntegratorBase {
 public:
     PpmIntegrator(const DeviceContext& dc, const DeviceScene& scene, const RenderSettings& settings,
-                  const cl::Program& program);
+                  const cl::Program& program, const SecondaryDevices& secondaries = {});
     std::string name() const override { return "ppm"; }
     void prepare() override;
     void run_pass() override;
@@ -27,7 +27,7 @@ private:
     const DeviceContext& dc_;
     const DeviceScene& scene_;
     RenderSettings settings_;
-    std::unique_ptr<PhotonMap> photon_map_;
+    std::unique_ptr<PhotonPasses> photons_;
     cl::Kernel k_eye_, k_direct_, k_update_, k_film_;
 
     uint32_t num_pixels_ = 0;

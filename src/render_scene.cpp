@@ -136,6 +136,29 @@ dev::Camera make_camera(const Scene& scene, const RenderSettings& settings, cons
     return cam;
 }
 
+namespace {
+
+cl::Buffer copy_buffer(const cl::Buffer& src, const DeviceContext& from, const DeviceContext& to) {
+    const size_t bytes = src.getInfo<CL_MEM_SIZE>();
+    std::vector<unsigned char> data(bytes);
+    from.queue.enqueueReadBuffer(src, CL_TRUE, 0, bytes, data.data());
+    cl::Buffer dst(to.context, CL_MEM_READ_ONLY, bytes);
+    to.queue.enqueueWriteBuffer(dst, CL_TRUE, 0, bytes, data.data());
+    return dst;
+}
+
+} // namespace
+
+DeviceScene DeviceScene::clone_to(const DeviceContext& from, const DeviceContext& to) const {
+    DeviceScene c = *this; // host-side values
+    for (cl::Buffer DeviceScene::*b : {&DeviceScene::bvh_nodes_buf, &DeviceScene::tris_buf, &DeviceScene::shading_buf,
+                                       &DeviceScene::materials_buf, &DeviceScene::textures_buf, &DeviceScene::texels_buf,
+                                       &DeviceScene::lights_buf, &DeviceScene::light_cdf_buf, &DeviceScene::info_buf,
+                                       &DeviceScene::camera_buf})
+        c.*b = copy_buffer(this->*b, from, to);
+    return c;
+}
+
 int DeviceScene::set_scene_args(cl::Kernel& k, int a) const {
     k.setArg(a++, bvh_nodes_buf);
     k.setArg(a++, tris_buf);

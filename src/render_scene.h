@@ -27,6 +27,9 @@ struct DeviceScene {
     cl::Buffer bvh_nodes_buf, tris_buf, shading_buf, materials_buf, textures_buf, texels_buf, lights_buf,
         light_cdf_buf, info_buf, camera_buf;
 
+    // The same scene on another device (another context): every buffer copied through the host.
+    DeviceScene clone_to(const DeviceContext& from, const DeviceContext& to) const;
+
     // Sets the SCENE_PARAMS arguments (kernels/scene.cl) starting at argument `first`; returns the
     // index of the next argument.
     int set_scene_args(cl::Kernel& k, int first = 0) const;

@@ -51,15 +51,26 @@ RenderSettings settings_from(const Options& o) {
     return s;
 }
 
-// The device a render runs on: the first --device spec, else the first GPU, else device 0.
-const DeviceInfo& choose_device(const Options& opt, const std::vector<DeviceInfo>& devices) {
-    if (opt.devices.size() > 1)
-        throw Error("--device given " + std::to_string(opt.devices.size()) +
-                    " times: rendering on several devices at once is not supported yet; give one --device");
-    if (!opt.devices.empty()) return select_device(devices, opt.devices[0]);
+// The devices a render runs on, the first of them primary: every --device spec in order ("all":
+// every device), else the first GPU, else device 0. A device named twice is an error.
+std::vector<DeviceInfo> choose_devices(const Options& opt, const std::vector<DeviceInfo>& devices) {
+    std::vector<DeviceInfo> chosen;
+    for (const std::string& spec : opt.devices) {
+        if (spec == "all") {
+            if (devices.empty()) select_device(devices, spec); // throws: no device
+            for (const DeviceInfo& d : devices) chosen.push_back(d);
+            continue;
+        }
+        const DeviceInfo& d = select_device(devices, spec);
+        for (const DeviceInfo& c : chosen)
+            if (c.index == d.index)
+                throw Error("--device " + spec + ": device [" + std::to_string(d.index) + "] " + d.name + " is given twice");
+        chosen.push_back(d);
+    }
+    if (!chosen.empty()) return chosen;
     for (const DeviceInfo& d : devices)
-        if (d.type & CL_DEVICE_TYPE_GPU) return d;
-    return select_device(devices, "0");
+        if (d.type & CL_DEVICE_TYPE_GPU) return {d};
+    return {select_device(devices, "0")};
 }
 
 // Every file the render will write is checked before hours of rendering, not after.
@@ -138,6 +149,7 @@ Json make_stats(const Options& opt, const DeviceContext& dc, const DeviceScene& 
                                 {"photons", st.photon_bytes},
                                 {"total", ds.device_bytes + st.device_bytes + st.photon_bytes}};
     j["photon_batches_per_pass"] = st.photon_batches;
+    j["device_photons_last_pass"] = st.device_photons;
     j["degenerate_triangles_skipped"] = scene.degenerate_triangles_skipped;
     j["nonfinite_pixels"] = count_nonfinite(img);
     j["mean_radiance"] = mean_radiance(img);
@@ -181,7 +193,8 @@ int render_session(const Options& opt) {
     install_interrupt_handlers();
     if (!opt.kernel_dir.empty()) set_kernel_dir(opt.kernel_dir);
     std::vector<DeviceInfo> devices = list_devices();
-    const DeviceInfo& info = choose_device(opt, devices);
+    const std::vector<DeviceInfo> chosen = choose_devices(opt, devices);
+    const DeviceInfo& info = chosen.front();
     check_outputs(opt);
 
     Scene scene = load_scene(opt);
@@ -216,7 +229,16 @@ int render_session(const Options& opt) {
                   (opt.generic_kernels ? std::string("generic") : "for " + describe_features(features)) + " " +
                   (build.from_cache ? "cached" : "built") + " in " + std::to_string(build.seconds).substr(0, 5) + " s");
 
-    std::unique_ptr<IntegratorBase> integ = make_integrator(dc, ds, settings, program);
+    SecondaryDevices secondaries{std::vector<DeviceInfo>(chosen.begin() + 1, chosen.end()), program_file, build_options};
+    if (!secondaries.devices.empty() && settings.integrator == Integrator::PT) {
+        note(opt, "warning: the path tracer runs on the first device only");
+        secondaries.devices.clear();
+    }
+    for (const DeviceInfo& d : secondaries.devices) {
+        integrator_build_options(settings, d); // the same requirements (fp64) as the primary
+        note(opt, "sharing photons with device [" + std::to_string(d.index) + "] " + d.name);
+    }
+    std::unique_ptr<IntegratorBase> integ = make_integrator(dc, ds, settings, program, secondaries);
     Clock render_clock;
     integ->prepare();
     if (!opt.resume.empty()) {

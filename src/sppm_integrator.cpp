@@ -7,9 +7,10 @@
 namespace clppm {
 
 SppmIntegrator::SppmIntegrator(const DeviceContext& dc, const DeviceScene& scene, const RenderSettings& settings,
-                               const cl::Program& program)
+                               const cl::Program& program, const SecondaryDevices& secondaries)
     : dc_(dc), scene_(scene), settings_(settings), probabilistic_(settings.integrator == Integrator::PPPM) {
-    photon_map_ = std::make_unique<PhotonMap>(dc, scene, settings_, program, stats_);
+    photons_ = std::make_unique<PhotonPasses>(dc, scene, settings_, program, stats_, secondaries.devices,
+                                              secondaries.program_file, secondaries.build_options);
     k_eye_ = cl::Kernel(program, "eye_pass");
     k_emission_ = cl::Kernel(program, "accumulate_emission");
     k_direct_ = cl::Kernel(program, "direct_light");
@@ -75,7 +76,7 @@ void SppmIntegrator::run_pass() {
 
     if (probabilistic_) {
         const double r = std::sqrt(r2_);
-        photon_map_->run_pass(pass, hitpoints_, stats_buf_, num_pixels_, float(r2_), r, r, passflux_);
+        photons_->run_pass(pass, hitpoints_, stats_buf_, num_pixels_, float(r2_), r, r, passflux_);
         k_accumulate_.setArg(0, passflux_);
         k_accumulate_.setArg(1, hitpoints_);
         k_accumulate_.setArg(2, stats_buf_);
@@ -88,7 +89,7 @@ void SppmIntegrator::run_pass() {
         r2_ = next_pppm_radius2(r2_, pass, settings_.alpha);
         stats_.mean_radius = std::sqrt(r2_);
     } else {
-        photon_map_->run_pass(pass, hitpoints_, stats_buf_, num_pixels_, 0.f, typical_radius_, max_radius_, passflux_);
+        photons_->run_pass(pass, hitpoints_, stats_buf_, num_pixels_, 0.f, typical_radius_, max_radius_, passflux_);
         auto [mean, mx] = enqueue_ppm_update(dc_, k_update_, passflux_, hitpoints_, stats_buf_, num_pixels_,
                                              settings_.alpha, radius_partials_, stats_);
         stats_.mean_radius = typical_radius_ = mean;

@@ -5,14 +5,14 @@
 #include <memory>
 
 #include "integrator.h"
-#include "photon_map.h"
+#include "photon_passes.h"
 
 namespace clppm {
 
 class SppmIntegrator : public IntegratorBase {
 public:
     SppmIntegrator(const DeviceContext& dc, const DeviceScene& scene, const RenderSettings& settings,
-                   const cl::Program& program);
+                   const cl::Program& program, const SecondaryDevices& secondaries = {});
     std::string name() const override { return probabilistic_ ? "pppm" : "sppm"; }
     void prepare() override;
     void run_pass() override;
@@ -30,7 +30,7 @@ private:
     const DeviceScene& scene_;
     RenderSettings settings_;
     bool probabilistic_;
-    std::unique_ptr<PhotonMap> photon_map_;
+    std::unique_ptr<PhotonPasses> photons_;
     cl::Kernel k_eye_, k_emission_, k_direct_, k_update_, k_accumulate_, k_film_;
     uint32_t num_pixels_ = 0;
     cl::Buffer hitpoints_, sample_emission_, stats_buf_, passflux_, image_buf_, radius_partials_;
