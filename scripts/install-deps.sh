@@ -9,8 +9,8 @@ required=(
   libglm-dev libopenexr-dev libtinygltf-dev nlohmann-json3-dev libstb-dev
   libgtest-dev googletest cmake g++ make pkg-config python3
 )
-# Optional: a faster CPU BVH for comparisons; the build works without it.
-optional=(libembree-dev)
+# Optional, for the benchmarks only: Embree (the CPU traversal yardstick) and gnuplot (plots).
+optional=(libembree-dev gnuplot-nox)
 
 # Prints the packages of "$@" that are not fully installed (one dpkg-query for all of them).
 missing_of() {

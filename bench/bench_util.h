@@ -1,0 +1,67 @@
+// What the benchmark programs share: an in-process render they can step pass by pass and sample
+// at any moment, a wall clock, and small output helpers. Benchmarks measure; they never fail on
+// a time.
+#pragma once
+#include <chrono>
+#include <cstdio>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "device.h"
+#include "error.h"
+#include "gltf_load.h"
+#include "integrator.h"
+#include "kernel_program.h"
+#include "render_scene.h"
+#include "scene_features.h"
+
+namespace clppm::bench {
+
+inline double now_s() {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+inline Scene load_named_scene(const std::string& name) {
+    if (name.empty() || name == "cornell_box") return load_default_scene();
+    return load_gltf(std::string(CLPPM_SOURCE_DIR) + "/scenes/" + name + ".gltf");
+}
+
+// A render in this process on one device: build, prepare, then passes on demand.
+struct Render {
+    DeviceContext dc;
+    Scene scene;
+    DeviceScene ds;
+    cl::Program program;
+    ProgramBuildStats build;
+    std::unique_ptr<IntegratorBase> integ;
+    double prepare_seconds = 0;
+
+    Render(const DeviceInfo& device, const std::string& scene_name, const RenderSettings& s, bool generic = false)
+        : dc(device), scene(load_named_scene(scene_name)) {
+        ds = upload_scene(dc, scene, s);
+        std::string features = generic ? std::string() : feature_build_options(scene_features(scene, ds));
+        program = build_program(dc, integrator_program_file(s), integrator_build_options(s, device, features), &build);
+        integ = make_integrator(dc, ds, s, program);
+        double t0 = now_s();
+        integ->prepare();
+        dc.queue.finish();
+        prepare_seconds = now_s() - t0;
+    }
+};
+
+inline const DeviceInfo& bench_device(const std::string& spec) {
+    static std::vector<DeviceInfo> devices = list_devices();
+    if (!spec.empty()) return select_device(devices, spec);
+    for (const DeviceInfo& d : devices)
+        if (d.type & CL_DEVICE_TYPE_GPU) return d;
+    return select_device(devices, "0");
+}
+
+inline std::string fmt(const char* f, double v) {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, f, v);
+    return buf;
+}
+
+} // namespace clppm::bench

@@ -1,0 +1,29 @@
+#!/usr/bin/env bash
+# Runs every benchmark and collects their outputs in one folder.
+#   bench/run_benchmarks.sh [--quick] [OUT_DIR]
+# --quick: a smoke run of each program (under a minute; the test suite runs it as bench_smoke).
+# Without it: the full run behind bench/RESULTS.md (about 40 minutes on a 2-core CPU with PoCL).
+# The binaries are taken from $CLPPM_BENCH_BIN (default build/bench).
+set -euo pipefail
+root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+bin=${CLPPM_BENCH_BIN:-$root/build/bench}
+quick=""
+if [[ ${1:-} == --quick ]]; then quick=--quick; shift; fi
+out=${1:-$root/build/bench-results}
+mkdir -p "$out"
+start=$(date +%s)
+
+if [[ -n $quick ]]; then
+  "$bin/traversal_bench" --quick --rays 20000 --json "$out/traversal.json" > "$out/traversal.txt"
+  "$bin/throughput_bench" --quick --out "$out" > /dev/null
+  "$bin/convergence_bench" --quick --out "$out" > /dev/null
+  for f in traversal.json throughput.json throughput.md convergence_cornell_box.csv convergence_cornell_box.md; do
+    [[ -s $out/$f ]] || { echo "run_benchmarks: $out/$f missing or empty" >&2; exit 1; }
+  done
+else
+  "$bin/traversal_bench" --json "$out/traversal.json" | tee "$out/traversal.txt"
+  "$bin/throughput_bench" --out "$out" | tee "$out/throughput_stdout.md"
+  "$bin/convergence_bench" --scene cornell_box --size 128 --seconds 32 --reference-seconds 600 --out "$out"
+  "$bin/convergence_bench" --scene caustic --size 128 --seconds 32 --reference-seconds 600 --out "$out"
+fi
+echo "run_benchmarks: done in $(( $(date +%s) - start )) s, results in $out"
