@@ -2,7 +2,7 @@
 # Runs every benchmark and collects their outputs in one folder.
 #   bench/run_benchmarks.sh [--quick] [OUT_DIR]
 # --quick: a smoke run of each program (under a minute; the test suite runs it as bench_smoke).
-# Without it: the full run behind bench/RESULTS.md (about 40 minutes on a 2-core CPU with PoCL).
+# Without it: the full run behind bench/RESULTS.md (about 35 minutes on a 2-core CPU with PoCL).
 # The binaries are taken from $CLPPM_BENCH_BIN (default build/bench).
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
@@ -23,7 +23,7 @@ if [[ -n $quick ]]; then
 else
   "$bin/traversal_bench" --json "$out/traversal.json" | tee "$out/traversal.txt"
   "$bin/throughput_bench" --out "$out" | tee "$out/throughput_stdout.md"
-  "$bin/convergence_bench" --scene cornell_box --size 128 --seconds 32 --reference-seconds 600 --out "$out"
-  "$bin/convergence_bench" --scene caustic --size 128 --seconds 32 --reference-seconds 600 --out "$out"
+  "$bin/convergence_bench" --scene cornell_box --size 128 --seconds 32 --reference-seconds 400 --out "$out"
+  "$bin/convergence_bench" --scene caustic --size 128 --seconds 32 --reference-seconds 400 --out "$out"
 fi
 echo "run_benchmarks: done in $(( $(date +%s) - start )) s, results in $out"
