@@ -48,6 +48,26 @@ float dielectric_eta(SCENE_PARAMS, const Surface* s) {
     return s->front ? ior : 1.0f / ior;
 }
 
+/* One random event at a smooth dielectric for a path arriving along *dir: reflection with
+ * probability F, else refraction tinted by `base` (the Fresnel weights cancel the
+ * probabilities). Updates *dir, *org and *weight; false when the refracted ray would leave on
+ * the wrong side of the geometric surface (a shading-normal artefact): the path ends. */
+bool sample_dielectric(SCENE_PARAMS, const Surface* sf, float u, float3 base, float3* dir, float3* org,
+                       float3* weight) {
+    float eta = dielectric_eta(SCENE_ARGS, sf);
+    float F = fresnel_dielectric(-dot(*dir, sf->ns), eta);
+    if (u < F) {
+        *dir = specular_reflect(sf, *dir);
+        *org = offset_origin(SCENE_ARGS, sf->p, sf->ng);
+        return true;
+    }
+    *dir = refract_dir(*dir, sf->ns, eta);
+    if (dot(*dir, sf->ng) >= 0.0f) return false;
+    *weight *= base;
+    *org = offset_origin(SCENE_ARGS, sf->p, -sf->ng);
+    return true;
+}
+
 float material_alpha(__global const Material* m) { return fmax(m->roughness * m->roughness, 1e-4f); }
 
 /* The kind of the metal part of a metallic surface: a mirror when perfectly smooth. */

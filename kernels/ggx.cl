@@ -2,7 +2,8 @@
  * height-correlated Smith shadowing and Schlick's Fresnel with F0 = base colour (glTF's metal
  * model, with alpha = roughness^2). Sampled by the distribution of visible normals (Heitz 2018,
  * "Sampling the GGX Distribution of Visible Normals"). All directions point away from the
- * surface; n is the shading normal on the side of wo. The host twin is src/ggx.h. */
+ * surface; n is the shading normal on the side of wo. tests/bsdf_test.cpp holds the host
+ * reference. */
 #ifndef CLPPM_GGX_CL
 #define CLPPM_GGX_CL
 
@@ -11,7 +12,10 @@
 /* D(h), Walter et al. 2007 Eq. 33, with cos_h = n.h. */
 float ggx_d(float cos_h, float alpha) {
     float a2 = alpha * alpha;
-    float t = cos_h * cos_h * (a2 - 1.0f) + 1.0f;
+    /* (1 - c^2) + c^2 a2, not c^2 (a2 - 1) + 1: for alpha below ~1.7e-4, a2 - 1 rounds to -1 and
+     * D would be infinite at the peak. */
+    float c2 = cos_h * cos_h;
+    float t = (1.0f - c2) + c2 * a2;
     return a2 / (PI_F * t * t);
 }
 
@@ -43,6 +47,13 @@ float3 ggx_eval(float3 n, float3 wo, float3 wi, float3 f0, float alpha) {
     float d = ggx_d(dot(n, h), alpha);
     float g = ggx_g2(cos_o, cos_i, alpha);
     return fresnel_schlick(f0, dot(wi, h)) * (d * g / (4.0f * cos_o * cos_i));
+}
+
+/* The BRDF of a non-specular surface: Lambertian with albedo `color` when alpha is 0, else the
+ * GGX conductor with F0 = color. Zero for light from below. */
+float3 nonspecular_brdf(float3 n, float3 wo, float3 wi, float3 color, float alpha) {
+    if (alpha == 0.0f) return dot(n, wi) > 0.0f ? color * INV_PI_F : (float3)(0.0f);
+    return ggx_eval(n, wo, wi, color, alpha);
 }
 
 /* pdf of ggx_sample over wi (solid angle): D_wo(h) / (4 wo.h) = G1(wo) D(h) / (4 cos_o). */

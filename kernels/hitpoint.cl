@@ -23,9 +23,8 @@ void store_hitpoint(__global HitPoint* hp, uint pixel, float3 p, float3 ns, floa
 
 /* f(wo, wi) at the hit point; zero for light from below the surface. */
 float3 hitpoint_brdf(__global const HitPoint* hp, float3 n, float3 wi) {
-    float3 color = load3g(hp->color);
-    if (hp->alpha == 0.0f) return dot(n, wi) > 0.0f ? color * INV_PI_F : (float3)(0.0f);
-    return ggx_eval(n, oct_decode(hp->wo_oct), wi, color, hp->alpha);
+    float3 wo = hp->alpha == 0.0f ? n : oct_decode(hp->wo_oct); /* Lambertian ignores wo */
+    return nonspecular_brdf(n, wo, wi, load3g(hp->color), hp->alpha);
 }
 
 #endif

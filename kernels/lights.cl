@@ -26,6 +26,14 @@ float spot_falloff(__global const Light* L, float cos_theta) {
     return a * a;
 }
 
+/* A uniform point on an emissive triangle and its winding normal. */
+float3 area_light_point(SCENE_PARAMS, __global const Light* L, Rng* rng, float3* n) {
+    float3 v0 = tris[3 * L->prim].xyz, e1 = tris[3 * L->prim + 1].xyz, e2 = tris[3 * L->prim + 2].xyz;
+    float2 b = sample_triangle(rng_float(rng), rng_float(rng));
+    *n = normalize(cross(e1, e2));
+    return v0 + e1 * b.x + e2 * b.y;
+}
+
 /* Emits one photon: origin, direction, flux (units of total power) and, for area lights, the
  * normal of the emitting side (zero for punctual lights). */
 void emit_photon(SCENE_PARAMS, Rng* rng, float3* org, float3* dir, float3* flux) {
@@ -35,15 +43,13 @@ void emit_photon(SCENE_PARAMS, Rng* rng, float3* org, float3* dir, float3* flux)
     float3 rad = load3g(L->radiance);
     *org = *dir = *flux = (float3)(0.0f);
     if (HAS_AREA_LIGHTS && L->type == LIGHT_TRIANGLE) {
-        float3 v0 = tris[3 * L->prim].xyz, e1 = tris[3 * L->prim + 1].xyz, e2 = tris[3 * L->prim + 2].xyz;
-        float2 b = sample_triangle(rng_float(rng), rng_float(rng));
-        float3 n = normalize(cross(e1, e2));
+        float3 n;
+        float3 p = area_light_point(SCENE_ARGS, L, rng, &n);
         float sides = 1.0f;
         if (L->two_sided) {
             sides = 2.0f;
             if (rng_float(rng) < 0.5f) n = -n;
         }
-        float3 p = v0 + e1 * b.x + e2 * b.y;
         *dir = sample_cosine_hemisphere(n, rng_float(rng), rng_float(rng));
         *org = offset_origin(SCENE_ARGS, p, n);
         /* Le cos / (pick * (1/A) * (1/sides) * cos/pi) = Le A pi sides / pick */
@@ -85,10 +91,8 @@ bool sample_light(SCENE_PARAMS, float3 x, Rng* rng, float3* wi, float* dist, flo
     float pick = light_pick_pdf(SCENE_ARGS, l);
     float3 rad = load3g(L->radiance);
     if (HAS_AREA_LIGHTS && L->type == LIGHT_TRIANGLE) {
-        float3 v0 = tris[3 * L->prim].xyz, e1 = tris[3 * L->prim + 1].xyz, e2 = tris[3 * L->prim + 2].xyz;
-        float2 b = sample_triangle(rng_float(rng), rng_float(rng));
-        float3 y = v0 + e1 * b.x + e2 * b.y;
-        float3 ny = normalize(cross(e1, e2));
+        float3 ny;
+        float3 y = area_light_point(SCENE_ARGS, L, rng, &ny);
         float3 d = y - x;
         float d2 = dot(d, d);
         if (!(d2 > 0.0f)) return false;

@@ -8,25 +8,16 @@
 #include "lights.cl"
 #include "bsdf.cl"
 
-/* Next-event estimation at x with BRDF f: one light sample, shadow-tested. */
-float3 path_nee_diffuse(SCENE_PARAMS, const Surface* sf, float3 base, Rng* rng) {
+/* Next-event estimation at a non-specular surface (nonspecular_brdf: Lambertian when alpha is
+ * 0, else GGX): one light sample, shadow-tested. */
+float3 path_nee(SCENE_PARAMS, const Surface* sf, float3 wo, float3 color, float alpha, Rng* rng) {
     float3 wi, contrib;
     float dist;
     if (!sample_light(SCENE_ARGS, sf->p, rng, &wi, &dist, &contrib)) return (float3)(0.0f);
     float cos_x = dot(wi, sf->ns);
     if (cos_x <= 0.0f || dot(wi, sf->ng) <= 0.0f) return (float3)(0.0f);
     if (trace_occluded(SCENE_ARGS, offset_origin(SCENE_ARGS, sf->p, sf->ng), wi, dist)) return (float3)(0.0f);
-    return base * INV_PI_F * contrib * cos_x;
-}
-
-float3 path_nee_glossy(SCENE_PARAMS, const Surface* sf, float3 wo, float3 f0, float alpha, Rng* rng) {
-    float3 wi, contrib;
-    float dist;
-    if (!sample_light(SCENE_ARGS, sf->p, rng, &wi, &dist, &contrib)) return (float3)(0.0f);
-    float cos_x = dot(wi, sf->ns);
-    if (cos_x <= 0.0f || dot(wi, sf->ng) <= 0.0f) return (float3)(0.0f);
-    if (trace_occluded(SCENE_ARGS, offset_origin(SCENE_ARGS, sf->p, sf->ng), wi, dist)) return (float3)(0.0f);
-    return ggx_eval(sf->ns, wo, wi, f0, alpha) * contrib * cos_x;
+    return nonspecular_brdf(sf->ns, wo, wi, color, alpha) * contrib * cos_x;
 }
 
 __kernel void path_trace(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong pass, uint num_pixels,
@@ -48,7 +39,7 @@ __kernel void path_trace(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong
         float3 base = surface_base_color(SCENE_ARGS, &sf);
         uint kind = resolve_kind(SCENE_ARGS, &sf, rng_float(&rng));
         if (kind == MATERIAL_DIFFUSE) {
-            L += beta * path_nee_diffuse(SCENE_ARGS, &sf, base, &rng);
+            L += beta * path_nee(SCENE_ARGS, &sf, -dir, base, 0.0f, &rng);
             count_emission = false;
             /* Russian roulette after the first bounces, survival by throughput. */
             float q = fmin(max3(beta * base), 1.0f);
@@ -66,7 +57,7 @@ __kernel void path_trace(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong
              * treated like mirrors (emission found by the sampled ray counts). */
             float alpha = material_alpha(&materials[sf.material]);
             bool rough = alpha >= GLOSSY_HITPOINT_ALPHA;
-            if (rough) L += beta * path_nee_glossy(SCENE_ARGS, &sf, -dir, base, alpha, &rng);
+            if (rough) L += beta * path_nee(SCENE_ARGS, &sf, -dir, base, alpha, &rng);
             count_emission = !rough;
             float3 wi;
             float3 w = ggx_sample(sf.ns, -dir, base, alpha, rng_float(&rng), rng_float(&rng), &wi);
@@ -86,17 +77,7 @@ __kernel void path_trace(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong
             org = offset_origin(SCENE_ARGS, sf.p, sf.ng);
             count_emission = true;
         } else if (HAS_DIELECTRIC) {
-            float eta = dielectric_eta(SCENE_ARGS, &sf);
-            float F = fresnel_dielectric(-dot(dir, sf.ns), eta);
-            if (rng_float(&rng) < F) {
-                dir = specular_reflect(&sf, dir);
-                org = offset_origin(SCENE_ARGS, sf.p, sf.ng);
-            } else {
-                dir = refract_dir(dir, sf.ns, eta);
-                if (dot(dir, sf.ng) >= 0.0f) break;
-                beta *= base;
-                org = offset_origin(SCENE_ARGS, sf.p, -sf.ng);
-            }
+            if (!sample_dielectric(SCENE_ARGS, &sf, rng_float(&rng), base, &dir, &org, &beta)) break;
             count_emission = true;
         }
         if (!(max3(beta) > 0.0f)) break;

@@ -62,18 +62,8 @@ __kernel void photon_trace(SCENE_PARAMS, ulong seed, ulong pass, uint first_phot
             flux *= base;
             dir = specular_reflect(&sf, dir);
             org = offset_origin(SCENE_ARGS, sf.p, sf.ng);
-        } else if (HAS_DIELECTRIC) { /* reflect with probability F, else refract (weights cancel) */
-            float eta = dielectric_eta(SCENE_ARGS, &sf);
-            float F = fresnel_dielectric(-dot(dir, sf.ns), eta);
-            if (rng_float(&rng) < F) {
-                dir = specular_reflect(&sf, dir);
-                org = offset_origin(SCENE_ARGS, sf.p, sf.ng);
-            } else {
-                dir = refract_dir(dir, sf.ns, eta);
-                if (dot(dir, sf.ng) >= 0.0f) return;
-                flux *= base;
-                org = offset_origin(SCENE_ARGS, sf.p, -sf.ng);
-            }
+        } else if (HAS_DIELECTRIC) {
+            if (!sample_dielectric(SCENE_ARGS, &sf, rng_float(&rng), base, &dir, &org, &flux)) return;
         }
         if (!(max3(flux) > 0.0f)) return;
     }

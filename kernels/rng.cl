@@ -1,6 +1,7 @@
 /* rng.cl: PCG32 (O'Neill 2014) with streams derived by SplitMix64 from (seed, pass, index, purpose),
  * so every pass and every work item draws from its own stream and the image does not depend on
- * the work-group size or the order work items run in. The host twin is src/rng.h. */
+ * the work-group size or the order work items run in. tests/rng_test.cpp holds the host
+ * reference. */
 #ifndef CLPPM_RNG_CL
 #define CLPPM_RNG_CL
 
