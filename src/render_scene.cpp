@@ -63,7 +63,10 @@ std::vector<dev::Light> collect_lights(const Scene& scene, const dev::SceneInfo&
     for (dev::Light l : scene.punctual_lights) {
         double i = mean_rgb(l.radiance);
         if (l.type == LIGHT_POINT) l.power = float(4 * kPi * i);
-        else if (l.type == LIGHT_SPOT) l.power = float(2 * kPi * i * (1 - 0.5 * (l.cos_inner + l.cos_outer)));
+        // The glTF falloff squares a linear ramp in cos between the cones: integrated over the
+        // cone, 2 pi I ((1 - cos_inner) + (cos_inner - cos_outer) / 3).
+        else if (l.type == LIGHT_SPOT)
+            l.power = float(2 * kPi * i * ((1 - double(l.cos_inner)) + (double(l.cos_inner) - l.cos_outer) / 3));
         else l.power = float(i * kPi * double(info.radius) * info.radius); // E over the scene's disc
         if (l.power > 0 && std::isfinite(l.power)) lights.push_back(l);
     }
