@@ -10,6 +10,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <set>
 #include <sstream>
@@ -127,6 +128,13 @@ bool path_inside(const std::string& path, const std::string& base) {
     return !rel.empty() && rel != "." && *rel.begin() != "..";
 }
 
+// The same after resolving symbolic links: a link inside the directory may not lead out of it.
+bool resolves_inside(const std::string& path, const std::string& base) {
+    std::error_code ec, base_ec;
+    fs::path real = fs::weakly_canonical(path, ec), real_base = fs::weakly_canonical(base, base_ec);
+    return !ec && !base_ec && path_inside(real.string(), real_base.string());
+}
+
 std::string absolute_dir(const std::string& dir) {
     std::error_code ec;
     fs::path p = dir.empty() ? fs::current_path(ec) : fs::absolute(dir, ec);
@@ -154,7 +162,9 @@ bool guarded_read_file(std::vector<unsigned char>* out, std::string* err, const 
                        void* user) {
     auto* guard = static_cast<FsGuard*>(user);
     std::string why = "outside the scene directory";
-    if (path_inside(path, guard->base)) *out = read_whole_file(path, &why);
+    if (path_inside(path, guard->base) && !resolves_inside(path, guard->base))
+        why = "a symbolic link that leads outside the scene directory";
+    else if (path_inside(path, guard->base)) *out = read_whole_file(path, &why);
     guard->bytes_read += out->size();
     if (why.empty() && guard->bytes_read > kMaxExternalBytes) why = "external files exceed 2 GiB in total";
     if (why.empty()) return true;
@@ -270,18 +280,32 @@ uint64_t unsigned_member(const json& o, const char* key, uint64_t fallback) {
     return (it != o.end() && it->is_number_unsigned()) ? it->get<uint64_t>() : fallback;
 }
 
+// An index as tinygltf reads it: any JSON integer, cast to int (so 2^32 + 3 would read as 3).
+// One outside int is refused, so that the pre-scan checks the element tinygltf will use; -1
+// when absent or not an integer (tinygltf reports or ignores those).
+int64_t index_member(const json& o, const char* key, const std::string& owner, const LoadContext& ctx) {
+    auto it = o.find(key);
+    if (it == o.end() || !it->is_number_integer()) return -1;
+    bool fits = it->is_number_unsigned() ? it->get<uint64_t>() <= uint64_t(std::numeric_limits<int>::max())
+                                         : it->get<int64_t>() >= std::numeric_limits<int>::min();
+    if (!fits) ctx.fail(owner + " " + key + " " + it->dump() + " is not a valid index");
+    return it->get<int64_t>();
+}
+
 // tinygltf hands an image's bufferView bytes to the decoder without a bounds check.
 void check_image_buffer_views(const json& root, const LoadContext& ctx) {
     const json& views = member_array(root, "bufferViews");
     const json& buffers = member_array(root, "buffers");
-    for (const json& image : member_array(root, "images")) {
+    const json& images = member_array(root, "images");
+    for (size_t i = 0; i < images.size(); ++i) {
+        const json& image = images[i];
         if (!image.is_object() || !image.contains("bufferView")) continue;
-        uint64_t v = unsigned_member(image, "bufferView", UINT64_MAX);
-        if (v >= views.size() || !views[v].is_object()) continue; // tinygltf reports it
-        const json& view = views[v];
-        uint64_t b = unsigned_member(view, "buffer", UINT64_MAX);
-        if (b >= buffers.size() || !buffers[b].is_object()) continue;
-        uint64_t size = unsigned_member(buffers[b], "byteLength", 0);
+        int64_t v = index_member(image, "bufferView", "image " + std::to_string(i), ctx);
+        if (v < 0 || uint64_t(v) >= views.size() || !views[size_t(v)].is_object()) continue; // tinygltf reports it
+        const json& view = views[size_t(v)];
+        int64_t b = index_member(view, "buffer", "bufferView " + std::to_string(v), ctx);
+        if (b < 0 || uint64_t(b) >= buffers.size() || !buffers[size_t(b)].is_object()) continue;
+        uint64_t size = unsigned_member(buffers[size_t(b)], "byteLength", 0);
         uint64_t offset = unsigned_member(view, "byteOffset", 0);
         uint64_t length = unsigned_member(view, "byteLength", UINT64_MAX);
         if (offset > size || length > size - offset)
@@ -307,12 +331,17 @@ uint32_t read_u32_le(const unsigned char* p) {
 }
 
 // The JSON chunk of a GLB container (header: magic, version, length; chunk: length, "JSON").
+// tinygltf 2.7.0 checks the BIN chunk's length without its 8-byte chunk header, and then copies
+// up to 8 bytes from past the end of the file: that chunk is checked here too.
 std::pair<const char*, size_t> glb_json_chunk(const std::vector<unsigned char>& bytes,
                                               const LoadContext& ctx) {
     if (bytes.size() < 20 || read_u32_le(&bytes[16]) != 0x4E4F534Au)
         ctx.fail("invalid GLB: no JSON chunk");
     uint64_t length = read_u32_le(&bytes[12]);
     if (20 + length > bytes.size()) ctx.fail("invalid GLB: JSON chunk past the end of the file");
+    uint64_t bin = 20 + length, end = std::min<uint64_t>(read_u32_le(&bytes[8]), bytes.size());
+    if (bin + 8 <= end && bin + 8 + read_u32_le(&bytes[size_t(bin)]) > end)
+        ctx.fail("invalid GLB: BIN chunk past the end of the file");
     return {reinterpret_cast<const char*>(&bytes[20]), size_t(length)};
 }
 
@@ -578,7 +607,14 @@ public:
     void build() {
         warn_unsupported_extensions();
         convert_materials();
-        traverse(root_nodes());
+        std::vector<int> roots = root_nodes();
+        // Instancing multiplies triangles: a few kilobytes of nodes can name 2^26 of them. A first
+        // pass that only counts makes such a file fail before it fills gigabytes.
+        counting_ = true;
+        traverse(roots);
+        counting_ = false;
+        visits_ = 0;
+        traverse(roots);
         if (s_.shading.empty()) ctx_.fail("no triangle geometry");
     }
 
@@ -620,7 +656,9 @@ private:
         float strength = finite_factor(
             extension_number(g.extensions, "KHR_materials_emissive_strength", "emissiveStrength", 1.0),
             "emissiveStrength", label);
-        for (int c = 0; c < 3; ++c) m.emission[c] = std::max(0.f, m.emission[c] * strength);
+        for (int c = 0; c < 3; ++c) // each factor finite as a float, their product may not be
+            m.emission[c] = std::max(0.f, finite_factor(double(m.emission[c]) * strength,
+                                                        "emissiveFactor * emissiveStrength", label));
         m.metallic = std::clamp(finite_factor(pbr.metallicFactor, "metallicFactor", label), 0.f, 1.f);
         m.roughness = std::clamp(finite_factor(pbr.roughnessFactor, "roughnessFactor", label), 0.f, 1.f);
         m.transmission = std::clamp(finite_factor(
@@ -766,11 +804,17 @@ private:
         const tinygltf::Node& node = m_.nodes[size_t(index)];
         if (on_path_[size_t(index)]) ctx_.fail("node graph cycle: " + node_label(index) + " is its own ancestor");
         if (++visits_ > kMaxNodeVisits) ctx_.fail("the node hierarchy instances more than 2^20 nodes");
-        if (!transform_arrays_valid(node)) ctx_.fail(node_label(index) + " has a transform array of the wrong length");
-        glm::dmat4 local = local_matrix(node);
-        glm::dmat4 world = parent * local;
-        if (!finite(local) || !finite(world)) ctx_.fail(node_label(index) + " has a non-finite transform");
-        instantiate(index, world);
+        glm::dmat4 world(1.0); // the counting pass needs no transforms
+        if (counting_) {
+            count_triangles(node.mesh);
+        } else {
+            if (!transform_arrays_valid(node))
+                ctx_.fail(node_label(index) + " has a transform array of the wrong length");
+            glm::dmat4 local = local_matrix(node);
+            world = parent * local;
+            if (!finite(local) || !finite(world)) ctx_.fail(node_label(index) + " has a non-finite transform");
+            instantiate(index, world);
+        }
         on_path_[size_t(index)] = 1;
         stack.push_back({index, world, 0});
     }
@@ -787,6 +831,26 @@ private:
     }
 
     // -- meshes --
+
+    // Adds the triangles an instance of `mesh` will add (an upper bound: degenerate ones count).
+    void count_triangles(int mesh) {
+        if (mesh < 0 || size_t(mesh) >= m_.meshes.size()) return; // add_mesh reports it
+        auto cached = mesh_triangles_.find(mesh);
+        if (cached == mesh_triangles_.end()) {
+            size_t n = 0; // each count <= 2^31 (AccessorReader)
+            const tinygltf::Mesh& g = m_.meshes[size_t(mesh)];
+            for (size_t p = 0; p < g.primitives.size(); ++p) {
+                const tinygltf::Primitive& prim = g.primitives[p];
+                if (prim.mode != TINYGLTF_MODE_TRIANGLES || !prim.attributes.count("POSITION")) continue;
+                std::string label = labelled("mesh", mesh, g.name) + " primitive " + std::to_string(p);
+                size_t vertices = attribute(prim, "POSITION", label).count;
+                n += (prim.indices < 0 ? vertices : reader_.view(prim.indices, label + " indices").count) / 3;
+            }
+            cached = mesh_triangles_.emplace(mesh, n).first;
+        }
+        instanced_triangles_ += cached->second;
+        if (instanced_triangles_ > kMaxTriangles) ctx_.fail("the scene has more than 2^25 triangles");
+    }
 
     void add_mesh(int mesh, const glm::dmat4& world, const std::string& node_label) {
         if (size_t(mesh) >= m_.meshes.size())
@@ -967,6 +1031,7 @@ private:
         store3(l.direction, dir);
         set_spot_cone(g, label, &l);
         l.power = light_power(l);
+        if (!std::isfinite(l.power)) ctx_.fail(label + " has a non-finite power (intensity too large)");
         s_.punctual_lights.push_back(l);
     }
 
@@ -1060,6 +1125,9 @@ private:
     std::set<int> meshes_without_normals_;
     std::vector<char> on_path_;
     size_t visits_ = 0;
+    bool counting_ = false;           // the first traversal: count, build nothing
+    size_t instanced_triangles_ = 0;  // counted so far, all instances
+    std::map<int, size_t> mesh_triangles_;
 };
 
 Scene load_bytes(const std::vector<unsigned char>& bytes, const std::string& base, const std::string& source) {
