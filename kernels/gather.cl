@@ -2,8 +2,7 @@
  * cells its sphere overlaps (Hachisuka et al. 2008, Sec. 4.2: M(x) and Phi_M). One work item
  * writes one hit point: no atomics. Each photon is weighted by the BRDF at the hit point. PPPM passes one global radius instead (global_r2 > 0). Photons arriving from behind the surface, or lying on a
  * surface that faces the other way, are rejected. */
-#include "hash_grid.cl"
-#include "hitpoint.cl"
+#include "gather_common.cl"
 
 __kernel void gather(__constant GridInfo* g, __global const Photon* sorted, __global const uint* starts,
                      __global const HitPoint* hitpoints, __global const HitStats* stats, uint num_hitpoints,
@@ -33,15 +32,9 @@ __kernel void gather(__constant GridInfo* g, __global const Photon* sorted, __gl
                 uint end = starts[b + 1];
                 for (uint k = starts[b]; k < end; ++k) {
                     __global const Photon* ph = &sorted[k];
-                    float3 p = load3g(ph->pos);
-                    float3 d = p - x;
-                    if (dot(d, d) > r2) continue;
-                    /* A bucket holds other cells too: count each photon only from its own cell. */
-                    int3 pc = grid_cell(g, p);
-                    if (pc.x != cx || pc.y != cy || pc.z != cz) continue;
-                    float3 wi = oct_decode(ph->wi_oct);
-                    if (dot(n, wi) <= 0.0f) continue;
-                    if (dot(n, oct_decode(ph->normal_oct)) <= 0.0f) continue;
+                    float d2;
+                    float3 wi;
+                    if (!gather_accepts(g, ph, x, n, r2, cell, &d2, &wi)) continue;
                     /* tau_M += f(x, w_p, w_o) Phi_p (Eq. 9); the path throughput is applied later. */
                     float3 f = hitpoint_brdf(hp, n, wi);
                     acc0 += convert_long_rte((double)(f.x * ph->flux[0]) * FLUX_FIXED_SCALE);

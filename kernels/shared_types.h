@@ -181,6 +181,20 @@ typedef struct {
 /* Fixed point used for per-pass flux sums: exact, so the sum is the same in any order. */
 #define FLUX_FIXED_SCALE 4294967296.0 /* 2^32 */
 
+/* Per-pixel statistics of the progressive error estimate (Hachisuka, Jarosz and Jensen 2010;
+ * kernels/error_estimate.cl), kept only when error estimation is on. Running means (Welford) over
+ * the passes j = 1..n of the single-pass luminance estimates L_j, of R_j^2 and of the single-pass
+ * Laplacian estimates: the image is exactly the mean of the L_j (SPPM: tau_i / R_i^2 =
+ * sum_j tau_M,j / R_j^2), so their spread is its noise and mean(R_j^2) Laplacian / 8 its bias. */
+typedef struct {
+    double n;        /* passes accumulated */
+    double mean_l;   /* mean of L_j (luminance) */
+    double m2_l;     /* sum of squared deviations of L_j from their mean (Welford) */
+    double mean_r2;  /* mean of R_j^2 */
+    double mean_lap; /* mean of the single-pass estimates of the Laplacian of L */
+    double direct_y; /* luminance of HitStats.direct after the previous pass: this pass's share is the difference */
+} ErrorStats; /* 48 bytes */
+
 #ifndef __OPENCL_VERSION__
 } // namespace dev
 } // namespace clppm

@@ -15,6 +15,7 @@ namespace {
 struct ParseState {
     Options options;
     bool passes_given = false;
+    bool confidence_given = false;
 };
 
 struct OptionSpec;
@@ -227,6 +228,28 @@ const OptionSpec kOptions[] = {
     {"--dump-kernel-source", nullptr, "FILE", "Write the assembled kernel source and build options to FILE",
      "a file name", "none",
      [](ParseState& st, const Arg& a) { st.options.dump_kernel_source = non_empty(a); }},
+    // Hachisuka, Jarosz and Jensen 2010: a per-pixel bound on |L_i - L| (bias + noise bound).
+    {"--target-error", nullptr, "E",
+     "Stop once the estimated relative error (90th percentile of the per-pixel bounds at --confidence) "
+     "is at most E; --passes and --time still bound the render (sppm, pppm)",
+     "a number > 0", "none",
+     [](ParseState& st, const Arg& a) {
+         st.options.target_error = parse_real(a, [](double x) { return x > 0; });
+     }},
+    {"--confidence", nullptr, "P", "Confidence of the per-pixel error bounds (with --target-error or --error-output)",
+     "in (0, 1)", "0.95",
+     [](ParseState& st, const Arg& a) {
+         st.options.confidence = parse_real(a, [](double x) { return x > 0 && x < 1; });
+         st.confidence_given = true;
+     }},
+    {"--error-output", nullptr, "FILE",
+     "Write the per-pixel relative error bound to FILE (EXR) and a false-colour PNG beside it; the main "
+     "EXR gets an \"error\" layer too (sppm, pppm)",
+     "a file name ending in .exr", "none",
+     [](ParseState& st, const Arg& a) {
+         if (!ends_with_ci(a.value, ".exr") || a.value.size() <= 4) bad_value(a);
+         st.options.error_output = a.value;
+     }},
     {"--help", "-h", nullptr, "Print this help and exit",
      nullptr, nullptr,
      [](ParseState& st, const Arg&) { st.options.help = true; }},
@@ -247,6 +270,16 @@ void resolve_limits(ParseState& st) {
     if (st.passes_given && o.passes == 0 && o.time_limit <= 0)
         throw Error("--passes 0: unlimited passes need --time");
     if (!st.passes_given) o.passes = o.time_limit > 0 ? 0 : 64;
+}
+
+// Only SPPM and PPPM estimate their error; --confidence means nothing without an estimate.
+void check_error_options(const ParseState& st) {
+    const Options& o = st.options;
+    const char* asked = o.target_error > 0 ? "--target-error" : !o.error_output.empty() ? "--error-output" : nullptr;
+    if (asked && o.integrator != Integrator::SPPM && o.integrator != Integrator::PPPM)
+        throw Error(std::string(asked) + ": error estimation needs --integrator sppm or pppm (not " +
+                    to_string(o.integrator) + ")");
+    if (!asked && st.confidence_given) throw Error("--confidence: needs --target-error or --error-output");
 }
 
 // Handles args[i], an option; returns the index of the last argument it consumed.
@@ -329,8 +362,11 @@ Options parse_options(const std::vector<std::string>& args) {
         }
     }
     resolve_limits(st);
+    check_error_options(st);
     return st.options;
 }
+
+bool wants_error_estimate(const Options& o) { return o.target_error > 0 || !o.error_output.empty(); }
 
 Options parse_options(int argc, char** argv) {
     std::vector<std::string> args;

@@ -47,6 +47,9 @@ struct Options {
     bool generic_kernels = false;       // --generic-kernels: no scene specialisation
     std::string kernel_dir;             // load kernels from here instead of the embedded copies
     std::string dump_kernel_source;     // write the assembled kernel source and build options here
+    double target_error = 0.0;          // --target-error E: stop once the estimated error is <= E; 0 = off
+    double confidence = 0.95;           // --confidence P of the error bound, in (0, 1)
+    std::string error_output;           // --error-output FILE.exr: the per-pixel relative error bound
     bool help = false;                  // -h/--help: print usage() and exit
     bool version = false;               // --version: print the version and exit
 };
@@ -55,6 +58,9 @@ struct Options {
 // -h/--help or --version (the flag is set, the rest is ignored). Throws clppm::Error with one line
 // such as "--alpha 1.5: must be in (0, 1]" or "unknown option --foo (see --help)".
 Options parse_options(int argc, char** argv);
+
+// Whether the options ask for progressive error estimation (--target-error or --error-output).
+bool wants_error_estimate(const Options& options);
 
 // The same on already split arguments (without the program name); used by the tests.
 Options parse_options(const std::vector<std::string>& args);

@@ -157,6 +157,26 @@ void PhotonMap::gather(const cl::Buffer& hitpoints, const cl::Buffer& stats, uin
     cl::Event ev;
     enqueue_1d(dc_.queue, k_gather_, n, &ev);
     add_event_time(stats_, "gather", ev);
+    if (k_second_()) {
+        k_second_.setArg(0, grid_info_);
+        k_second_.setArg(1, sorted_);
+        k_second_.setArg(2, starts_);
+        k_second_.setArg(3, hitpoints);
+        k_second_.setArg(4, stats);
+        k_second_.setArg(5, cl_uint(n));
+        k_second_.setArg(6, cl_float(global_r2));
+        k_second_.setArg(7, cl_uint(accumulate ? 1 : 0));
+        k_second_.setArg(8, second_out_);
+        cl::Event ev2;
+        enqueue_1d(dc_.queue, k_second_, n, &ev2);
+        add_event_time(stats_, second_phase_, ev2);
+    }
+}
+
+void PhotonMap::set_second_gather(const cl::Kernel& kernel, const cl::Buffer& out, const std::string& phase) {
+    k_second_ = kernel;
+    second_out_ = out;
+    second_phase_ = phase;
 }
 
 void enqueue_direct_light(const DeviceContext& dc, const DeviceScene& scene, cl::Kernel& kernel, uint64_t seed,

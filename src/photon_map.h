@@ -4,6 +4,7 @@
 // batches whose gathers add up exactly (fixed-point sums), giving the same image.
 #pragma once
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "cl.h"
@@ -32,6 +33,11 @@ public:
     void run_pass(uint64_t pass, uint32_t first, uint32_t count, const cl::Buffer& hitpoints, const cl::Buffer& stats,
                   uint32_t n, float global_r2, double typical_radius, double max_radius, const cl::Buffer& out);
 
+    // A further gather over every batch's grid, after the flux gather: `kernel` takes gather's
+    // arguments with its own output buffer `out` in place of the PassFlux one (error estimation's
+    // Laplacian sums, src/error_estimate.h). An empty kernel turns it off.
+    void set_second_gather(const cl::Kernel& kernel, const cl::Buffer& out, const std::string& phase);
+
     uint32_t batches_last_pass() const { return batches_; }
     size_t device_bytes() const;
 
@@ -47,6 +53,9 @@ private:
     const RenderSettings& settings_;
     IntegratorStats& stats_;
     cl::Kernel k_photon_, k_count_, k_scan_, k_scatter_, k_gather_;
+    cl::Kernel k_second_;
+    cl::Buffer second_out_;
+    std::string second_phase_;
     cl::Buffer photons_, sorted_, counter_, grid_info_, counts_, starts_;
     dev::GridInfo grid_host_{};
     uint64_t max_capacity_ = 0; // stored photons the memory budget allows

@@ -59,6 +59,11 @@ PhotonPasses::PhotonPasses(const DeviceContext& primary, const DeviceScene& scen
 
 PhotonPasses::~PhotonPasses() = default;
 
+void PhotonPasses::set_second_gather(const cl::Kernel& kernel, const cl::Buffer& out, const std::string& phase) {
+    if (!workers_.empty()) throw Error(phase + " runs on one device only: give a single --device");
+    primary_.set_second_gather(kernel, out, phase);
+}
+
 std::vector<uint32_t> PhotonPasses::split(uint32_t photons) const {
     double total = 0;
     for (double r : rate_) total += r;

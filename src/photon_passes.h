@@ -27,6 +27,10 @@ public:
     void run_pass(uint64_t pass, const cl::Buffer& hitpoints, const cl::Buffer& stats, uint32_t n, float global_r2,
                   double typical_radius, double max_radius, const cl::Buffer& out);
 
+    // PhotonMap::set_second_gather on the primary device; with further devices it is an error
+    // (their photons would miss the second gather).
+    void set_second_gather(const cl::Kernel& kernel, const cl::Buffer& out, const std::string& phase);
+
     size_t devices() const { return 1 + workers_.size(); }
     // The photons each device traced in the last pass, primary first.
     const std::vector<uint32_t>& last_split() const { return split_; }

@@ -46,6 +46,15 @@ std::string eta_text(const ProgressInfo& p) {
     return eta < 0 ? "ETA ?" : "ETA " + format_duration(eta);
 }
 
+std::string error_text(const ProgressInfo& p) {
+    if (p.error < 0) return "";
+    std::string s = "  err " + (std::isfinite(p.error) ? printf_string("%.3g", p.error) : std::string("?"));
+    if (p.target_error <= 0) return s;
+    s += "/" + printf_string("%.3g", p.target_error);
+    if (!p.finished) s += p.error_eta_s < 0 ? " in ?" : " in " + format_duration(p.error_eta_s);
+    return s;
+}
+
 // Columns of the terminal, so the line never wraps (a wrapped line defeats \r); 0 if unknown.
 size_t terminal_columns(std::FILE* out) {
     struct winsize ws;
@@ -113,6 +122,7 @@ std::string format_progress_line(const ProgressInfo& p, bool with_bar) {
     line += "  " + format_duration(p.elapsed_s);
     std::string eta = eta_text(p);
     if (!eta.empty()) line += "  " + eta;
+    line += error_text(p);
     return line;
 }
 
@@ -137,6 +147,9 @@ ProgressInfo Progress::info(uint64_t pass, uint64_t photons, double radius, doub
     p.photons = photons;
     p.radius = radius;
     p.elapsed_s = elapsed_s;
+    p.error = error_;
+    p.target_error = target_error_;
+    p.error_eta_s = error_eta_s_;
     return p;
 }
 
@@ -145,6 +158,12 @@ void Progress::update(uint64_t pass, uint64_t photons, double radius, double ela
     double interval = terminal_ ? kTerminalInterval : kPlainInterval;
     if (drawn_ && elapsed_s - last_draw_s_ < interval) return;
     draw(info(pass, photons, radius, elapsed_s));
+}
+
+void Progress::set_error(double error, double target, double eta_s) {
+    error_ = error;
+    target_error_ = target;
+    error_eta_s_ = eta_s;
 }
 
 void Progress::finish(uint64_t pass, uint64_t photons, double radius, double elapsed_s) {

@@ -16,10 +16,14 @@ struct ProgressInfo {
     double radius = 0.0;      // current gather radius (whatever the caller reports)
     double elapsed_s = 0.0;
     bool finished = false;    // the final line: "done" instead of an ETA
+    double error = -1.0;      // estimated relative error (--target-error, --error-output); < 0 = none
+    double target_error = 0.0; // 0 = none
+    double error_eta_s = -1.0; // seconds until error <= target_error; < 0 = unknown
 };
 
 // One progress line without any terminal control characters, e.g.
-// "[#########-----------]  45% pass 29/64  5.80M photons  r 0.0123  3.10 pass/s  9s  ETA 11s".
+// "[#########-----------]  45% pass 29/64  5.80M photons  r 0.0123  3.10 pass/s  9s  ETA 11s",
+// followed by "  err 0.081" or, with a target, "  err 0.081/0.05 in 40s" when an error is known.
 // `with_bar` adds the bar (only drawn when a limit is known).
 std::string format_progress_line(const ProgressInfo& info, bool with_bar);
 
@@ -49,6 +53,8 @@ public:
 
     // Call after each pass; draws only if enough time has passed since the last line.
     void update(uint64_t pass, uint64_t photons, double radius, double elapsed_s);
+    // The estimated error (and the target and the time to reach it) shown from now on.
+    void set_error(double error, double target, double eta_s);
     // Draws the final line unconditionally (and ends it on a terminal).
     void finish(uint64_t pass, uint64_t photons, double radius, double elapsed_s);
 
@@ -61,6 +67,7 @@ private:
     bool quiet_;
     uint64_t pass_limit_;
     double time_limit_;
+    double error_ = -1.0, target_error_ = 0.0, error_eta_s_ = -1.0;
     bool drawn_ = false;      // a line has been drawn
     double last_draw_s_ = 0.0;
     size_t last_length_ = 0;  // of the terminal line, to blank out leftovers of a longer one

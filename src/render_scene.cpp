@@ -57,7 +57,11 @@ std::vector<dev::Light> collect_lights(const Scene& scene, const dev::SceneInfo&
         l.two_sided = (m.flags & MATERIAL_FLAG_DOUBLE_SIDED) ? 1u : 0u;
         l.area = float(area);
         for (int k = 0; k < 3; ++k) l.radiance[k] = m.emission[k];
-        l.power = float(le * area * kPi * (l.two_sided ? 2 : 1)); // Phi = Le A pi per side
+        const double power = le * area * kPi * (l.two_sided ? 2 : 1); // Phi = Le A pi per side
+        if (!std::isfinite(float(power)))
+            throw Error(scene.source + ": an emissive triangle's power (" + std::to_string(power) +
+                        " W) does not fit a float; scale the emission or the geometry down");
+        l.power = float(power);
         lights.push_back(l);
     }
     for (dev::Light l : scene.punctual_lights) {
@@ -214,6 +218,9 @@ DeviceScene upload_scene(const DeviceContext& dc, Scene& scene, const RenderSett
         ds.light_cdf.push_back(float(run / total));
     }
     ds.light_cdf.back() = 1.f;
+    if (!std::isfinite(float(total)))
+        throw Error(scene.source + ": the lights' total power (" + std::to_string(total) +
+                    " W) does not fit a float; scale the lights down");
     ds.info.total_power = float(total);
     ds.info.num_lights = uint32_t(ds.lights.size());
     for (const dev::Light& l : ds.lights) ds.info.num_emissive_tris += l.type == LIGHT_TRIANGLE;

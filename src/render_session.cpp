@@ -7,6 +7,7 @@
 #include "checkpoint.h"
 #include "device.h"
 #include "error.h"
+#include "error_estimate.h"
 #include "gltf_load.h"
 #include "image_io.h"
 #include "integrator.h"
@@ -16,6 +17,7 @@
 #include "progress.h"
 #include "render_scene.h"
 #include "scene_features.h"
+#include "sppm_integrator.h"
 #include "stats_json.h"
 #include "version.h"
 
@@ -79,11 +81,46 @@ void check_outputs(const Options& opt) {
     if (opt.write_png) check_writable(png_path_for(opt.output));
     if (!opt.stats_json.empty()) check_writable(opt.stats_json);
     if (!opt.checkpoint.empty()) check_writable(opt.checkpoint);
+    if (!opt.error_output.empty()) {
+        check_writable(opt.error_output);
+        check_writable(png_path_for(opt.error_output));
+    }
 }
 
-void save_images(const Options& opt, const Image& img) {
-    write_exr(opt.output, img);
+// --target-error / --error-output: the estimate after every pass, for halting and the outputs.
+struct ErrorTracking {
+    SppmIntegrator* integ = nullptr; // null: not estimating
+    ErrorImage last;
+    ErrorTrend trend;
+
+    void update(const Options& opt, Progress& progress, uint64_t pass, double seconds) {
+        if (!integ) return;
+        last = integ->error_estimate(opt.confidence);
+        trend.add(pass, seconds, last.image_error);
+        progress.set_error(last.image_error, opt.target_error, trend.eta_seconds(opt.target_error));
+    }
+    bool reached(const Options& opt) const { return integ && opt.target_error > 0 && last.image_error <= opt.target_error; }
+};
+
+// The main images, with the per-pixel relative error bound as an "error" layer when estimating.
+void save_images(const Options& opt, const Image& img, const ErrorTracking& errors) {
+    std::vector<ExrLayer> layers;
+    if (errors.integ && errors.last.relative.size() == img.rgb.size() / 3) layers.push_back({"error", &errors.last.relative});
+    write_exr(opt.output, img, layers);
     if (opt.write_png) write_png(png_path_for(opt.output), img);
+}
+
+// --error-output: the relative bound as a grey EXR (with its bias and noise parts as layers) and a
+// false-colour PNG, red at twice the target (0.2 without one).
+void save_error_images(const Options& opt, const ErrorImage& e) {
+    Image grey;
+    grey.width = e.width, grey.height = e.height;
+    grey.rgb.reserve(e.relative.size() * 3);
+    for (float v : e.relative) grey.rgb.insert(grey.rgb.end(), {v, v, v});
+    const std::vector<float> bias = relative_bounds(e.bias, e.luminance), noise = relative_bounds(e.noise, e.luminance);
+    write_exr(opt.error_output, grey, {{"bias", &bias}, {"noise", &noise}});
+    const double scale = opt.target_error > 0 ? 2 * opt.target_error : 0.2;
+    write_png(png_path_for(opt.error_output), false_colour(e.relative, e.width, e.height, scale));
 }
 
 // What a checkpoint must agree on to be resumed: everything that shapes the image.
@@ -239,6 +276,15 @@ int render_session(const Options& opt) {
         note(opt, "sharing photons with device [" + std::to_string(d.index) + "] " + d.name);
     }
     std::unique_ptr<IntegratorBase> integ = make_integrator(dc, ds, settings, program, secondaries);
+    ErrorTracking errors;
+    if (wants_error_estimate(opt)) {
+        const char* asked = opt.target_error > 0 ? "--target-error" : "--error-output";
+        if (!secondaries.devices.empty())
+            throw Error(std::string(asked) + ": error estimation runs on one device; give a single --device");
+        errors.integ = dynamic_cast<SppmIntegrator*>(integ.get());
+        if (!errors.integ) throw Error(std::string(asked) + ": the " + integ->name() + " integrator does not estimate its error");
+        errors.integ->enable_error_estimation();
+    }
     Clock render_clock;
     integ->prepare();
     if (!opt.resume.empty()) {
@@ -257,13 +303,15 @@ int render_session(const Options& opt) {
         const uint64_t p = integ->stats().passes;
         if (opt.passes > 0 && p >= opt.passes) return false;
         if (opt.time_limit > 0 && render_clock.seconds() >= opt.time_limit) return false;
+        if (errors.reached(opt)) return false;
         return (signal = interrupt_signal()) == 0;
     };
     while (more()) {
         integ->run_pass();
         const IntegratorStats& st = integ->stats();
+        errors.update(opt, progress, st.passes, render_clock.seconds());
         progress.update(st.passes, st.photons_emitted, st.mean_radius, render_clock.seconds());
-        if (opt.progressive_output > 0 && st.passes % opt.progressive_output == 0) save_images(opt, integ->image());
+        if (opt.progressive_output > 0 && st.passes % opt.progressive_output == 0) save_images(opt, integ->image(), errors);
         if (!opt.checkpoint.empty() &&
             ((opt.checkpoint_every > 0 && st.passes % opt.checkpoint_every == 0) ||
              render_clock.seconds() - last_checkpoint >= opt.checkpoint_interval)) {
@@ -276,13 +324,26 @@ int render_session(const Options& opt) {
     progress.finish(st.passes, st.photons_emitted, st.mean_radius, render_s);
 
     Image img = integ->image();
-    save_images(opt, img);
+    save_images(opt, img, errors);
+    if (!opt.error_output.empty() && !errors.last.relative.empty()) save_error_images(opt, errors.last);
+    if (errors.integ) {
+        char line[160];
+        std::snprintf(line, sizeof line, "estimated error %.4g (90th percentile, confidence %g)%s", errors.last.image_error,
+                      opt.confidence, errors.reached(opt) ? ": reached the target" : "");
+        note(opt, line);
+    }
     if (!opt.checkpoint.empty()) save_checkpoint(opt, *integ, fingerprint, dc);
     if (size_t bad = count_nonfinite(img)) note(opt, "warning: " + std::to_string(bad) + " pixel(s) are NaN or Inf");
-    if (!opt.stats_json.empty())
-        write_stats_json(opt.stats_json,
-                         make_stats(opt, dc, ds, scene, *integ, build, render_s, total.seconds(), img, signal));
+    if (!opt.stats_json.empty()) {
+        Json j = make_stats(opt, dc, ds, scene, *integ, build, render_s, total.seconds(), img, signal);
+        if (errors.integ)
+            j["error"] = {{"estimated", errors.last.image_error}, {"target", opt.target_error},
+                          {"reached", errors.reached(opt)}, {"confidence", opt.confidence},
+                          {"percentile", kErrorPercentile}, {"passes", errors.last.passes}};
+        write_stats_json(opt.stats_json, j);
+    }
     note(opt, "wrote " + opt.output + (opt.write_png ? " and " + png_path_for(opt.output) : std::string()) +
+                  (opt.error_output.empty() ? std::string() : " and " + opt.error_output) +
                   (opt.checkpoint.empty() ? std::string() : " and " + opt.checkpoint));
     if (signal) {
         note(opt, "interrupted after pass " + std::to_string(st.passes) +

@@ -67,4 +67,10 @@ CLPPM_CHECK_OFFSET(Photon, wi_oct, 28);
 CLPPM_CHECK_SIZE(GridInfo, 32);
 CLPPM_CHECK_OFFSET(GridInfo, inv_cell, 16);
 
+CLPPM_CHECK_SIZE(ErrorStats, 48);
+CLPPM_CHECK_OFFSET(ErrorStats, mean_l, 8);
+CLPPM_CHECK_OFFSET(ErrorStats, mean_r2, 24);
+CLPPM_CHECK_OFFSET(ErrorStats, direct_y, 40);
+static_assert(alignof(ErrorStats) == 8, "ErrorStats holds doubles only");
+
 } // namespace clppm::dev

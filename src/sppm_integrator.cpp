@@ -2,13 +2,15 @@
 
 #include <cmath>
 
+#include "error.h"
 #include "ppm_integrator.h"
 
 namespace clppm {
 
 SppmIntegrator::SppmIntegrator(const DeviceContext& dc, const DeviceScene& scene, const RenderSettings& settings,
                                const cl::Program& program, const SecondaryDevices& secondaries)
-    : dc_(dc), scene_(scene), settings_(settings), probabilistic_(settings.integrator == Integrator::PPPM) {
+    : dc_(dc), scene_(scene), settings_(settings), probabilistic_(settings.integrator == Integrator::PPPM),
+      program_(program) {
     photons_ = std::make_unique<PhotonPasses>(dc, scene, settings_, program, stats_, secondaries.devices,
                                               secondaries.program_file, secondaries.build_options);
     k_eye_ = cl::Kernel(program, "eye_pass");
@@ -46,6 +48,19 @@ void SppmIntegrator::prepare() {
     r2_ = r0 * r0;
     const dev::HitStats init{r0 * r0, 0.0, {0, 0, 0}, {0, 0, 0}};
     dc_.queue.enqueueFillBuffer(stats_buf_, init, 0, n * sizeof(dev::HitStats));
+    if (errors_) errors_->reset(stats_buf_);
+}
+
+void SppmIntegrator::enable_error_estimation() {
+    if (errors_) return;
+    errors_ = std::make_unique<ErrorEstimator>(dc_, program_, num_pixels_, stats_);
+    photons_->set_second_gather(errors_->gather_kernel(), errors_->laplacian(), "error_estimate");
+    if (stats_buf_()) errors_->reset(stats_buf_); // after prepare(): the estimate starts here
+}
+
+ErrorImage SppmIntegrator::error_estimate(double confidence) {
+    if (!errors_) throw Error("error estimation is not enabled");
+    return errors_->estimate(confidence, int(scene_.camera.width), int(scene_.camera.height));
 }
 
 // New visible points for every pixel; their seen emission joins the per-pixel running sum.
@@ -77,6 +92,7 @@ void SppmIntegrator::run_pass() {
     if (probabilistic_) {
         const double r = std::sqrt(r2_);
         photons_->run_pass(pass, hitpoints_, stats_buf_, num_pixels_, float(r2_), r, r, passflux_);
+        if (errors_) errors_->update(passflux_, hitpoints_, stats_buf_, r2_, power_per_photon());
         k_accumulate_.setArg(0, passflux_);
         k_accumulate_.setArg(1, hitpoints_);
         k_accumulate_.setArg(2, stats_buf_);
@@ -90,6 +106,8 @@ void SppmIntegrator::run_pass() {
         stats_.mean_radius = std::sqrt(r2_);
     } else {
         photons_->run_pass(pass, hitpoints_, stats_buf_, num_pixels_, 0.f, typical_radius_, max_radius_, passflux_);
+        // Before the update: the statistics still hold the radius this pass gathered with.
+        if (errors_) errors_->update(passflux_, hitpoints_, stats_buf_, 0.0, power_per_photon());
         auto [mean, mx] = enqueue_ppm_update(dc_, k_update_, passflux_, hitpoints_, stats_buf_, num_pixels_,
                                              settings_.alpha, radius_partials_, stats_);
         stats_.mean_radius = typical_radius_ = mean;
@@ -107,6 +125,7 @@ void SppmIntegrator::save(Checkpoint& ck) {
     ck.header["pppm_r2"] = r2_;
     ck.header["typical_radius"] = typical_radius_;
     ck.header["max_radius"] = max_radius_;
+    if (errors_) ck.put("error_stats", errors_->read());
 }
 
 void SppmIntegrator::restore(const Checkpoint& ck) {
@@ -115,6 +134,13 @@ void SppmIntegrator::restore(const Checkpoint& ck) {
     r2_ = ck.header.value("pppm_r2", r2_);
     typical_radius_ = ck.header.value("typical_radius", typical_radius_);
     max_radius_ = ck.header.value("max_radius", max_radius_);
+    if (!errors_) return;
+    // A checkpoint saved without error estimation: the estimate starts over from here.
+    auto blob = ck.blobs.find("error_stats");
+    if (blob != ck.blobs.end() && blob->second.size() == size_t(num_pixels_) * sizeof(dev::ErrorStats))
+        errors_->write(ck.get<dev::ErrorStats>("error_stats", num_pixels_));
+    else
+        errors_->reset(stats_buf_);
 }
 
 Image SppmIntegrator::image() {

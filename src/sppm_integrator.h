@@ -4,6 +4,7 @@
 #pragma once
 #include <memory>
 
+#include "error_estimate.h"
 #include "integrator.h"
 #include "photon_passes.h"
 
@@ -20,17 +21,28 @@ public:
     void save(Checkpoint& ck) override;
     void restore(const Checkpoint& ck) override;
 
+    // Progressive error estimation (src/error_estimate.h), from the next pass on (call it before
+    // prepare() to cover the whole render). Off unless
+    // asked for, so a render without it launches nothing more.
+    void enable_error_estimation();
+    bool error_estimation() const { return errors_ != nullptr; }
+    // The per-pixel error bounds after the last pass, at `confidence` in (0, 1).
+    ErrorImage error_estimate(double confidence);
+
     // Knaus and Zwicker 2011, Eq. 20: r_{i+1}^2 = r_i^2 (i + alpha) / (i + 1), i the 1-based pass.
     static double next_pppm_radius2(double r2, uint64_t i, double alpha) { return r2 * (double(i) + alpha) / double(i + 1); }
 
 private:
     void eye_pass(uint64_t pass);
+    double power_per_photon() const { return double(scene_.info.total_power) / double(settings_.photons); }
 
     const DeviceContext& dc_;
     const DeviceScene& scene_;
     RenderSettings settings_;
     bool probabilistic_;
     std::unique_ptr<PhotonPasses> photons_;
+    cl::Program program_; // for the error estimation kernels
+    std::unique_ptr<ErrorEstimator> errors_;
     cl::Kernel k_eye_, k_emission_, k_direct_, k_update_, k_accumulate_, k_film_;
     uint32_t num_pixels_ = 0;
     cl::Buffer hitpoints_, sample_emission_, stats_buf_, passflux_, image_buf_, radius_partials_;

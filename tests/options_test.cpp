@@ -217,6 +217,33 @@ INSTANTIATE_TEST_SUITE_P(
         BadValue{{"--kernel-dir="}, "--kernel-dir '': must be a directory"},
         BadValue{{"--dump-kernel-source="}, "--dump-kernel-source '': must be a file name"}));
 
+TEST(Options, ErrorEstimation) {
+    Options d = parse_options(Args{});
+    EXPECT_EQ(d.target_error, 0.0);
+    EXPECT_EQ(d.confidence, 0.95);
+    EXPECT_EQ(d.error_output, "");
+    EXPECT_FALSE(wants_error_estimate(d));
+    Options o = parse_options(Args{"--integrator", "sppm", "--target-error", "0.05", "--confidence=0.9",
+                                   "--error-output", "e.exr"});
+    EXPECT_EQ(o.target_error, 0.05);
+    EXPECT_EQ(o.confidence, 0.9);
+    EXPECT_EQ(o.error_output, "e.exr");
+    EXPECT_TRUE(wants_error_estimate(o));
+    // The integrator may come after the option; pppm estimates too.
+    EXPECT_TRUE(wants_error_estimate(parse_options(Args{"--error-output", "e.exr", "--integrator", "pppm"})));
+    EXPECT_EQ(error_of({"--target-error", "0.1"}),
+              "--target-error: error estimation needs --integrator sppm or pppm (not ppm)");
+    EXPECT_EQ(error_of({"--integrator", "pt", "--error-output", "e.exr"}),
+              "--error-output: error estimation needs --integrator sppm or pppm (not pt)");
+    EXPECT_EQ(error_of({"--integrator", "sppm", "--confidence", "0.9"}),
+              "--confidence: needs --target-error or --error-output");
+    EXPECT_EQ(error_of({"--target-error", "0"}), "--target-error 0: must be a number > 0");
+    EXPECT_EQ(error_of({"--target-error", "nan"}), "--target-error nan: must be a number > 0");
+    EXPECT_EQ(error_of({"--confidence", "1"}), "--confidence 1: must be in (0, 1)");
+    EXPECT_EQ(error_of({"--confidence", "0"}), "--confidence 0: must be in (0, 1)");
+    EXPECT_EQ(error_of({"--error-output", "e.png"}), "--error-output e.png: must be a file name ending in .exr");
+}
+
 TEST(Options, ArgcArgv) {
     const char* argv[] = {"clppm", "--passes=3", "box.glb"};
     Options o = parse_options(3, const_cast<char**>(argv));
@@ -240,10 +267,12 @@ TEST(Options, UsageListsEveryOptionWithDefaultAndRange) {
                              "--photons N", "--alpha A", "--radius R", "--seed S", "--list-devices", "--device SPEC",
                              "--camera N", "--quiet", "--stats-json FILE", "--integrator NAME", "--direct MODE",
                              "--spp N", "--max-bounces N", "--progressive-output K", "--kernel-dir DIR",
-                             "--dump-kernel-source FILE", "-h, --help", "--version"})
+                             "--dump-kernel-source FILE", "--target-error E", "--confidence P",
+                             "--error-output FILE", "-h, --help", "--version"})
         EXPECT_NE(text.find(name), std::string::npos) << name;
     for (const char* fragment : {"Default: clppm.exr", "Default: 0.7", "in (0, 1]", "Default: 200000", "Default: 16",
-                                 "1..256", "Default: ppm", "Default: sample", "Default: 64"})
+                                 "1..256", "Default: ppm", "Default: sample", "Default: 64",
+                                 "Default: 0.95", "in (0, 1)"})
         EXPECT_NE(text.find(fragment), std::string::npos) << fragment;
 }
 
