@@ -89,7 +89,10 @@ void PhotonPasses::run_pass(uint64_t pass, const cl::Buffer& hitpoints, const cl
     split_ = split(M);
     stats_.device_photons = split_;
     // The secondaries gather for the primary's hit points with the primary's radii.
-    std::vector<dev::HitPoint> hp = read_buffer<dev::HitPoint>(dc_.queue, hitpoints, n);
+    const bool send_hitpoints = !hitpoints_fixed_ || hitpoints_sent_ != n;
+    std::vector<dev::HitPoint> hp;
+    if (send_hitpoints) hp = read_buffer<dev::HitPoint>(dc_.queue, hitpoints, n);
+    hitpoints_sent_ = n;
     std::vector<dev::HitStats> hs = read_buffer<dev::HitStats>(dc_.queue, stats, n);
     std::vector<std::thread> threads;
     uint32_t first = split_[0];
@@ -101,7 +104,7 @@ void PhotonPasses::run_pass(uint64_t pass, const cl::Buffer& hitpoints, const cl
             try {
                 const double t0 = now_s();
                 w.ensure(std::max<uint32_t>(1, n));
-                write_buffer(w.dc.queue, w.hitpoints, hp);
+                if (send_hitpoints) write_buffer(w.dc.queue, w.hitpoints, hp);
                 write_buffer(w.dc.queue, w.hstats, hs);
                 w.map->run_pass(pass, begin, count, w.hitpoints, w.hstats, n, global_r2, typical_radius, max_radius, w.out);
                 w.result = read_buffer<dev::PassFlux>(w.dc.queue, w.out, n);

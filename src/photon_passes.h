@@ -22,6 +22,10 @@ public:
                  const std::string& program_file, const std::string& build_options);
     ~PhotonPasses();
 
+    // PPM's hit points never change after the eye pass: the secondaries then receive them once
+    // instead of every pass.
+    void set_hitpoints_fixed(bool fixed) { hitpoints_fixed_ = fixed; }
+
     // As PhotonMap::run_pass for the pass's whole photon range; hitpoints, stats and out are the
     // primary device's buffers.
     void run_pass(uint64_t pass, const cl::Buffer& hitpoints, const cl::Buffer& stats, uint32_t n, float global_r2,
@@ -46,6 +50,8 @@ private:
     std::vector<std::unique_ptr<Worker>> workers_;
     std::vector<double> rate_; // photons per second per device, smoothed
     std::vector<uint32_t> split_;
+    bool hitpoints_fixed_ = false;
+    uint32_t hitpoints_sent_ = 0; // hit points the secondaries hold (fixed hit points only)
 };
 
 } // namespace clppm

@@ -58,6 +58,7 @@ PpmIntegrator::PpmIntegrator(const DeviceContext& dc, const DeviceScene& scene, 
     : dc_(dc), scene_(scene), settings_(settings) {
     photons_ = std::make_unique<PhotonPasses>(dc, scene, settings_, program, stats_, secondaries.devices,
                                               secondaries.program_file, secondaries.build_options);
+    photons_->set_hitpoints_fixed(true);
     k_eye_ = cl::Kernel(program, "eye_pass");
     k_direct_ = cl::Kernel(program, "direct_light");
     k_update_ = cl::Kernel(program, "ppm_update");
