@@ -8,13 +8,13 @@
 #include <string>
 #include <vector>
 
-#include "device.h"
-#include "error.h"
-#include "gltf_load.h"
-#include "integrator.h"
-#include "kernel_program.h"
-#include "render_scene.h"
-#include "scene_features.h"
+#include "device/device.h"
+#include "util/error.h"
+#include "scene/gltf/gltf_load.h"
+#include "integrators/integrator_factory.h"
+#include "device/kernel_program.h"
+#include "scene/device_scene.h"
+#include "scene/scene_features.h"
 
 namespace clppm::bench {
 

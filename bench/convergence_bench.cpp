@@ -17,9 +17,9 @@
 #include <sys/stat.h>
 
 #include "bench_util.h"
-#include "image_compare.h"
-#include "image_io.h"
-#include "stats_json.h"
+#include "io/image_compare.h"
+#include "io/image_io.h"
+#include "io/stats_json.h"
 
 using namespace clppm;
 using namespace clppm::bench;

@@ -17,8 +17,7 @@
 #include <vector>
 
 #include "bench_util.h"
-#include "error_estimate.h"
-#include "sppm_integrator.h"
+#include "integrators/error_estimate.h"
 
 using namespace clppm;
 using namespace clppm::bench;
@@ -82,14 +81,13 @@ int main(int argc, char** argv) {
 
             s.seed = 1;
             Render r(device, scene, s);
-            auto* sppm = dynamic_cast<SppmIntegrator*>(r.integ.get());
-            sppm->enable_error_estimation();
+            r.integ->enable_error_estimation();
             const double t0 = now_s();
             for (uint64_t p = 1; p <= a.passes; ++p) {
                 r.integ->run_pass();
                 const bool sample = p == a.passes || (p >= 4 && (p & (p - 1)) == 0); // 4, 8, 16, ...
                 if (!sample) continue;
-                ErrorImage e = sppm->error_estimate(a.confidence);
+                ErrorImage e = r.integ->error_estimate(a.confidence);
                 std::vector<float> actual(e.absolute.size());
                 size_t within = 0;
                 std::vector<double> ratio;

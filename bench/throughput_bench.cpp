@@ -10,7 +10,7 @@
 #include <sstream>
 
 #include "bench_util.h"
-#include "stats_json.h"
+#include "io/stats_json.h"
 
 using namespace clppm;
 using namespace clppm::bench;

@@ -23,10 +23,10 @@
 
 #include <sys/resource.h>
 
-#include "bvh_build.h"
-#include "bvh_trace.h"
-#include "device.h"
-#include "error.h"
+#include "scene/bvh_build.h"
+#include "scene/bvh_trace.h"
+#include "device/device.h"
+#include "util/error.h"
 
 #ifdef CLPPM_HAVE_EMBREE
 #include <embree3/rtcore.h>

@@ -35,27 +35,14 @@ __kernel void error_gather(__constant GridInfo* g, __global const Photon* sorted
     if (hp->pixel != HITPOINT_NONE) {
         float3 x = load3g(hp->pos), n = oct_decode(hp->normal_oct);
         float r2 = global_r2 > 0.0f ? global_r2 : (float)stats[i].r2;
-        float r = sqrt(r2);
         /* The path throughput folded into the luminance weights: one scalar sum per hit point. */
         float3 wy = (float3)(hp->weight[0] * (float)ERROR_LUMINANCE_R, hp->weight[1] * (float)ERROR_LUMINANCE_G,
                              hp->weight[2] * (float)ERROR_LUMINANCE_B);
-        int3 c0 = grid_cell(g, x - r), c1 = grid_cell(g, x + r);
-        for (int cz = c0.z; cz <= c1.z; ++cz)
-            for (int cy = c0.y; cy <= c1.y; ++cy)
-                for (int cx = c0.x; cx <= c1.x; ++cx) {
-                    int3 cell = (int3)(cx, cy, cz);
-                    uint b = grid_bucket(g, cell);
-                    uint end = starts[b + 1];
-                    for (uint k = starts[b]; k < end; ++k) {
-                        __global const Photon* ph = &sorted[k];
-                        float d2;
-                        float3 wi;
-                        if (!gather_accepts(g, ph, x, n, r2, cell, &d2, &wi)) continue;
-                        float3 f = hitpoint_brdf(hp, n, wi);
-                        float y = dot(wy, f * load3g(ph->flux));
-                        acc += convert_long_rte((double)(y * (2.0f * d2 / r2 - 1.0f)) * FLUX_FIXED_SCALE);
-                    }
-                }
+        GATHER_FOR_EACH_PHOTON(g, sorted, starts, x, n, r2, {
+            float3 f = hitpoint_brdf(hp, n, wi);
+            float y = dot(wy, f * load3g(ph->flux));
+            acc += convert_long_rte((double)(y * (2.0f * d2 / r2 - 1.0f)) * FLUX_FIXED_SCALE);
+        });
     }
     out[i] = acc;
 }

@@ -15,7 +15,7 @@
 #include "hitpoint.cl"
 
 #ifndef EYE_SLOTS
-#define EYE_SLOTS 4
+#define EYE_SLOTS PPM_EYE_SLOTS /* the host passes -DEYE_SLOTS=PPM_EYE_SLOTS or SPPM_EYE_SLOTS */
 #endif
 /* A split is only worth a slot when both branches carry real weight. */
 #define SPLIT_MIN_WEIGHT 0.02f

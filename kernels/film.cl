@@ -1,8 +1,8 @@
 /* film.cl: the pixel radiance from the hit points' statistics,
- *   L = tau / (pi R^2 N_emitted)   (Hachisuka et al. 2008, Eq. 11; tau in units of total power P)
+ *   L = tau / (pi R^2 N_emitted)   (Hachisuka et al. 2008, Eq. 11: radiance_estimate.cl)
  * plus emission seen along the eye paths and the running mean of explicit direct lighting,
  * averaged over the pixel's samples (box filter). */
-#include "shared_types.h"
+#include "radiance_estimate.cl"
 
 __kernel void ppm_film(__global const HitStats* stats, __global const uint* pixel_first, __global const float4* emitted,
                        uint num_pixels, uint spp, double total_power, double photons_emitted, double passes,
@@ -12,10 +12,7 @@ __kernel void ppm_film(__global const HitStats* stats, __global const uint* pixe
     double3 L = (double3)(emitted[p].x, emitted[p].y, emitted[p].z);
     for (uint k = pixel_first[p]; k < pixel_first[p + 1]; ++k) {
         __global const HitStats* s = &stats[k];
-        if (photons_emitted > 0.0 && s->r2 > 0.0) {
-            double scale = total_power / (M_PI * s->r2 * photons_emitted);
-            L += (double3)(s->tau[0], s->tau[1], s->tau[2]) * scale;
-        }
+        L += photon_radiance(s, total_power, photons_emitted);
         if (passes > 0.0) L += (double3)(s->direct[0], s->direct[1], s->direct[2]) / passes;
     }
     L /= (double)spp;

@@ -20,29 +20,16 @@ __kernel void gather(__constant GridInfo* g, __global const Photon* sorted, __gl
     float3 x = load3g(hp->pos), n = oct_decode(hp->normal_oct);
     /* PPPM: one radius for every hit point this pass; (S)PPM: each hit point's own R(x). */
     float r2 = global_r2 > 0.0f ? global_r2 : (float)stats[i].r2;
-    float r = sqrt(r2);
-    int3 c0 = grid_cell(g, x - r), c1 = grid_cell(g, x + r);
     long acc0 = 0, acc1 = 0, acc2 = 0;
     uint m = 0;
-    for (int cz = c0.z; cz <= c1.z; ++cz)
-        for (int cy = c0.y; cy <= c1.y; ++cy)
-            for (int cx = c0.x; cx <= c1.x; ++cx) {
-                int3 cell = (int3)(cx, cy, cz);
-                uint b = grid_bucket(g, cell);
-                uint end = starts[b + 1];
-                for (uint k = starts[b]; k < end; ++k) {
-                    __global const Photon* ph = &sorted[k];
-                    float d2;
-                    float3 wi;
-                    if (!gather_accepts(g, ph, x, n, r2, cell, &d2, &wi)) continue;
-                    /* tau_M += f(x, w_p, w_o) Phi_p (Eq. 9); the path throughput is applied later. */
-                    float3 f = hitpoint_brdf(hp, n, wi);
-                    acc0 += convert_long_rte((double)(f.x * ph->flux[0]) * FLUX_FIXED_SCALE);
-                    acc1 += convert_long_rte((double)(f.y * ph->flux[1]) * FLUX_FIXED_SCALE);
-                    acc2 += convert_long_rte((double)(f.z * ph->flux[2]) * FLUX_FIXED_SCALE);
-                    ++m;
-                }
-            }
+    GATHER_FOR_EACH_PHOTON(g, sorted, starts, x, n, r2, {
+        /* tau_M += f(x, w_p, w_o) Phi_p (Eq. 9); the path throughput is applied later. */
+        float3 f = hitpoint_brdf(hp, n, wi);
+        acc0 += convert_long_rte((double)(f.x * ph->flux[0]) * FLUX_FIXED_SCALE);
+        acc1 += convert_long_rte((double)(f.y * ph->flux[1]) * FLUX_FIXED_SCALE);
+        acc2 += convert_long_rte((double)(f.z * ph->flux[2]) * FLUX_FIXED_SCALE);
+        ++m;
+    });
     /* A pass traced in several photon batches adds them up: integer sums, so the result is the
      * same as for one batch. */
     if (accumulate) {

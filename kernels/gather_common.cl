@@ -1,5 +1,7 @@
-/* gather_common.cl: the photon acceptance rule of a gather over the hashed grid (gather.cl),
- * for further gathers over the same grid (error_estimate.cl) to apply the very same rule. */
+/* gather_common.cl: the one loop of every gather over the hashed grid (gather.cl, and the error
+ * estimate's second gather in error_estimate.cl): the cells a hit point's sphere overlaps, the
+ * photons stored in them and the acceptance rule. Each gather supplies only what it does with an
+ * accepted photon, as SmallVCM's HashGrid::Process takes the query's Process(). */
 #ifndef CLPPM_GATHER_COMMON_CL
 #define CLPPM_GATHER_COMMON_CL
 
@@ -23,5 +25,29 @@ bool gather_accepts(__constant GridInfo* g, __global const Photon* ph, float3 x,
     if (dot(n, *wi) <= 0.0f) return false;
     return dot(n, oct_decode(ph->normal_oct)) > 0.0f;
 }
+
+/* Runs the statement(s) `...` for every photon of the grid that gather_accepts for a hit point at
+ * x with normal n and squared radius r2, with `ph` (the photon), `d2` (its squared distance) and
+ * `wi` (its incoming direction) in scope. OpenCL C has no lambdas: the per-photon action is the
+ * macro's body, so every gather runs exactly this loop. */
+#define GATHER_FOR_EACH_PHOTON(g, sorted, starts, x, n, r2, ...)                                                    \
+    do {                                                                                                           \
+        const float gather_r_ = sqrt(r2);                                                                          \
+        const int3 gather_c0_ = grid_cell(g, (x) - gather_r_), gather_c1_ = grid_cell(g, (x) + gather_r_);         \
+        for (int cz = gather_c0_.z; cz <= gather_c1_.z; ++cz)                                                      \
+            for (int cy = gather_c0_.y; cy <= gather_c1_.y; ++cy)                                                  \
+                for (int cx = gather_c0_.x; cx <= gather_c1_.x; ++cx) {                                            \
+                    const int3 cell = (int3)(cx, cy, cz);                                                          \
+                    const uint b = grid_bucket(g, cell);                                                           \
+                    const uint end = (starts)[b + 1];                                                              \
+                    for (uint k = (starts)[b]; k < end; ++k) {                                                     \
+                        __global const Photon* ph = &(sorted)[k];                                                  \
+                        float d2;                                                                                  \
+                        float3 wi;                                                                                 \
+                        if (!gather_accepts(g, ph, x, n, r2, cell, &d2, &wi)) continue;                            \
+                        __VA_ARGS__                                                                                \
+                    }                                                                                              \
+                }                                                                                                  \
+    } while (0)
 
 #endif

@@ -30,7 +30,6 @@ __kernel void grid_count(__constant GridInfo* g, __global const Photon* photons,
 /* Exclusive prefix sum of n counts into starts[0..n] by one work-group of GRID_SCAN_WG items:
  * each item sums a contiguous chunk, the chunk sums are scanned in local memory, then each item
  * writes its chunk's prefixes. starts[n] is the total. */
-#define GRID_SCAN_WG 256
 __kernel __attribute__((reqd_work_group_size(GRID_SCAN_WG, 1, 1))) void grid_scan(__global const uint* counts,
                                                                                    __global uint* starts, uint n) {
     __local uint partial[GRID_SCAN_WG];

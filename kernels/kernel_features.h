@@ -1,9 +1,28 @@
 /* kernel_features.h: what the program is built for. The host passes -DHAS_X=0 for every feature the
- * scene does not use (src/scene_features.cpp), so that, for example, a diffuse scene under one
- * area light never pays for glass, textures or spot lights, in registers or in branches. Each flag
- * defaults to 1: without options the program is the generic one that renders any scene. */
+ * scene does not use (src/scene/scene_features.cpp), so that, for example, a diffuse scene under
+ * one area light never pays for glass, textures or spot lights, in registers or in branches. Each
+ * flag defaults to 1: without options the program is the generic one that renders any scene.
+ *
+ * CLPPM_KERNEL_FEATURES is the one list of features: X(flag, field, description). The host makes
+ * its SceneFeatures fields, build options and description from it; the kernels below give each
+ * flag its default (the preprocessor cannot generate #ifndef blocks, so they are written out once,
+ * and the enum after them fails to compile if the list names a flag without a default). */
 #ifndef CLPPM_FEATURES_H
 #define CLPPM_FEATURES_H
+
+#define CLPPM_KERNEL_FEATURES(X)                                                                                       \
+    X(HAS_MIRROR, mirror, "mirror")                                                                                    \
+    X(HAS_GLOSSY, glossy, "glossy")                                                                                    \
+    X(HAS_DIELECTRIC, dielectric, "dielectric")                                                                        \
+    X(HAS_METAL_MIX, metal_mix, "metal mix")                                                                           \
+    X(HAS_TEXTURES, textures, "textures")                                                                              \
+    X(HAS_AREA_LIGHTS, area_lights, "area lights")                                                                     \
+    X(HAS_POINT_LIGHTS, point_lights, "point lights")                                                                  \
+    X(HAS_SPOT_LIGHTS, spot_lights, "spot lights")                                                                     \
+    X(HAS_DIRECTIONAL_LIGHTS, directional_lights, "directional lights")                                                \
+    X(HAS_THIN_LENS, thin_lens, "thin lens")
+
+#ifdef __OPENCL_VERSION__
 
 #ifndef HAS_MIRROR
 #define HAS_MIRROR 1
@@ -36,7 +55,14 @@
 #define HAS_THIN_LENS 1
 #endif
 
+/* Every flag of the list has a default above: a missing one is an undeclared identifier here. */
+#define CLPPM_FEATURE_TERM(flag, field, text) +flag
+enum { CLPPM_FEATURES_WITH_DEFAULTS = 0 CLPPM_KERNEL_FEATURES(CLPPM_FEATURE_TERM) };
+#undef CLPPM_FEATURE_TERM
+
 /* Any surface that is not Lambertian. */
 #define HAS_NON_DIFFUSE (HAS_MIRROR || HAS_GLOSSY || HAS_DIELECTRIC || HAS_METAL_MIX)
+
+#endif /* __OPENCL_VERSION__ */
 
 #endif

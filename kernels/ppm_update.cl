@@ -17,7 +17,6 @@ void ppm_update_stats(__global HitStats* s, double M, double3 tau_M, double alph
 
 /* Also reduces sum and max of R per work-group into radius_partials (for the next grid's cell
  * size; the image does not depend on it). Launched with local size PPM_UPDATE_WG. */
-#define PPM_UPDATE_WG 64
 __kernel __attribute__((reqd_work_group_size(PPM_UPDATE_WG, 1, 1))) void ppm_update(
     __global const PassFlux* pass, __global const HitPoint* hitpoints, __global HitStats* stats, uint num_hitpoints,
     double alpha, __global float2* radius_partials) {

@@ -181,6 +181,13 @@ typedef struct {
 /* Fixed point used for per-pass flux sums: exact, so the sum is the same in any order. */
 #define FLUX_FIXED_SCALE 4294967296.0 /* 2^32 */
 
+/* ---- launch constants: the host sizes buffers and launches by these ------------------------ */
+
+#define PPM_EYE_SLOTS 4  /* hit points one PPM eye sample may store (it splits at glass and metal) */
+#define SPPM_EYE_SLOTS 1 /* SPPM and PPPM: one visible point per pixel and pass */
+#define PPM_UPDATE_WG 64 /* ppm_update's work-group size (kernels/ppm_update.cl) */
+#define GRID_SCAN_WG 256 /* grid_scan's one work-group (kernels/hash_grid.cl) */
+
 /* Per-pixel statistics of the progressive error estimate (Hachisuka, Jarosz and Jensen 2010;
  * kernels/error_estimate.cl), kept only when error estimation is on. Running means (Welford) over
  * the passes j = 1..n of the single-pass luminance estimates L_j, of R_j^2 and of the single-pass

@@ -5,7 +5,7 @@
  *   PPPM makes each pass an independent photon-map estimate with one radius r_i for all pixels,
  *        r_{i+1}^2 = r_i^2 (i + alpha)/(i + 1) (Knaus and Zwicker, Eq. 20), and averages the pass
  *        images: HitStats.tau holds the running sum of f Phi / (pi r_i^2). */
-#include "shared_types.h"
+#include "radiance_estimate.cl"
 
 __kernel void accumulate_emission(__global const float4* sample_emission, __global HitStats* stats, uint n) {
     uint i = get_global_id(0);
@@ -32,9 +32,7 @@ __kernel void sppm_film(__global const HitStats* stats, uint num_pixels, double 
     uint p = get_global_id(0);
     if (p >= num_pixels) return;
     __global const HitStats* s = &stats[p];
-    double3 L = (double3)(0.0);
-    if (photons_emitted > 0.0 && s->r2 > 0.0)
-        L += (double3)(s->tau[0], s->tau[1], s->tau[2]) * (total_power / (M_PI * s->r2 * photons_emitted));
+    double3 L = photon_radiance(s, total_power, photons_emitted);
     if (passes > 0.0) L += (double3)(s->direct[0], s->direct[1], s->direct[2]) / passes;
     image[p] = (float4)((float)L.x, (float)L.y, (float)L.z, 1.0f);
 }

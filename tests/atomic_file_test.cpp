@@ -1,12 +1,12 @@
 // atomic_file: contents arrive whole, replace the old file, and failures name the path.
-#include "atomic_file.h"
+#include "io/atomic_file.h"
 
 #include <filesystem>
 #include <fstream>
 
 #include <gtest/gtest.h>
 
-#include "error.h"
+#include "util/error.h"
 #include "test_util.h"
 
 namespace clppm {

@@ -11,8 +11,8 @@
 #include <random>
 #include <string>
 
-#include "bvh_build.h"
-#include "bvh_trace.h"
+#include "scene/bvh_build.h"
+#include "scene/bvh_trace.h"
 #include "test_util.h"
 
 namespace clppm {

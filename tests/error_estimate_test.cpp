@@ -9,11 +9,11 @@
 
 #include <nlohmann/json.hpp>
 
-#include "error_estimate.h"
-#include "kernel_program.h"
-#include "progress.h"
+#include "integrators/error_estimate.h"
+#include "device/kernel_program.h"
+#include "cli/progress.h"
 #include "scene_builders.h"
-#include "sppm_integrator.h"
+#include "integrators/integrator_factory.h"
 #include "test_util.h"
 
 using namespace clppm;
@@ -78,12 +78,11 @@ Rendered render_with_errors(Scene scene, const RenderSettings& s, uint64_t passe
     DeviceScene ds = upload_scene(dc, scene, s);
     cl::Program program = build_program(dc, integrator_program_file(s), integrator_build_options(s, dc.info));
     std::unique_ptr<IntegratorBase> integ = make_integrator(dc, ds, s, program);
-    auto* sppm = dynamic_cast<SppmIntegrator*>(integ.get());
-    EXPECT_NE(sppm, nullptr);
-    sppm->enable_error_estimation();
+    EXPECT_TRUE(integ->estimates_error());
+    integ->enable_error_estimation();
     integ->prepare();
     for (uint64_t p = 0; p < passes; ++p) integ->run_pass();
-    return {integ->image(), sppm->error_estimate(confidence)};
+    return {integ->image(), integ->error_estimate(confidence)};
 }
 
 RenderSettings plane_settings(unsigned size, uint64_t photons) {

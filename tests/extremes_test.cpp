@@ -9,7 +9,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "render_scene.h"
+#include "scene/device_scene.h"
 #include "scene_builders.h"
 #include "test_util.h"
 

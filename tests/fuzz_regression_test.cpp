@@ -5,7 +5,7 @@
 // throw a clppm::Error of one line that starts with the file path, within a time bound: a hang is
 // a failure. The bound (2 s per file, against a few milliseconds normally) guards against hangs,
 // not performance, so it is generous. tests/fuzz/README.md describes the fuzzer itself.
-#include "gltf_load.h"
+#include "scene/gltf/gltf_load.h"
 
 #include <gtest/gtest.h>
 #include <sys/resource.h>
@@ -25,7 +25,7 @@
 #include <string>
 #include <vector>
 
-#include "error.h"
+#include "util/error.h"
 #include "test_util.h"
 
 namespace clppm {

@@ -1,6 +1,7 @@
 // The glTF loader against the small files of tests/data (written by tests/data/make_test_gltf.py,
 // which documents the geometry behind every expected number) and the shipped scenes.
-#include "gltf_load.h"
+#include "scene/gltf/gltf_load.h"
+#include "scene/light_power.h"
 
 #include <gtest/gtest.h>
 
@@ -11,7 +12,7 @@
 #include <iterator>
 #include <sstream>
 
-#include "error.h"
+#include "util/error.h"
 #include "test_util.h"
 
 namespace clppm {
@@ -299,7 +300,7 @@ TEST(GltfLights, PointSpotAndDirectional) {
     EXPECT_EQ(point.type, LIGHT_POINT);
     expect_vec3(point.position, 1, 2, 3);
     expect_vec3(point.radiance, 10, 5, 2.5);
-    EXPECT_NEAR(point.power, 4 * kPi * 17.5 / 3, 1e-3);
+    EXPECT_NEAR(punctual_light_power(point, 0), 4 * kPi * 17.5 / 3, 1e-3);
 
     const dev::Light& spot = s.punctual_lights[1];
     EXPECT_EQ(spot.type, LIGHT_SPOT);
@@ -308,7 +309,9 @@ TEST(GltfLights, PointSpotAndDirectional) {
     expect_vec3(spot.radiance, 20, 20, 20);
     EXPECT_NEAR(spot.cos_inner, std::cos(0.2), 1e-6);
     EXPECT_NEAR(spot.cos_outer, std::cos(0.4), 1e-6);
-    EXPECT_NEAR(spot.power, 2 * kPi * 20 * (1 - 0.5 * (std::cos(0.2) + std::cos(0.4))), 1e-3);
+    // The glTF falloff integrated over the cone: 2 pi I ((1 - cos_inner) + (cos_inner - cos_outer) / 3).
+    EXPECT_NEAR(punctual_light_power(spot, 0), 2 * kPi * 20 * ((1 - std::cos(0.2)) + (std::cos(0.2) - std::cos(0.4)) / 3),
+                1e-3);
 
     const dev::Light& cone = s.punctual_lights[2];
     expect_vec3(cone.direction, 0, 0, -1);
@@ -319,7 +322,7 @@ TEST(GltfLights, PointSpotAndDirectional) {
     EXPECT_EQ(sun.type, LIGHT_DIRECTIONAL);
     expect_vec3(sun.direction, -1, 0, 0); // -Z turned 90 degrees about +Y
     expect_vec3(sun.radiance, 3, 3, 3);
-    EXPECT_EQ(sun.power, 0.f);
+    EXPECT_NEAR(punctual_light_power(sun, 2.0), kPi * 4 * 3, 1e-4); // E over the disc of the scene's sphere
     EXPECT_TRUE(has_warning(s, "range is ignored"));
 }
 

@@ -1,6 +1,6 @@
 // image_io: EXR round trips bit-exactly, the PNG preview has the documented sRGB codes, and a
 // failed write names the path, leaves no temp file and keeps the previous image.
-#include "image_io.h"
+#include "io/image_io.h"
 
 #include <algorithm>
 #include <cmath>
@@ -21,7 +21,7 @@
 #include <gtest/gtest.h>
 #include <stb_image.h>
 
-#include "error.h"
+#include "util/error.h"
 #include "test_util.h"
 
 namespace clppm {

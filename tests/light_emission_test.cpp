@@ -10,8 +10,8 @@
 #include <cmath>
 #include <map>
 
-#include "kernel_program.h"
-#include "render_scene.h"
+#include "device/kernel_program.h"
+#include "scene/device_scene.h"
 #include "scene_builders.h"
 #include "stat_tests.h"
 #include "test_util.h"

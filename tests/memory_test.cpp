@@ -2,8 +2,8 @@
 // within 1 GiB for SPPM and PPPM at 1920x1080 with a million photons per pass.
 #include <gtest/gtest.h>
 
-#include "error.h"
-#include "memory_estimate.h"
+#include "util/error.h"
+#include "integrators/memory_estimate.h"
 #include "scene_builders.h"
 #include "test_util.h"
 

@@ -5,7 +5,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "image_io.h"
+#include "io/image_io.h"
 #include "test_util.h"
 
 using namespace clppm;

@@ -1,9 +1,9 @@
 // options: every option in both spellings, the defaults, and the exact one-line errors.
-#include "options.h"
+#include "cli/options.h"
 
 #include <gtest/gtest.h>
 
-#include "error.h"
+#include "util/error.h"
 
 namespace clppm {
 namespace {

@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "render_scene.h"
+#include "scene/device_scene.h"
 #include "scene_builders.h"
 #include "test_util.h"
 

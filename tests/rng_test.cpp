@@ -10,7 +10,7 @@
 #include <random>
 #include <unordered_set>
 
-#include "kernel_program.h"
+#include "device/kernel_program.h"
 #include "stat_tests.h"
 #include "test_util.h"
 

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <vector>
 
-#include "scene.h"
+#include "scene/scene.h"
 #include "shared_types.h"
 
 namespace clppm::test {

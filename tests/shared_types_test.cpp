@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "kernel_program.h"
+#include "device/kernel_program.h"
 #include "shared_types.h"
 #include "test_util.h"
 

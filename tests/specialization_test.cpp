@@ -2,9 +2,9 @@
 // bit with the same seed, on every shipped scene; and the specialisation really removes features.
 #include <gtest/gtest.h>
 
-#include "gltf_load.h"
-#include "image_io.h"
-#include "scene_features.h"
+#include "scene/gltf/gltf_load.h"
+#include "io/image_io.h"
+#include "scene/scene_features.h"
 #include "test_util.h"
 
 using namespace clppm;
@@ -42,5 +42,5 @@ TEST(Specialization, BuildOptionsRemoveWhatTheSceneDoesNotUse) {
     EXPECT_EQ(feature_build_options(ff),
               "-DHAS_MIRROR=0 -DHAS_GLOSSY=0 -DHAS_DIELECTRIC=0 -DHAS_METAL_MIX=0 -DHAS_TEXTURES=0 "
               "-DHAS_POINT_LIGHTS=0 -DHAS_SPOT_LIGHTS=0 -DHAS_DIRECTIONAL_LIGHTS=0 -DHAS_THIN_LENS=0");
-    EXPECT_EQ(feature_build_options(SceneFeatures{true, true, true, true, true, true, true, true, true, true}), "");
+    EXPECT_EQ(feature_build_options(SceneFeatures::all()), "");
 }

@@ -5,7 +5,7 @@
 #include <cmath>
 
 #include "scene_builders.h"
-#include "sppm_integrator.h"
+#include "integrators/sppm_integrator.h"
 #include "test_util.h"
 
 using namespace clppm;

@@ -1,12 +1,12 @@
 // stats_json: valid JSON in insertion order, non-finite numbers as null, written atomically.
-#include "stats_json.h"
+#include "io/stats_json.h"
 
 #include <cmath>
 #include <fstream>
 
 #include <gtest/gtest.h>
 
-#include "error.h"
+#include "util/error.h"
 #include "test_util.h"
 
 namespace clppm {

@@ -48,8 +48,9 @@ int run_clppm(const std::string& args, std::string* output) { return run_command
 
 } // namespace clppm::test
 
-#include "kernel_program.h"
-#include "render_scene.h"
+#include "device/kernel_program.h"
+#include "integrators/integrator_factory.h"
+#include "scene/device_scene.h"
 
 namespace clppm::test {
 

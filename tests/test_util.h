@@ -2,7 +2,7 @@
 #pragma once
 #include <string>
 
-#include "device.h"
+#include "device/device.h"
 
 namespace clppm::test {
 
@@ -24,10 +24,10 @@ int run_clppm(const std::string& args, std::string* output);
 
 } // namespace clppm::test
 
-#include "image_io.h"
-#include "integrator.h"
-#include "render_settings.h"
-#include "scene.h"
+#include "io/image_io.h"
+#include "integrators/integrator.h"
+#include "integrators/render_settings.h"
+#include "scene/scene.h"
 
 namespace clppm::test {
 

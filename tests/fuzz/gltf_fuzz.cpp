@@ -27,9 +27,9 @@
 #include <string>
 #include <vector>
 
-#include "error.h"
-#include "gltf_load.h"
-#include "scene.h"
+#include "util/error.h"
+#include "scene/gltf/gltf_load.h"
+#include "scene/scene.h"
 
 namespace {
 

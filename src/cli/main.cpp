@@ -1,0 +1,45 @@
+// clppm: progressive photon mapping on OpenCL. Dispatches to the compare command, the device
+// list, or a render session (src/render_session.cpp).
+#include <cstdio>
+#include <string>
+
+#include "device/device.h"
+#include "util/error.h"
+#include "io/image_compare.h"
+#include "cli/options.h"
+#include "cli/render_session.h"
+#include "util/version.h"
+
+using namespace clppm;
+
+int main(int argc, char** argv) {
+    try {
+        if (argc >= 2 && std::string(argv[1]) == "compare") return compare_command(argc - 2, argv + 2);
+        Options opt = parse_options(argc, argv);
+        if (opt.help) {
+            std::fputs(usage().c_str(), stdout);
+            return 0;
+        }
+        if (opt.version) {
+            std::printf("%s\n", kVersion);
+            return 0;
+        }
+        if (opt.list_devices) {
+            std::fputs(describe_devices(list_devices()).c_str(), stdout);
+            return 0;
+        }
+        return render_session(opt);
+    } catch (const Error& e) {
+        std::fprintf(stderr, "clppm: error: %s\n", e.what());
+        return 1;
+    } catch (const cl::Error& e) {
+        std::fprintf(stderr, "clppm: error: OpenCL call %s failed with code %d\n", e.what(), e.err());
+        return 1;
+    } catch (const std::bad_alloc&) {
+        std::fprintf(stderr, "clppm: error: out of host memory\n");
+        return 1;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "clppm: error: %s\n", e.what());
+        return 1;
+    }
+}

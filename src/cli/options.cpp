@@ -1,0 +1,383 @@
+#include "cli/options.h"
+
+#include <cctype>
+#include <cerrno>
+#include <climits>
+#include <cmath>
+#include <cstdlib>
+#include <sstream>
+
+#include "util/error.h"
+
+namespace clppm {
+namespace {
+
+struct ParseState {
+    Options options;
+    bool passes_given = false;
+    bool confidence_given = false;
+};
+
+struct OptionSpec;
+
+// One option occurrence: the spec, the spelling the user typed ("-o" or "--output") and its value.
+struct Arg {
+    const OptionSpec& spec;
+    const std::string& shown;
+    const std::string& value;
+};
+
+// One table drives both the parser and usage(), so the help text cannot drift from what is
+// accepted. `range` is also the tail of every error message: "--alpha 1.5: must be <range>".
+struct OptionSpec {
+    const char* name;       // "--alpha"
+    const char* short_name; // "-o", or nullptr
+    const char* metavar;    // "A"; nullptr for a flag
+    const char* help;
+    const char* range;      // nullptr when any value goes
+    const char* default_text;
+    void (*apply)(ParseState&, const Arg&);
+};
+
+[[noreturn]] void bad_value(const Arg& a) {
+    std::string shown_value = a.value.empty() ? "''" : a.value;
+    throw Error(a.shown + " " + shown_value + ": must be " + a.spec.range);
+}
+
+int64_t parse_int(const Arg& a, int64_t lo, int64_t hi) {
+    const std::string& v = a.value;
+    if (v.empty() || !(std::isdigit(static_cast<unsigned char>(v[0])) || v[0] == '-' || v[0] == '+')) bad_value(a);
+    errno = 0;
+    char* end = nullptr;
+    long long n = std::strtoll(v.c_str(), &end, 10);
+    if (errno == ERANGE || *end != '\0' || n < lo || n > hi) bad_value(a);
+    return n;
+}
+
+// strtoull accepts "-1" (and wraps it), so the sign is rejected first.
+uint64_t parse_u64(const Arg& a) {
+    const std::string& v = a.value;
+    if (v.empty() || !std::isdigit(static_cast<unsigned char>(v[0]))) bad_value(a);
+    errno = 0;
+    char* end = nullptr;
+    unsigned long long n = std::strtoull(v.c_str(), &end, 10);
+    if (errno == ERANGE || *end != '\0') bad_value(a);
+    return n;
+}
+
+// Finite reals only: "nan" and "inf" parse with strtod but are never meaningful here.
+double parse_real(const Arg& a, bool (*ok)(double)) {
+    const std::string& v = a.value;
+    if (v.empty() || std::isspace(static_cast<unsigned char>(v[0]))) bad_value(a);
+    errno = 0;
+    char* end = nullptr;
+    double x = std::strtod(v.c_str(), &end);
+    if (errno == ERANGE || *end != '\0' || !std::isfinite(x) || !ok(x)) bad_value(a);
+    return x;
+}
+
+const std::string& non_empty(const Arg& a) {
+    if (a.value.empty()) bad_value(a);
+    return a.value;
+}
+
+bool ends_with_ci(const std::string& s, const char* suffix) {
+    std::string suf(suffix);
+    if (s.size() < suf.size()) return false;
+    for (size_t i = 0; i < suf.size(); ++i)
+        if (std::tolower(static_cast<unsigned char>(s[s.size() - suf.size() + i])) != suf[i]) return false;
+    return true;
+}
+
+void set_scene(ParseState& st, const std::string& path) {
+    if (!st.options.scene.empty())
+        throw Error("unexpected second scene file " + path + " (already given " + st.options.scene + ")");
+    if (!ends_with_ci(path, ".gltf") && !ends_with_ci(path, ".glb"))
+        throw Error("scene file " + path + ": must be a .gltf or .glb file");
+    st.options.scene = path;
+}
+
+const OptionSpec kOptions[] = {
+    {"--output", "-o", "FILE", "Output image (a PNG preview is written beside it)",
+     "a file name ending in .exr", "clppm.exr",
+     [](ParseState& st, const Arg& a) {
+         if (!ends_with_ci(a.value, ".exr") || a.value.size() <= 4) bad_value(a);
+         st.options.output = a.value;
+     }},
+    {"--no-png", nullptr, nullptr, "Do not write the PNG preview",
+     nullptr, nullptr,
+     [](ParseState& st, const Arg&) { st.options.write_png = false; }},
+    {"--width", nullptr, "N", "Image width in pixels",
+     "an integer in 0..16384 (0 = from the camera)", "0",
+     [](ParseState& st, const Arg& a) { st.options.width = static_cast<int>(parse_int(a, 0, 16384)); }},
+    {"--height", nullptr, "N", "Image height in pixels",
+     "an integer in 0..16384 (0 = from the camera)", "0",
+     [](ParseState& st, const Arg& a) { st.options.height = static_cast<int>(parse_int(a, 0, 16384)); }},
+    {"--passes", nullptr, "N", "Stop after N passes (with --time: whichever comes first)",
+     "an integer >= 1 (0 = unlimited, with --time)", "64, or unlimited with --time",
+     [](ParseState& st, const Arg& a) {
+         st.options.passes = static_cast<uint64_t>(parse_int(a, 0, INT64_MAX));
+         st.passes_given = true;
+     }},
+    {"--time", nullptr, "SECONDS", "Stop after this much render time",
+     "a number of seconds > 0", "none",
+     [](ParseState& st, const Arg& a) { st.options.time_limit = parse_real(a, [](double x) { return x > 0; }); }},
+    {"--photons", nullptr, "N", "Photons traced per pass",
+     "an integer in 1..2147483647", "200000",
+     [](ParseState& st, const Arg& a) {
+         st.options.photons_per_pass = static_cast<uint32_t>(parse_int(a, 1, INT32_MAX));
+     }},
+    // alpha of Hachisuka et al. 2008 (radius reduction): R^2 <- R^2 (N + alpha M) / (N + M).
+    {"--alpha", nullptr, "A", "Fraction of new photons kept per pass (radius reduction)",
+     "in (0, 1]", "0.7",
+     [](ParseState& st, const Arg& a) {
+         st.options.alpha = parse_real(a, [](double x) { return x > 0 && x <= 1; });
+     }},
+    {"--radius", nullptr, "R", "Initial gather radius R0 in scene units",
+     "a finite number >= 0 (0 = heuristic)", "0",
+     [](ParseState& st, const Arg& a) { st.options.radius = parse_real(a, [](double x) { return x >= 0; }); }},
+    {"--seed", nullptr, "S", "Random seed",
+     "an integer in 0..18446744073709551615", "1",
+     [](ParseState& st, const Arg& a) { st.options.seed = parse_u64(a); }},
+    {"--list-devices", nullptr, nullptr, "List the OpenCL devices and exit",
+     nullptr, nullptr,
+     [](ParseState& st, const Arg&) { st.options.list_devices = true; }},
+    {"--device", nullptr, "SPEC", "Device to render on; repeatable (see --list-devices)",
+     "a device index, cpu, gpu or part of a device name", "automatic",
+     [](ParseState& st, const Arg& a) { st.options.devices.push_back(non_empty(a)); }},
+    {"--camera", nullptr, "N", "Index of the glTF camera to render through",
+     "an integer >= 0", "0",
+     [](ParseState& st, const Arg& a) { st.options.camera = static_cast<int>(parse_int(a, 0, INT_MAX)); }},
+    {"--quiet", nullptr, nullptr, "No progress output",
+     nullptr, nullptr,
+     [](ParseState& st, const Arg&) { st.options.quiet = true; }},
+    {"--stats-json", nullptr, "FILE", "Write render statistics as JSON",
+     "a file name", "none",
+     [](ParseState& st, const Arg& a) { st.options.stats_json = non_empty(a); }},
+    {"--integrator", nullptr, "NAME",
+     "Integrator: ppm = progressive photon mapping, sppm = stochastic PPM, pppm = probabilistic PPM "
+     "(independent passes), pt = path-traced reference",
+     "ppm, sppm, pppm or pt", "ppm",
+     [](ParseState& st, const Arg& a) {
+         if (a.value == "ppm") st.options.integrator = Integrator::PPM;
+         else if (a.value == "sppm") st.options.integrator = Integrator::SPPM;
+         else if (a.value == "pppm") st.options.integrator = Integrator::PPPM;
+         else if (a.value == "pt") st.options.integrator = Integrator::PT;
+         else bad_value(a);
+     }},
+    {"--direct", nullptr, "MODE", "Direct light from photons (density estimate) or by sampling lights at hit points",
+     "photons or sample", "sample",
+     [](ParseState& st, const Arg& a) {
+         if (a.value == "photons") st.options.direct = DirectLighting::Photons;
+         else if (a.value == "sample") st.options.direct = DirectLighting::Sample;
+         else bad_value(a);
+     }},
+    {"--spp", nullptr, "N", "Hit points (samples) per pixel per pass",
+     "an integer in 1..256", "1",
+     [](ParseState& st, const Arg& a) { st.options.spp = static_cast<int>(parse_int(a, 1, 256)); }},
+    {"--filter", nullptr, "NAME",
+     "Pixel filter, importance-sampled: box = the pixel's square, tent = separable tent of radius 1 pixel",
+     "box or tent", "box",
+     [](ParseState& st, const Arg& a) {
+         if (a.value == "box") st.options.filter = PixelFilter::Box;
+         else if (a.value == "tent") st.options.filter = PixelFilter::Tent;
+         else bad_value(a);
+     }},
+    {"--aperture", nullptr, "R", "Thin-lens aperture radius in scene units (depth of field)",
+     "a finite number >= 0 (0 = pinhole)", "the camera's, else 0",
+     [](ParseState& st, const Arg& a) { st.options.aperture = parse_real(a, [](double x) { return x >= 0; }); }},
+    {"--focus-distance", nullptr, "D", "Distance to the plane in focus, in scene units",
+     "a finite number > 0", "the camera's, else the scene centre's distance",
+     [](ParseState& st, const Arg& a) {
+         st.options.focus_distance = parse_real(a, [](double x) { return x > 0; });
+     }},
+    {"--max-bounces", nullptr, "N", "Longest eye or photon path",
+     "an integer in 1..1024", "16",
+     [](ParseState& st, const Arg& a) { st.options.max_bounces = static_cast<int>(parse_int(a, 1, 1024)); }},
+    {"--progressive-output", nullptr, "K", "Also save the images every K passes",
+     "an integer >= 0 (0 = off)", "0",
+     [](ParseState& st, const Arg& a) {
+         st.options.progressive_output = static_cast<uint64_t>(parse_int(a, 0, INT64_MAX));
+     }},
+    {"--checkpoint", nullptr, "FILE",
+     "Save the complete progressive state to FILE (atomically) periodically, on Ctrl-C and at the end",
+     "a file name", "none",
+     [](ParseState& st, const Arg& a) { st.options.checkpoint = non_empty(a); }},
+    {"--checkpoint-every", nullptr, "K", "Save the checkpoint every K passes",
+     "an integer >= 0 (0 = off)", "0",
+     [](ParseState& st, const Arg& a) {
+         st.options.checkpoint_every = static_cast<uint64_t>(parse_int(a, 0, INT64_MAX));
+     }},
+    {"--checkpoint-interval", nullptr, "SECONDS", "Save the checkpoint every SECONDS of rendering",
+     "a number of seconds > 0", "300",
+     [](ParseState& st, const Arg& a) {
+         st.options.checkpoint_interval = parse_real(a, [](double x) { return x > 0; });
+     }},
+    {"--resume", nullptr, "FILE",
+     "Continue the render saved in checkpoint FILE (same scene and image-shaping options; --passes "
+     "counts from the start of the original render, --time this run only)",
+     "a checkpoint file", "none",
+     [](ParseState& st, const Arg& a) { st.options.resume = non_empty(a); }},
+    {"--generic-kernels", nullptr, nullptr,
+     "Build the generic kernels instead of ones specialised for the scene's materials, lights and camera",
+     nullptr, nullptr,
+     [](ParseState& st, const Arg&) { st.options.generic_kernels = true; }},
+    {"--kernel-dir", nullptr, "DIR", "Load kernels from DIR instead of the embedded copies",
+     "a directory", "embedded",
+     [](ParseState& st, const Arg& a) { st.options.kernel_dir = non_empty(a); }},
+    {"--dump-kernel-source", nullptr, "FILE", "Write the assembled kernel source and build options to FILE",
+     "a file name", "none",
+     [](ParseState& st, const Arg& a) { st.options.dump_kernel_source = non_empty(a); }},
+    // Hachisuka, Jarosz and Jensen 2010: a per-pixel bound on |L_i - L| (bias + noise bound).
+    {"--target-error", nullptr, "E",
+     "Stop once the estimated relative error (90th percentile of the per-pixel bounds at --confidence) "
+     "is at most E; --passes and --time still bound the render (sppm, pppm)",
+     "a number > 0", "none",
+     [](ParseState& st, const Arg& a) {
+         st.options.target_error = parse_real(a, [](double x) { return x > 0; });
+     }},
+    {"--confidence", nullptr, "P", "Confidence of the per-pixel error bounds (with --target-error or --error-output)",
+     "in (0, 1)", "0.95",
+     [](ParseState& st, const Arg& a) {
+         st.options.confidence = parse_real(a, [](double x) { return x > 0 && x < 1; });
+         st.confidence_given = true;
+     }},
+    {"--error-output", nullptr, "FILE",
+     "Write the per-pixel relative error bound to FILE (EXR) and a false-colour PNG beside it; the main "
+     "EXR gets an \"error\" layer too (sppm, pppm)",
+     "a file name ending in .exr", "none",
+     [](ParseState& st, const Arg& a) {
+         if (!ends_with_ci(a.value, ".exr") || a.value.size() <= 4) bad_value(a);
+         st.options.error_output = a.value;
+     }},
+    {"--help", "-h", nullptr, "Print this help and exit",
+     nullptr, nullptr,
+     [](ParseState& st, const Arg&) { st.options.help = true; }},
+    {"--version", nullptr, nullptr, "Print the version and exit",
+     nullptr, nullptr,
+     [](ParseState& st, const Arg&) { st.options.version = true; }},
+};
+
+const OptionSpec* find_option(const std::string& name) {
+    for (const OptionSpec& spec : kOptions)
+        if (name == spec.name || (spec.short_name && name == spec.short_name)) return &spec;
+    return nullptr;
+}
+
+// "--passes" defaults to 64 only when no --time bounds the render; 0 passes needs a time limit.
+void resolve_limits(ParseState& st) {
+    Options& o = st.options;
+    if (st.passes_given && o.passes == 0 && o.time_limit <= 0)
+        throw Error("--passes 0: unlimited passes need --time");
+    if (!st.passes_given) o.passes = o.time_limit > 0 ? 0 : 64;
+}
+
+// Only SPPM and PPPM estimate their error; --confidence means nothing without an estimate.
+void check_error_options(const ParseState& st) {
+    const Options& o = st.options;
+    const char* asked = o.target_error > 0 ? "--target-error" : !o.error_output.empty() ? "--error-output" : nullptr;
+    if (asked && o.integrator != Integrator::SPPM && o.integrator != Integrator::PPPM)
+        throw Error(std::string(asked) + ": error estimation needs --integrator sppm or pppm (not " +
+                    to_string(o.integrator) + ")");
+    if (!asked && st.confidence_given) throw Error("--confidence: needs --target-error or --error-output");
+}
+
+// Handles args[i], an option; returns the index of the last argument it consumed.
+size_t parse_option(ParseState& st, const std::vector<std::string>& args, size_t i) {
+    const std::string& arg = args[i];
+    size_t eq = arg.rfind("--", 0) == 0 ? arg.find('=') : std::string::npos;
+    std::string name = arg.substr(0, eq);
+    const OptionSpec* spec = find_option(name);
+    if (!spec) throw Error("unknown option " + name + " (see --help)");
+    std::string value;
+    if (!spec->metavar) {
+        if (eq != std::string::npos) throw Error(name + " takes no value");
+    } else if (eq != std::string::npos) {
+        value = arg.substr(eq + 1);
+    } else if (i + 1 < args.size()) {
+        value = args[++i];
+    } else {
+        throw Error(name + ": missing value " + spec->metavar + " (must be " + spec->range + ")");
+    }
+    spec->apply(st, Arg{*spec, name, value});
+    return i;
+}
+
+std::string option_column(const OptionSpec& spec) {
+    std::string col = "  ";
+    col += spec.short_name ? std::string(spec.short_name) + ", " : "    ";
+    col += spec.name;
+    if (spec.metavar) col += std::string(" ") + spec.metavar;
+    return col;
+}
+
+// Appends `text` word-wrapped to `width` columns, continuation lines indented by `indent`.
+void append_wrapped(std::string& out, const std::string& text, size_t indent, size_t width) {
+    std::istringstream words(text);
+    std::string word;
+    size_t column = indent;
+    bool first = true;
+    while (words >> word) {
+        if (!first && column + 1 + word.size() > width) {
+            out += "\n" + std::string(indent, ' ');
+            column = indent;
+        } else if (!first) {
+            out += ' ';
+            ++column;
+        }
+        out += word;
+        column += word.size();
+        first = false;
+    }
+    out += '\n';
+}
+
+} // namespace
+
+Options parse_options(const std::vector<std::string>& args) {
+    ParseState st;
+    bool options_ended = false; // after "--" everything is a scene file
+    for (size_t i = 0; i < args.size(); ++i) {
+        const std::string& arg = args[i];
+        if (!options_ended && arg == "--") {
+            options_ended = true;
+        } else if (options_ended || arg.size() < 2 || arg[0] != '-') {
+            set_scene(st, arg);
+        } else {
+            i = parse_option(st, args, i);
+            if (st.options.help || st.options.version) return st.options;
+        }
+    }
+    resolve_limits(st);
+    check_error_options(st);
+    return st.options;
+}
+
+bool wants_error_estimate(const Options& o) { return o.target_error > 0 || !o.error_output.empty(); }
+
+Options parse_options(int argc, char** argv) {
+    std::vector<std::string> args;
+    for (int i = 1; i < argc; ++i) args.emplace_back(argv[i]);
+    return parse_options(args);
+}
+
+std::string usage() {
+    const size_t indent = 30, width = 100;
+    std::string out =
+        "Usage: clppm [options] [SCENE.gltf|SCENE.glb]\n"
+        "Renders SCENE (default: the built-in Cornell box) with progressive photon mapping in OpenCL.\n"
+        "Values may be given as --opt VALUE or --opt=VALUE.\n\nOptions:\n";
+    for (const OptionSpec& spec : kOptions) {
+        std::string col = option_column(spec);
+        out += col;
+        out += col.size() + 2 <= indent ? std::string(indent - col.size(), ' ') : "\n" + std::string(indent, ' ');
+        std::string text = spec.help;
+        if (spec.range && spec.metavar) text += std::string(". Must be ") + spec.range;
+        if (spec.default_text) text += std::string(". Default: ") + spec.default_text;
+        text += ".";
+        append_wrapped(out, text, indent, width);
+    }
+    return out;
+}
+
+} // namespace clppm

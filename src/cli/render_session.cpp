@@ -1,0 +1,356 @@
+#include "cli/render_session.h"
+
+#include <chrono>
+#include <cstdio>
+#include <memory>
+
+#include "io/checkpoint.h"
+#include "scene/scene_fingerprint.h"
+#include "device/device.h"
+#include "util/error.h"
+#include "integrators/error_estimate.h"
+#include "scene/gltf/gltf_load.h"
+#include "io/image_io.h"
+#include "integrators/integrator.h"
+#include "integrators/integrator_factory.h"
+#include "cli/interrupt.h"
+#include "device/kernel_program.h"
+#include "integrators/memory_estimate.h"
+#include "cli/progress.h"
+#include "scene/device_scene.h"
+#include "scene/scene_features.h"
+#include "io/stats_json.h"
+#include "util/hash.h"
+#include "util/version.h"
+
+namespace clppm {
+
+namespace {
+
+struct Clock {
+    std::chrono::steady_clock::time_point t0 = std::chrono::steady_clock::now();
+    double seconds() const { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); }
+};
+
+void note(const Options& opt, const std::string& msg) {
+    if (!opt.quiet) std::fprintf(stderr, "clppm: %s\n", msg.c_str());
+}
+
+RenderSettings settings_from(const Options& o) {
+    RenderSettings s;
+    s.integrator = o.integrator;
+    s.direct = o.direct;
+    s.width = unsigned(o.width);
+    s.height = unsigned(o.height);
+    s.camera = unsigned(o.camera);
+    s.spp = unsigned(o.spp);
+    s.photons = o.photons_per_pass;
+    s.alpha = o.alpha;
+    s.radius = o.radius;
+    s.seed = o.seed;
+    s.max_bounces = unsigned(o.max_bounces);
+    s.aperture = o.aperture;
+    s.focus_distance = o.focus_distance;
+    s.filter = o.filter;
+    return s;
+}
+
+// The devices a render runs on, the first of them primary: every --device spec in order ("all":
+// every device), else the first GPU, else device 0. A device named twice is an error.
+std::vector<DeviceInfo> choose_devices(const Options& opt, const std::vector<DeviceInfo>& devices) {
+    std::vector<DeviceInfo> chosen;
+    for (const std::string& spec : opt.devices) {
+        if (spec == "all") {
+            if (devices.empty()) select_device(devices, spec); // throws: no device
+            for (const DeviceInfo& d : devices) chosen.push_back(d);
+            continue;
+        }
+        const DeviceInfo& d = select_device(devices, spec);
+        for (const DeviceInfo& c : chosen)
+            if (c.index == d.index)
+                throw Error("--device " + spec + ": device [" + std::to_string(d.index) + "] " + d.name + " is given twice");
+        chosen.push_back(d);
+    }
+    if (!chosen.empty()) return chosen;
+    for (const DeviceInfo& d : devices)
+        if (d.type & CL_DEVICE_TYPE_GPU) return {d};
+    return {select_device(devices, "0")};
+}
+
+// Every file the render will write is checked before hours of rendering, not after.
+void check_outputs(const Options& opt) {
+    check_writable(opt.output);
+    if (opt.write_png) check_writable(png_path_for(opt.output));
+    if (!opt.stats_json.empty()) check_writable(opt.stats_json);
+    if (!opt.checkpoint.empty()) check_writable(opt.checkpoint);
+    if (!opt.error_output.empty()) {
+        check_writable(opt.error_output);
+        check_writable(png_path_for(opt.error_output));
+    }
+}
+
+// --target-error / --error-output: the estimate after every pass, for halting and the outputs.
+struct ErrorTracking {
+    IntegratorBase* integ = nullptr; // null: not estimating
+    ErrorImage last;
+    ErrorTrend trend;
+
+    void update(const Options& opt, Progress& progress, uint64_t pass, double seconds) {
+        if (!integ) return;
+        last = integ->error_estimate(opt.confidence);
+        trend.add(pass, seconds, last.image_error);
+        progress.set_error(last.image_error, opt.target_error, trend.eta_seconds(opt.target_error));
+    }
+    bool reached(const Options& opt) const { return integ && opt.target_error > 0 && last.image_error <= opt.target_error; }
+};
+
+// The main images, with the per-pixel relative error bound as an "error" layer when estimating.
+void save_images(const Options& opt, const Image& img, const ErrorTracking& errors) {
+    std::vector<ExrLayer> layers;
+    if (errors.integ && errors.last.relative.size() == img.rgb.size() / 3) layers.push_back({"error", &errors.last.relative});
+    write_exr(opt.output, img, layers);
+    if (opt.write_png) write_png(png_path_for(opt.output), img);
+}
+
+// --error-output: the relative bound as a grey EXR (with its bias and noise parts as layers) and a
+// false-colour PNG, red at twice the target (0.2 without one).
+void save_error_images(const Options& opt, const ErrorImage& e) {
+    Image grey;
+    grey.width = e.width, grey.height = e.height;
+    grey.rgb.reserve(e.relative.size() * 3);
+    for (float v : e.relative) grey.rgb.insert(grey.rgb.end(), {v, v, v});
+    const std::vector<float> bias = relative_bounds(e.bias, e.luminance), noise = relative_bounds(e.noise, e.luminance);
+    write_exr(opt.error_output, grey, {{"bias", &bias}, {"noise", &noise}});
+    const double scale = opt.target_error > 0 ? 2 * opt.target_error : 0.2;
+    write_png(png_path_for(opt.error_output), false_colour(e.relative, e.width, e.height, scale));
+}
+
+// What a checkpoint must agree on to be resumed: everything that shapes the image.
+Json image_fingerprint(const Options& o, const DeviceScene& ds, uint64_t scene_hash, const std::string& kernel_source) {
+    char hex[17];
+    std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(scene_hash));
+    char khex[17];
+    std::snprintf(khex, sizeof khex, "%016llx", fnv1a64(kernel_source));
+    Json j;
+    j["scene"] = hex;
+    j["kernels"] = khex;
+    j["--integrator"] = to_string(o.integrator);
+    j["--direct"] = to_string(o.direct);
+    j["--width"] = ds.camera.width;
+    j["--height"] = ds.camera.height;
+    j["--camera"] = o.camera;
+    j["--spp"] = o.spp;
+    j["--photons"] = o.photons_per_pass;
+    j["--alpha"] = o.alpha;
+    j["--radius"] = o.radius;
+    j["--seed"] = o.seed;
+    j["--max-bounces"] = o.max_bounces;
+    j["--filter"] = to_string(o.filter);
+    j["--aperture"] = o.aperture;
+    j["--focus-distance"] = o.focus_distance;
+    return j;
+}
+
+Json make_stats(const Options& opt, const DeviceContext& dc, const DeviceScene& ds, const Scene& scene,
+                const IntegratorBase& integ, const ProgramBuildStats& build, double render_s, double total_s,
+                const Image& img, int signal) {
+    const IntegratorStats& st = integ.stats();
+    Json j;
+    j["version"] = kVersion;
+    j["scene"] = scene.source;
+    j["integrator"] = integ.name();
+    j["direct"] = to_string(opt.direct);
+    j["device"] = {{"index", dc.info.index}, {"name", dc.info.name}, {"platform", dc.info.platform_name},
+                   {"type", dc.info.type_name()}, {"driver", dc.info.driver_version}};
+    j["width"] = ds.camera.width;
+    j["height"] = ds.camera.height;
+    j["passes"] = st.passes;
+    j["photons_per_pass"] = opt.photons_per_pass;
+    j["photons_emitted"] = st.photons_emitted;
+    j["photons_stored"] = st.photons_stored;
+    j["hitpoints"] = st.hitpoints;
+    j["alpha"] = opt.alpha;
+    j["seed"] = opt.seed;
+    j["initial_radius"] = st.initial_radius;
+    j["mean_radius"] = st.mean_radius;
+    j["render_seconds"] = render_s;
+    j["total_seconds"] = total_s;
+    j["passes_per_second"] = render_s > 0 ? double(st.passes) / render_s : 0.0;
+    j["photons_per_second"] = render_s > 0 ? double(st.photons_emitted) / render_s : 0.0;
+    Json phases = Json::object();
+    for (const auto& [k, v] : st.phase_seconds) phases[k] = v;
+    j["phase_seconds"] = phases;
+    j["kernel_build"] = {{"seconds", build.seconds}, {"from_cache", build.from_cache}, {"options", build.options}};
+    j["bvh"] = {{"build_seconds", ds.bvh_build_seconds}, {"nodes", ds.bvh_nodes}, {"triangles", ds.num_triangles}};
+    j["lights"] = ds.lights.size();
+    j["device_memory_bytes"] = {{"scene", ds.device_bytes},
+                                {"integrator", st.device_bytes},
+                                {"photons", st.photon_bytes},
+                                {"total", ds.device_bytes + st.device_bytes + st.photon_bytes}};
+    j["photon_batches_per_pass"] = st.photon_batches;
+    j["device_photons_last_pass"] = st.device_photons;
+    j["degenerate_triangles_skipped"] = scene.degenerate_triangles_skipped;
+    j["nonfinite_pixels"] = count_nonfinite(img);
+    j["mean_radiance"] = mean_radiance(img);
+    j["interrupted"] = signal != 0;
+    return j;
+}
+
+Scene load_scene(const Options& opt) {
+    Scene scene = opt.scene.empty() ? load_default_scene() : load_gltf(opt.scene);
+    for (const std::string& w : scene.warnings) note(opt, "warning: " + scene.source + ": " + w);
+    if (scene.degenerate_triangles_skipped)
+        note(opt, scene.source + ": skipped " + std::to_string(scene.degenerate_triangles_skipped) + " degenerate triangle(s)");
+    if (scene.meshes_without_normals)
+        note(opt, scene.source + ": computed normals for " + std::to_string(scene.meshes_without_normals) +
+                      " primitive(s) without normals");
+    return scene;
+}
+
+// Reads --resume's checkpoint and refuses it when the scene or an image-shaping option differs.
+Checkpoint open_resume(const Options& opt, const Json& fingerprint) {
+    Checkpoint ck = read_checkpoint(opt.resume);
+    if (!ck.header.contains("fingerprint")) throw Error(opt.resume + ": checkpoint has no fingerprint");
+    std::string diff = checkpoint_differences(ck.header["fingerprint"], fingerprint);
+    if (!diff.empty()) throw Error("--resume " + opt.resume + ": cannot continue this render: " + diff);
+    return ck;
+}
+
+void save_checkpoint(const Options& opt, IntegratorBase& integ, const Json& fingerprint, const DeviceContext& dc) {
+    Checkpoint ck;
+    ck.header["version"] = kVersion;
+    ck.header["fingerprint"] = fingerprint;
+    ck.header["device"] = dc.info.name + " / " + dc.info.driver_version;
+    integ.save(ck);
+    write_checkpoint(opt.checkpoint, ck);
+}
+
+} // namespace
+
+int render_session(const Options& opt) {
+    Clock total;
+    install_interrupt_handlers();
+    if (!opt.kernel_dir.empty()) set_kernel_dir(opt.kernel_dir);
+    std::vector<DeviceInfo> devices = list_devices();
+    const std::vector<DeviceInfo> chosen = choose_devices(opt, devices);
+    const DeviceInfo& info = chosen.front();
+    check_outputs(opt);
+
+    Scene scene = load_scene(opt);
+    const uint64_t scene_hash = scene_fingerprint(scene);
+    RenderSettings settings = settings_from(opt);
+    // Refuse a render the device cannot hold before allocating anything.
+    const ImageResolution res = image_resolution(scene, settings);
+    check_memory_fits(estimate_memory(scene, settings, res.width, res.height, info, wants_error_estimate(opt)), info);
+    DeviceContext dc(info);
+    DeviceScene ds = upload_scene(dc, scene, settings);
+    for (const std::string& n : ds.notes) note(opt, n);
+
+    const std::string program_file = integrator_program_file(settings);
+    const SceneFeatures features = scene_features(scene, ds);
+    const std::string build_options = integrator_build_options(
+        settings, dc.info, opt.generic_kernels ? std::string() : feature_build_options(features));
+    const std::string kernel_source = assemble_kernel_source(program_file);
+    if (!opt.dump_kernel_source.empty())
+        write_file_atomic(opt.dump_kernel_source, "// build options: " + build_options + "\n" + kernel_source);
+    const Json fingerprint = image_fingerprint(opt, ds, scene_hash, kernel_source + build_options);
+    Checkpoint resume_from;
+    if (!opt.resume.empty()) resume_from = open_resume(opt, fingerprint);
+
+    ProgramBuildStats build;
+    cl::Program program = build_program(dc, program_file, build_options, &build);
+    note(opt, "device [" + std::to_string(dc.info.index) + "] " + dc.info.name + ", " + std::to_string(ds.camera.width) +
+                  "x" + std::to_string(ds.camera.height) + ", " + std::to_string(ds.num_triangles) + " triangles, " +
+                  std::to_string(ds.lights.size()) + " lights, kernels " +
+                  (opt.generic_kernels ? std::string("generic") : "for " + describe_features(features)) + " " +
+                  (build.from_cache ? "cached" : "built") + " in " + std::to_string(build.seconds).substr(0, 5) + " s");
+
+    SecondaryDevices secondaries{std::vector<DeviceInfo>(chosen.begin() + 1, chosen.end()), program_file, build_options};
+    if (!secondaries.devices.empty() && settings.integrator == Integrator::PT) {
+        note(opt, "warning: the path tracer runs on the first device only");
+        secondaries.devices.clear();
+    }
+    for (const DeviceInfo& d : secondaries.devices) {
+        integrator_build_options(settings, d); // the same requirements (fp64) as the primary
+        note(opt, "sharing photons with device [" + std::to_string(d.index) + "] " + d.name);
+    }
+    std::unique_ptr<IntegratorBase> integ = make_integrator(dc, ds, settings, program, secondaries);
+    ErrorTracking errors;
+    if (wants_error_estimate(opt)) {
+        const char* asked = opt.target_error > 0 ? "--target-error" : "--error-output";
+        if (!secondaries.devices.empty())
+            throw Error(std::string(asked) + ": error estimation runs on one device; give a single --device");
+        if (!integ->estimates_error())
+            throw Error(std::string(asked) + ": the " + integ->name() + " integrator does not estimate its error");
+        errors.integ = integ.get();
+        errors.integ->enable_error_estimation();
+    }
+    Clock render_clock;
+    integ->prepare();
+    if (!opt.resume.empty()) {
+        if (resume_from.header.value("device", std::string()) != dc.info.name + " / " + dc.info.driver_version)
+            note(opt, "warning: resuming on another device than the checkpoint's (" +
+                          resume_from.header.value("device", std::string("unknown")) + "): the image will not be bit-identical");
+        integ->restore(resume_from);
+        note(opt, "resumed " + opt.resume + " at pass " + std::to_string(integ->stats().passes));
+    }
+
+    // --passes counts from the start of the original render (a total), --time this session only.
+    Progress progress(opt.quiet, opt.passes, opt.time_limit);
+    double last_checkpoint = 0;
+    int signal = 0;
+    auto more = [&] {
+        const uint64_t p = integ->stats().passes;
+        if (opt.passes > 0 && p >= opt.passes) return false;
+        if (opt.time_limit > 0 && render_clock.seconds() >= opt.time_limit) return false;
+        if (errors.reached(opt)) return false;
+        return (signal = interrupt_signal()) == 0;
+    };
+    while (more()) {
+        integ->run_pass();
+        const IntegratorStats& st = integ->stats();
+        errors.update(opt, progress, st.passes, render_clock.seconds());
+        progress.update(st.passes, st.photons_emitted, st.mean_radius, render_clock.seconds());
+        if (opt.progressive_output > 0 && st.passes % opt.progressive_output == 0) save_images(opt, integ->image(), errors);
+        if (!opt.checkpoint.empty() &&
+            ((opt.checkpoint_every > 0 && st.passes % opt.checkpoint_every == 0) ||
+             render_clock.seconds() - last_checkpoint >= opt.checkpoint_interval)) {
+            save_checkpoint(opt, *integ, fingerprint, dc);
+            last_checkpoint = render_clock.seconds();
+        }
+    }
+    const double render_s = render_clock.seconds();
+    const IntegratorStats& st = integ->stats();
+    progress.finish(st.passes, st.photons_emitted, st.mean_radius, render_s);
+
+    Image img = integ->image();
+    save_images(opt, img, errors);
+    if (!opt.error_output.empty() && !errors.last.relative.empty()) save_error_images(opt, errors.last);
+    if (errors.integ) {
+        char line[160];
+        std::snprintf(line, sizeof line, "estimated error %.4g (90th percentile, confidence %g)%s", errors.last.image_error,
+                      opt.confidence, errors.reached(opt) ? ": reached the target" : "");
+        note(opt, line);
+    }
+    if (!opt.checkpoint.empty()) save_checkpoint(opt, *integ, fingerprint, dc);
+    if (size_t bad = count_nonfinite(img)) note(opt, "warning: " + std::to_string(bad) + " pixel(s) are NaN or Inf");
+    if (!opt.stats_json.empty()) {
+        Json j = make_stats(opt, dc, ds, scene, *integ, build, render_s, total.seconds(), img, signal);
+        if (errors.integ)
+            j["error"] = {{"estimated", errors.last.image_error}, {"target", opt.target_error},
+                          {"reached", errors.reached(opt)}, {"confidence", opt.confidence},
+                          {"percentile", kErrorPercentile}, {"passes", errors.last.passes}};
+        write_stats_json(opt.stats_json, j);
+    }
+    note(opt, "wrote " + opt.output + (opt.write_png ? " and " + png_path_for(opt.output) : std::string()) +
+                  (opt.error_output.empty() ? std::string() : " and " + opt.error_output) +
+                  (opt.checkpoint.empty() ? std::string() : " and " + opt.checkpoint));
+    if (signal) {
+        note(opt, "interrupted after pass " + std::to_string(st.passes) +
+                      (opt.checkpoint.empty() ? std::string() : "; continue with --resume " + opt.checkpoint));
+        return interrupted_exit_status(signal);
+    }
+    return 0;
+}
+
+} // namespace clppm

@@ -1,0 +1,130 @@
+#include "device/device.h"
+
+#include <algorithm>
+#include <cctype>
+#include <sstream>
+
+#include "util/error.h"
+
+namespace clppm {
+
+namespace {
+
+std::string trim(std::string s) {
+    while (!s.empty() && (std::isspace(static_cast<unsigned char>(s.back())) || s.back() == '\0')) s.pop_back();
+    size_t i = 0;
+    while (i < s.size() && std::isspace(static_cast<unsigned char>(s[i]))) ++i;
+    return s.substr(i);
+}
+
+std::string lower(std::string s) {
+    for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return s;
+}
+
+} // namespace
+
+std::string DeviceInfo::type_name() const {
+    if (type & CL_DEVICE_TYPE_GPU) return "GPU";
+    if (type & CL_DEVICE_TYPE_CPU) return "CPU";
+    if (type & CL_DEVICE_TYPE_ACCELERATOR) return "ACCELERATOR";
+    return "OTHER";
+}
+
+std::vector<DeviceInfo> list_devices() {
+    std::vector<DeviceInfo> out;
+    std::vector<cl::Platform> platforms;
+    try {
+        cl::Platform::get(&platforms);
+    } catch (const cl::Error& e) {
+        if (e.err() == CL_PLATFORM_NOT_FOUND_KHR) return out; // no ICD installed: an empty list
+        throw Error(std::string("OpenCL: cannot list platforms (") + e.what() + ")");
+    }
+    for (const cl::Platform& p : platforms) {
+        std::vector<cl::Device> devices;
+        try {
+            p.getDevices(CL_DEVICE_TYPE_ALL, &devices);
+        } catch (const cl::Error&) {
+            continue; // a platform with no devices
+        }
+        for (const cl::Device& d : devices) {
+            DeviceInfo info;
+            info.index = static_cast<int>(out.size());
+            info.platform = p;
+            info.device = d;
+            info.platform_name = trim(p.getInfo<CL_PLATFORM_NAME>());
+            info.name = trim(d.getInfo<CL_DEVICE_NAME>());
+            info.vendor = trim(d.getInfo<CL_DEVICE_VENDOR>());
+            info.driver_version = trim(d.getInfo<CL_DRIVER_VERSION>());
+            info.opencl_c_version = trim(d.getInfo<CL_DEVICE_OPENCL_C_VERSION>());
+            info.type = d.getInfo<CL_DEVICE_TYPE>();
+            info.compute_units = d.getInfo<CL_DEVICE_MAX_COMPUTE_UNITS>();
+            info.global_mem = d.getInfo<CL_DEVICE_GLOBAL_MEM_SIZE>();
+            info.max_alloc = d.getInfo<CL_DEVICE_MAX_MEM_ALLOC_SIZE>();
+            std::string ext = d.getInfo<CL_DEVICE_EXTENSIONS>();
+            info.fp64 = ext.find("cl_khr_fp64") != std::string::npos;
+            out.push_back(std::move(info));
+        }
+    }
+    return out;
+}
+
+std::string describe_devices(const std::vector<DeviceInfo>& devices) {
+    std::ostringstream os;
+    if (devices.empty()) {
+        os << "no OpenCL devices found (is an ICD such as pocl-opencl-icd installed?)\n";
+        return os.str();
+    }
+    for (const DeviceInfo& d : devices) {
+        os << "[" << d.index << "] " << d.name << "\n"
+           << "    platform: " << d.platform_name << "\n"
+           << "    type: " << d.type_name() << ", compute units: " << d.compute_units
+           << ", memory: " << (d.global_mem >> 20) << " MiB (max allocation " << (d.max_alloc >> 20)
+           << " MiB)\n"
+           << "    " << d.opencl_c_version << ", driver " << d.driver_version
+           << ", fp64: " << (d.fp64 ? "yes" : "no") << "\n";
+    }
+    return os.str();
+}
+
+const DeviceInfo& select_device(const std::vector<DeviceInfo>& devices, const std::string& spec) {
+    auto fail = [&](const std::string& why) -> const DeviceInfo& {
+        std::ostringstream os;
+        os << "--device " << spec << ": " << why << "; available:";
+        if (devices.empty()) os << " none (no OpenCL platform found)";
+        for (const DeviceInfo& d : devices) os << " [" << d.index << "] " << d.name << " (" << d.type_name() << ");";
+        std::string msg = os.str();
+        if (!msg.empty() && msg.back() == ';') msg.pop_back();
+        throw Error(msg);
+    };
+    if (devices.empty()) return fail("no OpenCL device");
+    const std::string s = lower(trim(spec));
+    if (s.empty()) return fail("empty device spec");
+    if (std::all_of(s.begin(), s.end(), [](char c) { return std::isdigit(static_cast<unsigned char>(c)); })) {
+        size_t idx = std::stoul(s);
+        if (idx >= devices.size()) return fail("no device with index " + s);
+        return devices[idx];
+    }
+    if (s == "cpu" || s == "gpu") {
+        cl_device_type want = s == "cpu" ? CL_DEVICE_TYPE_CPU : CL_DEVICE_TYPE_GPU;
+        for (const DeviceInfo& d : devices)
+            if (d.type & want) return d;
+        return fail("no " + s + " device");
+    }
+    for (const DeviceInfo& d : devices)
+        if (lower(d.name).find(s) != std::string::npos || lower(d.platform_name).find(s) != std::string::npos)
+            return d;
+    return fail("no device name matches");
+}
+
+DeviceContext::DeviceContext(const DeviceInfo& i) : info(i) {
+    try {
+        context = cl::Context(info.device);
+        queue = cl::CommandQueue(context, info.device, CL_QUEUE_PROFILING_ENABLE);
+    } catch (const cl::Error& e) {
+        throw Error("OpenCL: cannot create a context on " + info.name + " (" + e.what() + " " +
+                    std::to_string(e.err()) + ")");
+    }
+}
+
+} // namespace clppm

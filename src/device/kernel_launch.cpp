@@ -1,0 +1,22 @@
+#include "device/kernel_launch.h"
+
+#include <algorithm>
+#include <cstdlib>
+
+namespace clppm {
+
+void enqueue_1d(const cl::CommandQueue& queue, const cl::Kernel& kernel, size_t n, cl::Event* event) {
+    static const size_t local = [] {
+        const char* e = std::getenv("CLPPM_LOCAL_SIZE");
+        return e && *e ? size_t(std::strtoul(e, nullptr, 10)) : size_t(0);
+    }();
+    n = std::max<size_t>(n, 1);
+    if (local > 0) {
+        size_t global = (n + local - 1) / local * local;
+        queue.enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(global), cl::NDRange(local), nullptr, event);
+    } else {
+        queue.enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(n), cl::NullRange, nullptr, event);
+    }
+}
+
+} // namespace clppm

@@ -1,0 +1,34 @@
+// Launching kernels and moving whole buffers: the few calls every host stage makes.
+#pragma once
+#include <cstddef>
+#include <vector>
+
+#include "device/cl.h"
+
+namespace clppm {
+
+// Sets kernel arguments first, first + 1, ... to args in order; returns the index after the last.
+template <class... Args>
+int set_args(cl::Kernel& kernel, int first, const Args&... args) {
+    (kernel.setArg(first++, args), ...);
+    return first;
+}
+
+// Launches a 1-D kernel over n work items (the kernel ignores ids >= n). The work-group size is
+// the driver's choice unless CLPPM_LOCAL_SIZE is set, which the tests use to show that images do
+// not depend on it.
+void enqueue_1d(const cl::CommandQueue& queue, const cl::Kernel& kernel, size_t n, cl::Event* event = nullptr);
+
+// Reads a whole device buffer of n elements into a vector, and writes one back.
+template <class T>
+std::vector<T> read_buffer(const cl::CommandQueue& q, const cl::Buffer& b, size_t n) {
+    std::vector<T> v(n);
+    if (n) q.enqueueReadBuffer(b, CL_TRUE, 0, n * sizeof(T), v.data());
+    return v;
+}
+template <class T>
+void write_buffer(const cl::CommandQueue& q, const cl::Buffer& b, const std::vector<T>& v) {
+    if (!v.empty()) q.enqueueWriteBuffer(b, CL_TRUE, 0, v.size() * sizeof(T), v.data());
+}
+
+} // namespace clppm

@@ -1,0 +1,173 @@
+#include "device/kernel_program.h"
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <set>
+#include <sstream>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "util/embedded_files.h"
+#include "util/error.h"
+#include "util/hash.h"
+
+namespace clppm {
+
+namespace {
+
+std::string g_kernel_dir;
+bool g_kernel_dir_set = false;
+
+bool read_file(const std::string& path, std::string* out) {
+    std::ifstream f(path, std::ios::binary);
+    if (!f) return false;
+    std::ostringstream ss;
+    ss << f.rdbuf();
+    *out = ss.str();
+    return true;
+}
+
+std::string load_kernel_file(const std::string& name) {
+    const std::string dir = kernel_dir();
+    if (!dir.empty()) {
+        std::string text;
+        if (!read_file(dir + "/" + name, &text))
+            throw Error("kernel source " + dir + "/" + name + ": cannot read (from CLPPM_KERNEL_DIR/--kernel-dir)");
+        return text;
+    }
+    const EmbeddedFile* f = find_embedded("kernels/" + name);
+    if (!f) throw Error("kernel source " + name + ": not embedded in this binary");
+    return std::string(f->data, f->size);
+}
+
+void assemble(const std::string& name, std::set<std::string>& seen, std::string& out) {
+    if (!seen.insert(name).second) return;
+    std::istringstream in(load_kernel_file(name));
+    std::string line;
+    int lineno = 0;
+    out += "#line 1 \"" + name + "\"\n";
+    while (std::getline(in, line)) {
+        ++lineno;
+        size_t p = line.find_first_not_of(" \t");
+        if (p != std::string::npos && line.compare(p, 8, "#include") == 0) {
+            size_t q0 = line.find('"', p), q1 = q0 == std::string::npos ? q0 : line.find('"', q0 + 1);
+            if (q0 != std::string::npos && q1 != std::string::npos) {
+                assemble(line.substr(q0 + 1, q1 - q0 - 1), seen, out);
+                out += "#line " + std::to_string(lineno + 1) + " \"" + name + "\"\n";
+                continue;
+            }
+        }
+        out += line;
+        out += '\n';
+    }
+}
+
+std::string cache_dir() {
+    if (const char* e = std::getenv("CLPPM_NO_CACHE"); e && *e && std::string(e) != "0") return "";
+    if (const char* e = std::getenv("CLPPM_CACHE_DIR"); e && *e) return e;
+    if (const char* e = std::getenv("XDG_CACHE_HOME"); e && *e) return std::string(e) + "/clppm";
+    if (const char* e = std::getenv("HOME"); e && *e) return std::string(e) + "/.cache/clppm";
+    return "";
+}
+
+void mkdirs(const std::string& path) {
+    for (size_t i = 1; i <= path.size(); ++i)
+        if (i == path.size() || path[i] == '/') ::mkdir(path.substr(0, i).c_str(), 0755);
+}
+
+std::string build_log(const cl::Program& program, const cl::Device& device) {
+    try {
+        return program.getBuildInfo<CL_PROGRAM_BUILD_LOG>(device);
+    } catch (const cl::Error&) {
+        return "(no build log)";
+    }
+}
+
+} // namespace
+
+void set_kernel_dir(const std::string& dir) {
+    g_kernel_dir = dir;
+    g_kernel_dir_set = true;
+}
+
+std::string kernel_dir() {
+    if (g_kernel_dir_set) return g_kernel_dir;
+    if (const char* e = std::getenv("CLPPM_KERNEL_DIR"); e && *e) return e;
+    return "";
+}
+
+std::string assemble_kernel_source(const std::string& name) {
+    std::set<std::string> seen;
+    std::string out;
+    assemble(name, seen, out);
+    return out;
+}
+
+cl::Program build_program(const DeviceContext& dc, const std::string& entry_file, const std::string& options,
+                          ProgramBuildStats* stats) {
+    auto t0 = std::chrono::steady_clock::now();
+    const std::string source = assemble_kernel_source(entry_file);
+    const std::string full_options = "-cl-std=CL1.2 " + options;
+    const cl::Device& device = dc.info.device;
+
+    // Cache key: source, options, device and driver (LuxCore's persistent cache keys the same way).
+    unsigned long long key = fnv1a64(source);
+    key = fnv1a64(full_options, key);
+    key = fnv1a64(dc.info.platform_name + "|" + dc.info.name + "|" + dc.info.driver_version, key);
+    char keyhex[17];
+    std::snprintf(keyhex, sizeof keyhex, "%016llx", key);
+    const std::string dir = cache_dir();
+    const std::string cache_file = dir.empty() ? "" : dir + "/" + keyhex + ".bin";
+
+    auto finish = [&](cl::Program p, bool cached) {
+        if (stats) {
+            stats->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+            stats->from_cache = cached;
+            stats->options = full_options;
+        }
+        return p;
+    };
+
+    std::string binary;
+    if (!cache_file.empty() && read_file(cache_file, &binary) && !binary.empty()) {
+        try {
+            cl::Program::Binaries bins{std::vector<unsigned char>(binary.begin(), binary.end())};
+            cl::Program p(dc.context, {device}, bins);
+            p.build({device}, full_options.c_str());
+            return finish(p, true);
+        } catch (const cl::Error&) {
+            std::remove(cache_file.c_str()); // stale or foreign binary: rebuild from source
+        }
+    }
+
+    cl::Program program(dc.context, source);
+    try {
+        program.build({device}, full_options.c_str());
+    } catch (const cl::Error& e) {
+        std::string log = build_log(program, device);
+        throw Error("kernel build failed for " + entry_file + " on " + dc.info.name + " (" + full_options +
+                    "):\n" + log);
+    }
+    if (std::getenv("CLPPM_BUILD_LOG")) std::fprintf(stderr, "%s\n", build_log(program, device).c_str());
+    if (!cache_file.empty()) {
+        try {
+            std::vector<std::vector<unsigned char>> bins = program.getInfo<CL_PROGRAM_BINARIES>();
+            if (bins.size() == 1 && !bins[0].empty()) {
+                mkdirs(dir);
+                std::string tmp = cache_file + ".tmp." + std::to_string(::getpid());
+                std::ofstream f(tmp, std::ios::binary);
+                f.write(reinterpret_cast<const char*>(bins[0].data()), static_cast<std::streamsize>(bins[0].size()));
+                f.close();
+                if (f) std::rename(tmp.c_str(), cache_file.c_str());
+                else std::remove(tmp.c_str());
+            }
+        } catch (const cl::Error&) {
+            // Binaries unavailable from this driver: no caching, nothing else changes.
+        }
+    }
+    return finish(program, false);
+}
+
+} // namespace clppm

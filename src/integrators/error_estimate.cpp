@@ -1,0 +1,200 @@
+#include "integrators/error_estimate.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "device/kernel_launch.h"
+#include "util/error.h"
+
+namespace clppm {
+
+namespace {
+
+// The regularised incomplete beta function I_x(a, b) by its continued fraction (modified Lentz),
+// on the side where it converges fast.
+double incomplete_beta(double a, double b, double x) {
+    if (x <= 0) return 0;
+    if (x >= 1) return 1;
+    if (x > (a + 1) / (a + b + 2)) return 1 - incomplete_beta(b, a, 1 - x);
+    const double front = std::exp(std::lgamma(a + b) - std::lgamma(a) - std::lgamma(b) + a * std::log(x) +
+                                  b * std::log1p(-x)) / a;
+    const double tiny = 1e-300;
+    double f = 1, c = 1, d = 0;
+    for (int i = 0; i <= 400; ++i) {
+        const int m = i / 2;
+        double num;
+        if (i == 0) num = 1;
+        else if (i % 2 == 0) num = m * (b - m) * x / ((a + 2 * m - 1) * (a + 2 * m));
+        else num = -((a + m) * (a + b + m) * x) / ((a + 2 * m) * (a + 2 * m + 1));
+        d = 1 + num * d;
+        if (std::fabs(d) < tiny) d = tiny;
+        d = 1 / d;
+        c = 1 + num / c;
+        if (std::fabs(c) < tiny) c = tiny;
+        const double cd = c * d;
+        f *= cd;
+        if (std::fabs(1 - cd) < 1e-15) break;
+    }
+    return front * (f - 1);
+}
+
+double student_t_cdf(double t, double nu) {
+    if (std::isinf(nu)) return 0.5 * std::erfc(-t / std::sqrt(2.0));
+    const double tail = 0.5 * incomplete_beta(0.5 * nu, 0.5, nu / (nu + t * t));
+    return t >= 0 ? 1 - tail : tail;
+}
+
+} // namespace
+
+double student_t_quantile(double p, double nu) {
+    if (!(p > 0 && p < 1) || !(nu > 0)) throw Error("student_t_quantile: p must be in (0, 1) and nu > 0");
+    if (p < 0.5) return -student_t_quantile(1 - p, nu);
+    // The CDF is monotone: bracket, then bisect to the last bit.
+    double lo = 0, hi = 1;
+    while (student_t_cdf(hi, nu) < p && hi < 1e300) lo = hi, hi *= 2;
+    for (int i = 0; i < 200 && hi - lo > 1e-15 * hi; ++i) {
+        const double mid = 0.5 * (lo + hi);
+        (student_t_cdf(mid, nu) < p ? lo : hi) = mid;
+    }
+    return 0.5 * (lo + hi);
+}
+
+double normal_quantile(double p) { return student_t_quantile(p, std::numeric_limits<double>::infinity()); }
+
+double confidence_multiplier(double confidence, uint64_t n) {
+    if (n < 2) return std::numeric_limits<double>::infinity();
+    return student_t_quantile(0.5 * (1 + confidence), double(n - 1));
+}
+
+std::vector<float> relative_bounds(const std::vector<float>& absolute, const std::vector<float>& luminance) {
+    double mean = 0;
+    for (float l : luminance) mean += std::max(0.0, double(l));
+    mean = luminance.empty() ? 0 : mean / double(luminance.size());
+    const double floor = kRelativeFloor * mean;
+    std::vector<float> rel(absolute.size());
+    for (size_t i = 0; i < absolute.size(); ++i) {
+        const double denom = std::max(double(luminance[i]), floor);
+        const double e = absolute[i];
+        rel[i] = e == 0 ? 0.f : denom > 0 ? float(e / denom) : std::numeric_limits<float>::infinity();
+    }
+    return rel;
+}
+
+double image_error(std::vector<float> v, double percentile) {
+    if (v.empty()) return std::numeric_limits<double>::infinity();
+    for (float& x : v)
+        if (std::isnan(x)) x = std::numeric_limits<float>::infinity();
+    const size_t rank = size_t(std::ceil(percentile * double(v.size())));
+    auto it = v.begin() + std::clamp<size_t>(rank, 1, v.size()) - 1;
+    std::nth_element(v.begin(), it, v.end());
+    return double(*it);
+}
+
+ErrorEstimator::ErrorEstimator(const DeviceContext& dc, const cl::Program& program, uint32_t num_pixels,
+                               IntegratorStats& stats)
+    : dc_(dc), stats_(stats), n_(num_pixels) {
+    k_gather_ = cl::Kernel(program, "error_gather");
+    k_reset_ = cl::Kernel(program, "error_reset");
+    k_update_ = cl::Kernel(program, "error_update");
+    k_bound_ = cl::Kernel(program, "error_bound");
+    auto make = [&](size_t bytes) {
+        stats_.device_bytes += bytes;
+        return cl::Buffer(dc_.context, CL_MEM_READ_WRITE, std::max<size_t>(bytes, 1));
+    };
+    laplacian_ = make(size_t(n_) * sizeof(cl_long));
+    error_stats_ = make(size_t(n_) * sizeof(dev::ErrorStats));
+    bound_ = make(size_t(n_) * sizeof(cl_float4));
+}
+
+void ErrorEstimator::reset(const cl::Buffer& hit_stats) {
+    set_args(k_reset_, 0, hit_stats, cl_uint(n_), error_stats_);
+    enqueue_1d(dc_.queue, k_reset_, n_);
+    passes_ = 0;
+}
+
+void ErrorEstimator::update(const cl::Buffer& passflux, const cl::Buffer& hitpoints, const cl::Buffer& hit_stats,
+                            double global_r2, double power_per_photon) {
+    set_args(k_update_, 0, passflux, laplacian_, hitpoints, hit_stats, cl_uint(n_), cl_double(global_r2),
+             cl_double(power_per_photon), error_stats_);
+    cl::Event ev;
+    enqueue_1d(dc_.queue, k_update_, n_, &ev);
+    add_event_time(stats_, "error_estimate", ev);
+    ++passes_;
+}
+
+ErrorImage ErrorEstimator::estimate(double confidence, int width, int height) {
+    if (!(confidence > 0 && confidence < 1)) throw Error("error estimate: the confidence must be in (0, 1)");
+    set_args(k_bound_, 0, error_stats_, cl_uint(n_), cl_double(confidence_multiplier(confidence, passes_)), bound_);
+    enqueue_1d(dc_.queue, k_bound_, n_);
+    std::vector<cl_float4> b = read_buffer<cl_float4>(dc_.queue, bound_, n_);
+    ErrorImage e;
+    e.width = width, e.height = height, e.passes = passes_;
+    e.absolute.resize(n_), e.luminance.resize(n_), e.bias.resize(n_), e.noise.resize(n_);
+    for (uint32_t i = 0; i < n_; ++i) {
+        e.absolute[i] = b[i].s[0];
+        e.luminance[i] = b[i].s[1];
+        e.bias[i] = b[i].s[2];
+        e.noise[i] = b[i].s[3];
+    }
+    e.relative = relative_bounds(e.absolute, e.luminance);
+    e.image_error = image_error(e.relative);
+    return e;
+}
+
+std::vector<dev::ErrorStats> ErrorEstimator::read() const {
+    return read_buffer<dev::ErrorStats>(dc_.queue, error_stats_, n_);
+}
+
+void ErrorEstimator::write(const std::vector<dev::ErrorStats>& v) {
+    write_buffer(dc_.queue, error_stats_, v);
+    passes_ = v.empty() ? 0 : uint64_t(v[0].n);
+}
+
+void ErrorTrend::add(uint64_t pass, double seconds, double error) {
+    if (std::isfinite(error) && error > 0) points_.push_back({double(pass), seconds, error});
+}
+
+double ErrorTrend::eta_seconds(double target) const {
+    if (points_.empty()) return -1;
+    if (points_.back().error <= target) return 0;
+    // The recent half of the history (at most 64 points): the early passes decay differently.
+    const size_t count = std::min<size_t>(64, (points_.size() + 1) / 2);
+    if (count < 4) return -1;
+    const size_t first = points_.size() - count;
+    double sx = 0, sy = 0, sxx = 0, sxy = 0;
+    for (size_t i = first; i < points_.size(); ++i) {
+        const double x = std::log(points_[i].pass), y = std::log(points_[i].error);
+        sx += x, sy += y, sxx += x * x, sxy += x * y;
+    }
+    const double nn = double(count), den = nn * sxx - sx * sx;
+    if (!(den > 0)) return -1;
+    const double slope = (nn * sxy - sx * sy) / den, icpt = (sy - slope * sx) / nn;
+    if (!(slope < 0)) return -1;
+    const Point &p0 = points_[first], &p1 = points_.back();
+    if (!(p1.pass > p0.pass)) return -1;
+    const double seconds_per_pass = (p1.seconds - p0.seconds) / (p1.pass - p0.pass);
+    const double pass_needed = std::exp((std::log(target) - icpt) / slope);
+    if (!std::isfinite(pass_needed)) return -1;
+    return std::max(0.0, pass_needed - p1.pass) * seconds_per_pass;
+}
+
+Image false_colour(const std::vector<float>& v, int width, int height, double scale) {
+    static const float kRamp[5][3] = {{0, 0, 1}, {0, 1, 1}, {0, 1, 0}, {1, 1, 0}, {1, 0, 0}};
+    Image img;
+    img.width = width, img.height = height;
+    img.rgb.resize(size_t(width) * height * 3);
+    for (size_t i = 0; i < size_t(width) * height; ++i) {
+        float* c = &img.rgb[3 * i];
+        if (!std::isfinite(v[i])) {
+            c[0] = 1, c[1] = 0, c[2] = 1;
+            continue;
+        }
+        const double t = std::clamp(double(v[i]) / scale, 0.0, 1.0) * 4.0;
+        const int k = std::min(3, int(t));
+        const float f = float(t - k);
+        for (int q = 0; q < 3; ++q) c[q] = kRamp[k][q] + f * (kRamp[k + 1][q] - kRamp[k][q]);
+    }
+    return img;
+}
+
+} // namespace clppm

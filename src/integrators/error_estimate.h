@@ -1,0 +1,83 @@
+// Progressive error estimation for photon density estimation (Hachisuka, Jarosz and Jensen,
+// SIGGRAPH Asia 2010), for SPPM and PPPM: per pixel, a bound E on |L_i - L| that holds with a
+// chosen confidence, the sum of an estimated bias and a Student-t bound on the noise (the
+// formulas are in kernels/error_estimate.cl). The image-level error that --target-error halts on
+// is a percentile of the per-pixel bounds relative to the pixel radiance.
+#pragma once
+#include <cstdint>
+#include <vector>
+
+#include "device/cl.h"
+#include "device/device.h"
+#include "io/image_io.h"
+#include "integrators/error_image.h"
+#include "integrators/integrator_stats.h"
+#include "shared_types.h"
+
+namespace clppm {
+
+// P(Z <= z) = p for the standard normal; p in (0, 1).
+double normal_quantile(double p);
+// P(T <= t) = p for Student's t with nu > 0 degrees of freedom (nu = +Inf: the normal).
+double student_t_quantile(double p, double nu);
+// The half-width multiplier of a two-sided interval at `confidence` from n samples:
+// t_{n-1}((1 + confidence) / 2). +Inf for n < 2.
+double confidence_multiplier(double confidence, uint64_t n);
+
+// E / max(L, kRelativeFloor * mean L) per pixel.
+std::vector<float> relative_bounds(const std::vector<float>& absolute, const std::vector<float>& luminance);
+// The `percentile` quantile (nearest rank) of v; +Inf for an empty v or when it is not finite.
+double image_error(std::vector<float> v, double percentile = kErrorPercentile);
+
+// The device side: the Laplacian gather's output, the per-pixel ErrorStats and the bound image.
+class ErrorEstimator {
+public:
+    ErrorEstimator(const DeviceContext& dc, const cl::Program& program, uint32_t num_pixels, IntegratorStats& stats);
+
+    // The second gather (PhotonMap::set_second_gather) and the buffer it fills.
+    const cl::Kernel& gather_kernel() const { return k_gather_; }
+    const cl::Buffer& laplacian() const { return laplacian_; }
+
+    // Fresh statistics (at the start, or resuming a checkpoint that has none).
+    void reset(const cl::Buffer& hit_stats);
+    // After a pass's gathers and before ppm_update: hit_stats still hold this pass's radii.
+    // global_r2 > 0 is PPPM's radius; power_per_photon = total power / photons per pass.
+    void update(const cl::Buffer& passflux, const cl::Buffer& hitpoints, const cl::Buffer& hit_stats, double global_r2,
+                double power_per_photon);
+    // The bounds at `confidence` in (0, 1).
+    ErrorImage estimate(double confidence, int width, int height);
+
+    std::vector<dev::ErrorStats> read() const;
+    // Device bytes per pixel: the Laplacian sums, the statistics and the bound image.
+    static constexpr size_t bytes_per_pixel() { return sizeof(cl_long) + sizeof(dev::ErrorStats) + sizeof(cl_float4); }
+    void write(const std::vector<dev::ErrorStats>& v);
+
+private:
+    const DeviceContext& dc_;
+    IntegratorStats& stats_;
+    uint32_t n_;
+    uint64_t passes_ = 0;
+    cl::Kernel k_gather_, k_reset_, k_update_, k_bound_;
+    cl::Buffer laplacian_, error_stats_, bound_;
+};
+
+// The error's decay, fitted as error ~ c passes^-k over the recent passes, for an ETA.
+class ErrorTrend {
+public:
+    void add(uint64_t pass, double seconds, double error);
+    // Seconds until the fitted error reaches `target` at the recent pace; 0 when already there,
+    // negative when unknown (too few finite points, or the error is not decreasing).
+    double eta_seconds(double target) const;
+
+private:
+    struct Point {
+        double pass, seconds, error;
+    };
+    std::vector<Point> points_;
+};
+
+// A false-colour picture of v (blue 0, through cyan, green and yellow, to red at `scale` and
+// above; NaN and Inf magenta), for the --error-output PNG.
+Image false_colour(const std::vector<float>& v, int width, int height, double scale);
+
+} // namespace clppm

@@ -1,0 +1,30 @@
+// The per-pixel error bounds of progressive error estimation (integrators/error_estimate.h) and
+// the image-level error --target-error halts on.
+#pragma once
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+namespace clppm {
+
+// The image-level error is this quantile of the per-pixel relative bounds: "90% of the pixels
+// are within E of the truth, each with the requested confidence". A high percentile (not the
+// mean) so that a few dark pixels with huge relative error do not hold the render forever, and a
+// few bright converged ones cannot hide a noisy region.
+constexpr double kErrorPercentile = 0.9;
+// A pixel's bound is relative to max(L, kRelativeFloor * mean L): black pixels have no
+// meaningful relative error.
+constexpr double kRelativeFloor = 0.01;
+
+struct ErrorImage {
+    int width = 0, height = 0;
+    uint64_t passes = 0;          // passes the statistics hold
+    std::vector<float> absolute;  // E per pixel, in luminance units (+Inf before two passes)
+    std::vector<float> luminance; // the pixel's estimate L_i (luminance)
+    std::vector<float> bias;      // B_i, signed: > 0 where the estimate is too bright
+    std::vector<float> noise;     // t sqrt(V_i / i)
+    std::vector<float> relative;  // E / max(L, floor): the per-pixel error image
+    double image_error = std::numeric_limits<double>::infinity(); // kErrorPercentile of `relative`
+};
+
+} // namespace clppm

@@ -1,0 +1,18 @@
+#include "integrators/initial_radius.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace clppm {
+
+double initial_radius_heuristic(std::vector<float> footprints, double scene_radius) {
+    double diameter = 2 * scene_radius;
+    if (footprints.empty()) return 1e-3 * diameter;
+    auto mid = footprints.begin() + footprints.size() / 2;
+    std::nth_element(footprints.begin(), mid, footprints.end());
+    double r = 2.0 * double(*mid);
+    if (!std::isfinite(r)) r = 1e-3 * diameter;
+    return std::clamp(r, 1e-6 * diameter, 0.05 * diameter);
+}
+
+} // namespace clppm

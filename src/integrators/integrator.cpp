@@ -1,0 +1,47 @@
+#include "integrators/integrator.h"
+
+#include "util/error.h"
+
+namespace clppm {
+
+void IntegratorBase::save(Checkpoint& ck) {
+    Json& h = ck.header;
+    h["passes"] = stats_.passes;
+    h["photons_emitted"] = stats_.photons_emitted;
+    h["photons_stored"] = stats_.photons_stored;
+    h["hitpoints"] = stats_.hitpoints;
+    h["initial_radius"] = stats_.initial_radius;
+    h["mean_radius"] = stats_.mean_radius;
+    Json phases = Json::object();
+    for (const auto& [k, v] : stats_.phase_seconds) phases[k] = v;
+    h["phase_seconds"] = phases;
+}
+
+void IntegratorBase::restore(const Checkpoint& ck) {
+    const Json& h = ck.header;
+    try {
+        stats_.passes = h.at("passes").get<uint64_t>();
+        stats_.photons_emitted = h.at("photons_emitted").get<uint64_t>();
+        stats_.photons_stored = h.at("photons_stored").get<uint64_t>();
+        stats_.initial_radius = h.at("initial_radius").get<double>();
+        stats_.mean_radius = h.at("mean_radius").get<double>();
+        if (h.at("hitpoints").get<uint64_t>() != stats_.hitpoints)
+            throw Error(ck.path + ": checkpoint has " + h.at("hitpoints").dump() + " hit points, this render " +
+                        std::to_string(stats_.hitpoints) + " (a different device or clppm version?)");
+        stats_.phase_seconds.clear();
+        for (auto it = h.at("phase_seconds").begin(); it != h.at("phase_seconds").end(); ++it)
+            stats_.phase_seconds[it.key()] = it.value().get<double>();
+    } catch (const nlohmann::json::exception& e) {
+        throw Error(ck.path + ": checkpoint header lacks the pass counters (" + std::string(e.what()) + ")");
+    }
+}
+
+void IntegratorBase::enable_error_estimation() {
+    throw Error("the " + name() + " integrator does not estimate its error");
+}
+
+ErrorImage IntegratorBase::error_estimate(double) {
+    throw Error("the " + name() + " integrator does not estimate its error");
+}
+
+} // namespace clppm

@@ -1,0 +1,53 @@
+#include "integrators/memory_estimate.h"
+
+#include <algorithm>
+
+#include "util/error.h"
+#include "integrators/integrator_factory.h"
+#include "integrators/photon_map.h"
+#include "shared_types.h"
+
+namespace clppm {
+
+namespace {
+
+constexpr size_t kMiB = size_t(1) << 20;
+
+std::string mib(size_t bytes) { return std::to_string((bytes + kMiB - 1) / kMiB) + " MiB"; }
+
+} // namespace
+
+MemoryEstimate estimate_memory(const Scene& scene, const RenderSettings& settings, unsigned width, unsigned height,
+                               const DeviceInfo& device, bool error_estimation) {
+    MemoryEstimate m;
+    const size_t tris = scene.num_triangles();
+    // A wide BVH has about one node per two triangles at most.
+    m.scene = tris * (3 * 16 + sizeof(dev::TriShading)) + (tris / 2 + 1) * sizeof(dev::BvhNode) +
+              scene.texels.size() * 16 + scene.materials.size() * sizeof(dev::Material) + tris * sizeof(dev::Light);
+    const IntegratorMemory own = integrator_memory(settings, width, height, error_estimation);
+    m.integrator = own.bytes;
+    m.largest_buffer = std::max(own.largest_buffer, tris * sizeof(dev::TriShading));
+    switch (settings.integrator) {
+    case Integrator::PPM:
+    case Integrator::SPPM:
+    case Integrator::PPPM:
+        m.photons = PhotonMap::memory_needed(settings, device);
+        m.largest_buffer = std::max(m.largest_buffer, m.photons / 2);
+        break;
+    case Integrator::PT: break;
+    }
+    return m;
+}
+
+void check_memory_fits(const MemoryEstimate& m, const DeviceInfo& device) {
+    const std::string breakdown = " (scene " + mib(m.scene) + ", hit points and film " + mib(m.integrator) +
+                                  ", photons " + mib(m.photons) + ")";
+    if (m.total() > device.global_mem * 9 / 10)
+        throw Error("the render needs about " + mib(m.total()) + " of device memory" + breakdown + " but " + device.name +
+                    " has " + mib(device.global_mem) + "; lower --width/--height or --spp (photons are batched to fit)");
+    if (m.largest_buffer > device.max_alloc)
+        throw Error("the render needs a " + mib(m.largest_buffer) + " buffer but " + device.name +
+                    " allocates at most " + mib(device.max_alloc) + " at once; lower --width/--height or --spp");
+}
+
+} // namespace clppm

@@ -1,0 +1,74 @@
+// One pass's photons and the hashed grid over them (Hachisuka et al. 2008, Secs. 4.2-4.3), shared
+// by every photon-mapping integrator: trace M photons, sort them into the grid, and let a set of
+// hit points gather from it. When M photons do not fit the device at once, the pass is traced in
+// batches whose gathers add up exactly (fixed-point sums), giving the same image.
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "device/cl.h"
+#include "device/device.h"
+#include "integrators/integrator_stats.h"
+#include "scene/device_scene.h"
+#include "integrators/render_settings.h"
+
+namespace clppm {
+
+// Stored photons per emitted photon a buffer starts out sized for; it grows if a scene stores more.
+constexpr uint32_t kStoredPerEmitted = 3;
+
+class PhotonMap {
+public:
+    // max_batch_photons bounds the photons traced at once (0: as many as the device memory
+    // budget allows; CLPPM_PHOTON_BATCH overrides it, for tests).
+    PhotonMap(const DeviceContext& dc, const DeviceScene& scene, const RenderSettings& settings,
+              const cl::Program& program, IntegratorStats& stats, uint64_t max_batch_photons = 0);
+
+    // Pass `pass` (1-based: the RNG streams): traces photons [first, first + count) of the pass's
+    // settings.photons, in batches when needed, and for each batch builds the grid (cells sized
+    // for radii around typical_radius, no smaller than a quarter of max_radius) and lets the n hit
+    // points gather into out (their radius is stats[i].r2, or global_r2 when > 0). With count 0,
+    // out is cleared.
+    void run_pass(uint64_t pass, uint32_t first, uint32_t count, const cl::Buffer& hitpoints, const cl::Buffer& stats,
+                  uint32_t n, float global_r2, double typical_radius, double max_radius, const cl::Buffer& out);
+
+    // A further gather over every batch's grid, after the flux gather: `kernel` takes gather's
+    // arguments with its own output buffer `out` in place of the PassFlux one (error estimation's
+    // Laplacian sums, src/error_estimate.h). An empty kernel turns it off.
+    void set_second_gather(const cl::Kernel& kernel, const cl::Buffer& out, const std::string& phase);
+
+    size_t device_bytes() const;
+
+    // Device memory a pass of settings.photons photons needs at most: both photon buffers within
+    // the budget (a quarter of the device), and the grid's table sized for them.
+    static size_t memory_needed(const RenderSettings& settings, const DeviceInfo& device);
+
+private:
+    bool trace(uint64_t pass, uint32_t first, uint32_t count); // false: overflowed the buffer
+    void build_grid(double typical_radius, double max_radius);
+    void gather(const cl::Buffer& hitpoints, const cl::Buffer& stats, uint32_t n, float global_r2, bool accumulate,
+                const cl::Buffer& out);
+    void enqueue_gather(cl::Kernel& kernel, const cl::Buffer& hitpoints, const cl::Buffer& stats, uint32_t n,
+                        float global_r2, bool accumulate, const cl::Buffer& out, const std::string& phase);
+    void allocate(uint32_t capacity);
+
+    const DeviceContext& dc_;
+    const DeviceScene& scene_;
+    const RenderSettings& settings_;
+    IntegratorStats& stats_;
+    cl::Kernel k_photon_, k_count_, k_scan_, k_scatter_, k_gather_;
+    cl::Kernel k_second_;
+    cl::Buffer second_out_;
+    std::string second_phase_;
+    cl::Buffer photons_, sorted_, counter_, grid_info_, counts_, starts_;
+    dev::GridInfo grid_host_{};
+    uint64_t max_capacity_ = 0; // stored photons the memory budget allows
+    uint32_t capacity_ = 0;
+    uint32_t batch_ = 0;        // photons emitted per batch
+    uint32_t stored_ = 0;
+    uint32_t table_size_ = 0;
+    uint32_t batches_ = 0;
+};
+
+} // namespace clppm

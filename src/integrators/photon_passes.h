@@ -1,0 +1,53 @@
+// The photon side of a pass on one device or several. With several, each device traces a
+// contiguous share of the pass's photon indices (photon i draws from stream (seed, pass, i) on
+// whichever device traces it) and gathers them for every hit point; the per-hit-point integer
+// flux sums are added in device order on the host. Integer addition is exact, so the image is the
+// same bit for bit however the photons are split; the shares follow each device's measured
+// photons per second, re-balanced every pass.
+#pragma once
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "integrators/photon_map.h"
+
+namespace clppm {
+
+class PhotonPasses {
+public:
+    // `secondaries` are further devices to share the work with; the program for them is built
+    // from program_file with build_options.
+    PhotonPasses(const DeviceContext& primary, const DeviceScene& scene, const RenderSettings& settings,
+                 const cl::Program& program, IntegratorStats& stats, const std::vector<DeviceInfo>& secondaries,
+                 const std::string& program_file, const std::string& build_options);
+    ~PhotonPasses();
+
+    // PPM's hit points never change after the eye pass: the secondaries then receive them once
+    // instead of every pass.
+    void set_hitpoints_fixed(bool fixed) { hitpoints_fixed_ = fixed; }
+
+    // As PhotonMap::run_pass for the pass's whole photon range; hitpoints, stats and out are the
+    // primary device's buffers.
+    void run_pass(uint64_t pass, const cl::Buffer& hitpoints, const cl::Buffer& stats, uint32_t n, float global_r2,
+                  double typical_radius, double max_radius, const cl::Buffer& out);
+
+    // PhotonMap::set_second_gather on the primary device; with further devices it is an error
+    // (their photons would miss the second gather).
+    void set_second_gather(const cl::Kernel& kernel, const cl::Buffer& out, const std::string& phase);
+
+private:
+    struct Worker;
+    std::vector<uint32_t> split(uint32_t photons) const;
+
+    const DeviceContext& dc_;
+    const RenderSettings& settings_;
+    IntegratorStats& stats_;
+    PhotonMap primary_;
+    std::vector<std::unique_ptr<Worker>> workers_;
+    std::vector<double> rate_; // photons per second per device, smoothed
+    std::vector<uint32_t> split_;
+    bool hitpoints_fixed_ = false;
+    uint32_t hitpoints_sent_ = 0; // hit points the secondaries hold (fixed hit points only)
+};
+
+} // namespace clppm

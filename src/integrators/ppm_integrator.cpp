@@ -1,0 +1,163 @@
+#include "integrators/ppm_integrator.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "device/kernel_launch.h"
+#include "integrators/direct_light.h"
+#include "integrators/film.h"
+#include "integrators/initial_radius.h"
+#include "integrators/progressive_update.h"
+#include "util/error.h"
+
+namespace clppm {
+
+namespace {
+
+constexpr uint32_t kEyeBatch = 1u << 18; // pixel samples per eye-pass launch
+// Hit points per pixel sample that memory_needed allows for: a sample splits at glass and metal
+// into up to PPM_EYE_SLOTS of them (measured ~1.1 in the Cornell box).
+constexpr double kHitpointsPerSample = 1.25;
+
+size_t eye_batch(size_t pixels, unsigned spp) { return std::min<size_t>(kEyeBatch, pixels * spp); }
+
+} // namespace
+
+IntegratorMemory PpmIntegrator::memory_needed(const RenderSettings& settings, size_t pixels) {
+    const size_t hitpoints = size_t(kHitpointsPerSample * double(pixels) * settings.spp);
+    const size_t per_hitpoint = sizeof(dev::HitPoint) + sizeof(dev::HitStats) + sizeof(dev::PassFlux);
+    const size_t batch = eye_batch(pixels, settings.spp);
+    IntegratorMemory m;
+    m.bytes = hitpoints * per_hitpoint + radius_partials_bytes(uint32_t(std::min<size_t>(hitpoints, UINT32_MAX))) +
+              (pixels + 1) * sizeof(uint32_t) + pixels * (sizeof(cl_float4) + kFilmBytesPerPixel) +
+              batch * (PPM_EYE_SLOTS * sizeof(dev::HitPoint) + sizeof(cl_float4));
+    m.largest_buffer = std::max(hitpoints * sizeof(dev::HitStats), batch * PPM_EYE_SLOTS * sizeof(dev::HitPoint));
+    return m;
+}
+
+PpmIntegrator::PpmIntegrator(const DeviceContext& dc, const DeviceScene& scene, const RenderSettings& settings,
+                             const cl::Program& program, const SecondaryDevices& secondaries)
+    : dc_(dc), scene_(scene), settings_(settings) {
+    photons_ = std::make_unique<PhotonPasses>(dc, scene, settings_, program, stats_, secondaries.devices,
+                                              secondaries.program_file, secondaries.build_options);
+    photons_->set_hitpoints_fixed(true);
+    k_eye_ = cl::Kernel(program, "eye_pass");
+    k_direct_ = cl::Kernel(program, "direct_light");
+    k_update_ = cl::Kernel(program, "ppm_update");
+    k_film_ = cl::Kernel(program, "ppm_film");
+    num_pixels_ = scene.camera.width * scene.camera.height;
+}
+
+void PpmIntegrator::prepare() { eye_pass(); }
+
+// Sec. 4.1: hit points for every pixel sample, compacted on the host in pixel order so each
+// pixel owns the range [pixel_first[p], pixel_first[p+1]).
+void PpmIntegrator::eye_pass() {
+    const uint64_t total_samples = uint64_t(num_pixels_) * settings_.spp;
+    const uint32_t batch = uint32_t(eye_batch(num_pixels_, settings_.spp));
+    cl::Buffer slots(dc_.context, CL_MEM_WRITE_ONLY, size_t(batch) * PPM_EYE_SLOTS * sizeof(dev::HitPoint));
+    cl::Buffer sample_emission(dc_.context, CL_MEM_WRITE_ONLY, size_t(batch) * sizeof(cl_float4));
+    stats_.device_bytes += size_t(batch) * (PPM_EYE_SLOTS * sizeof(dev::HitPoint) + sizeof(cl_float4));
+    std::vector<dev::HitPoint> host_slots(size_t(batch) * PPM_EYE_SLOTS);
+    std::vector<cl_float4> host_emission(batch);
+
+    std::vector<dev::HitPoint> hitpoints;
+    std::vector<uint32_t> pixel_count(num_pixels_, 0);
+    std::vector<cl_float4> emitted(num_pixels_, cl_float4{{0, 0, 0, 0}});
+    const int first_arg =
+        set_args(k_eye_, scene_.set_scene_args(k_eye_), scene_.camera_buf, cl_ulong(settings_.seed), cl_ulong(0));
+    for (uint64_t first = 0; first < total_samples; first += batch) {
+        uint32_t n = uint32_t(std::min<uint64_t>(batch, total_samples - first));
+        set_args(k_eye_, first_arg, cl_uint(first), cl_uint(n), cl_uint(settings_.spp), slots, sample_emission);
+        cl::Event ev;
+        enqueue_1d(dc_.queue, k_eye_, n, &ev);
+        dc_.queue.enqueueReadBuffer(slots, CL_FALSE, 0, size_t(n) * PPM_EYE_SLOTS * sizeof(dev::HitPoint), host_slots.data());
+        dc_.queue.enqueueReadBuffer(sample_emission, CL_TRUE, 0, size_t(n) * sizeof(cl_float4), host_emission.data());
+        add_event_time(stats_, "eye_pass", ev);
+        for (uint32_t i = 0; i < n; ++i) {
+            uint32_t pixel = uint32_t((first + i) / settings_.spp);
+            for (int c = 0; c < 3; ++c) emitted[pixel].s[c] += host_emission[i].s[c];
+            for (uint32_t k = 0; k < PPM_EYE_SLOTS; ++k) {
+                const dev::HitPoint& hp = host_slots[size_t(i) * PPM_EYE_SLOTS + k];
+                if (hp.pixel == HITPOINT_NONE) continue;
+                hitpoints.push_back(hp);
+                ++pixel_count[pixel];
+            }
+        }
+    }
+    collect_event_times(stats_);
+    std::vector<uint32_t> pixel_first(num_pixels_ + 1, 0);
+    for (uint32_t p = 0; p < num_pixels_; ++p) pixel_first[p + 1] = pixel_first[p] + pixel_count[p];
+    num_hitpoints_ = uint32_t(hitpoints.size());
+    stats_.hitpoints = num_hitpoints_;
+
+    std::vector<float> footprints;
+    footprints.reserve(hitpoints.size());
+    for (const dev::HitPoint& hp : hitpoints) footprints.push_back(hp.footprint);
+    const double r0 = settings_.radius > 0 ? settings_.radius : initial_radius_heuristic(footprints, scene_.info.radius);
+    stats_.initial_radius = stats_.mean_radius = r0;
+    typical_radius_ = max_radius_ = r0;
+
+    std::vector<dev::HitStats> hstats(std::max<size_t>(1, hitpoints.size()), dev::HitStats{r0 * r0, 0.0, {0, 0, 0}, {0, 0, 0}});
+    if (hitpoints.empty()) hitpoints.resize(1); // buffers must not be empty; num_hitpoints_ stays 0
+    auto make = [&](cl_mem_flags f, size_t bytes, const void* src) {
+        stats_.device_bytes += bytes;
+        return src ? cl::Buffer(dc_.context, f | CL_MEM_COPY_HOST_PTR, bytes, const_cast<void*>(src))
+                   : cl::Buffer(dc_.context, f, bytes);
+    };
+    hitpoints_ = make(CL_MEM_READ_ONLY, hitpoints.size() * sizeof(dev::HitPoint), hitpoints.data());
+    stats_buf_ = make(CL_MEM_READ_WRITE, hstats.size() * sizeof(dev::HitStats), hstats.data());
+    passflux_ = make(CL_MEM_READ_WRITE, hstats.size() * sizeof(dev::PassFlux), nullptr);
+    pixel_first_ = make(CL_MEM_READ_ONLY, pixel_first.size() * sizeof(uint32_t), pixel_first.data());
+    emitted_ = make(CL_MEM_READ_ONLY, emitted.size() * sizeof(cl_float4), emitted.data());
+    image_buf_ = make(CL_MEM_WRITE_ONLY, size_t(num_pixels_) * kFilmBytesPerPixel, nullptr);
+    radius_partials_ = make(CL_MEM_WRITE_ONLY, radius_partials_bytes(num_hitpoints_), nullptr);
+}
+
+// Explicit direct light, then Eqs. 7-10 with this pass's M(x) and Phi_M(x).
+void PpmIntegrator::update() {
+    if (settings_.direct == DirectLighting::Sample)
+        enqueue_direct_light(dc_, scene_, k_direct_, settings_.seed, stats_.passes + 1, hitpoints_, stats_buf_,
+                             num_hitpoints_, stats_);
+    auto [mean, mx] = enqueue_ppm_update(dc_, k_update_, passflux_, hitpoints_, stats_buf_, num_hitpoints_,
+                                         settings_.alpha, radius_partials_, stats_);
+    if (num_hitpoints_ > 0) stats_.mean_radius = typical_radius_ = mean, max_radius_ = mx;
+}
+
+void PpmIntegrator::run_pass() {
+    photons_->run_pass(stats_.passes + 1, hitpoints_, stats_buf_, num_hitpoints_, 0.f, typical_radius_, max_radius_,
+                       passflux_);
+    update();
+    collect_event_times(stats_);
+    stats_.passes += 1;
+    stats_.photons_emitted += settings_.photons;
+}
+
+// Hit points are part of the state too: on resume they must be the ones the statistics belong to.
+void PpmIntegrator::save(Checkpoint& ck) {
+    IntegratorBase::save(ck);
+    const size_t n = std::max<size_t>(1, num_hitpoints_);
+    ck.put("hitpoints", read_buffer<dev::HitPoint>(dc_.queue, hitpoints_, n));
+    ck.put("stats", read_buffer<dev::HitStats>(dc_.queue, stats_buf_, n));
+    ck.header["typical_radius"] = typical_radius_;
+    ck.header["max_radius"] = max_radius_;
+}
+
+void PpmIntegrator::restore(const Checkpoint& ck) {
+    IntegratorBase::restore(ck);
+    const size_t n = std::max<size_t>(1, num_hitpoints_);
+    write_buffer(dc_.queue, hitpoints_, ck.get<dev::HitPoint>("hitpoints", n));
+    write_buffer(dc_.queue, stats_buf_, ck.get<dev::HitStats>("stats", n));
+    typical_radius_ = ck.header.value("typical_radius", typical_radius_);
+    max_radius_ = ck.header.value("max_radius", max_radius_);
+}
+
+Image PpmIntegrator::image() {
+    set_args(k_film_, 0, stats_buf_, pixel_first_, emitted_, cl_uint(num_pixels_), cl_uint(settings_.spp),
+             cl_double(scene_.info.total_power), cl_double(double(stats_.photons_emitted)),
+             cl_double(double(settings_.direct == DirectLighting::Sample ? stats_.passes : 0)), image_buf_);
+    enqueue_1d(dc_.queue, k_film_, num_pixels_);
+    return read_film(dc_, image_buf_, scene_.camera.width, scene_.camera.height);
+}
+
+} // namespace clppm

@@ -1,0 +1,161 @@
+#include "integrators/sppm_integrator.h"
+
+#include <cmath>
+
+#include "device/kernel_launch.h"
+#include "integrators/direct_light.h"
+#include "integrators/film.h"
+#include "integrators/initial_radius.h"
+#include "integrators/progressive_update.h"
+#include "util/error.h"
+
+namespace clppm {
+
+SppmIntegrator::SppmIntegrator(const DeviceContext& dc, const DeviceScene& scene, const RenderSettings& settings,
+                               const cl::Program& program, const SecondaryDevices& secondaries)
+    : dc_(dc), scene_(scene), settings_(settings), probabilistic_(settings.integrator == Integrator::PPPM),
+      program_(program) {
+    photons_ = std::make_unique<PhotonPasses>(dc, scene, settings_, program, stats_, secondaries.devices,
+                                              secondaries.program_file, secondaries.build_options);
+    k_eye_ = cl::Kernel(program, "eye_pass");
+    k_emission_ = cl::Kernel(program, "accumulate_emission");
+    k_direct_ = cl::Kernel(program, "direct_light");
+    k_update_ = cl::Kernel(program, "ppm_update");
+    k_accumulate_ = cl::Kernel(program, "pppm_accumulate");
+    k_film_ = cl::Kernel(program, probabilistic_ ? "pppm_film" : "sppm_film");
+    num_pixels_ = scene.camera.width * scene.camera.height;
+}
+
+IntegratorMemory SppmIntegrator::memory_needed(size_t pixels, bool error_estimation) {
+    // Visible point, seen emission, statistics, pass flux and film per pixel, the radius partials.
+    IntegratorMemory m;
+    m.bytes = pixels * (sizeof(dev::HitPoint) + sizeof(cl_float4) + sizeof(dev::HitStats) + sizeof(dev::PassFlux) +
+                        kFilmBytesPerPixel) +
+              radius_partials_bytes(uint32_t(pixels));
+    m.largest_buffer = pixels * std::max(sizeof(dev::HitPoint), sizeof(dev::HitStats));
+    if (error_estimation) {
+        m.bytes += ErrorEstimator::bytes_per_pixel() * pixels;
+        m.largest_buffer = std::max(m.largest_buffer, pixels * sizeof(dev::ErrorStats));
+    }
+    return m;
+}
+
+void SppmIntegrator::prepare() {
+    const size_t n = num_pixels_;
+    auto make = [&](size_t bytes) {
+        stats_.device_bytes += bytes;
+        return cl::Buffer(dc_.context, CL_MEM_READ_WRITE, bytes);
+    };
+    hitpoints_ = make(n * sizeof(dev::HitPoint));
+    sample_emission_ = make(n * sizeof(cl_float4));
+    stats_buf_ = make(n * sizeof(dev::HitStats));
+    passflux_ = make(n * sizeof(dev::PassFlux));
+    image_buf_ = make(n * kFilmBytesPerPixel);
+    radius_partials_ = make(radius_partials_bytes(num_pixels_));
+    stats_.hitpoints = n;
+
+    // The first pass's visible points decide the initial radius, as PPM's hit points do.
+    eye_pass(1);
+    std::vector<dev::HitPoint> hps(n);
+    dc_.queue.enqueueReadBuffer(hitpoints_, CL_TRUE, 0, n * sizeof(dev::HitPoint), hps.data());
+    std::vector<float> footprints;
+    for (const dev::HitPoint& hp : hps)
+        if (hp.pixel != HITPOINT_NONE) footprints.push_back(hp.footprint);
+    const double r0 = settings_.radius > 0 ? settings_.radius : initial_radius_heuristic(footprints, scene_.info.radius);
+    stats_.initial_radius = stats_.mean_radius = typical_radius_ = max_radius_ = r0;
+    r2_ = r0 * r0;
+    const dev::HitStats init{r0 * r0, 0.0, {0, 0, 0}, {0, 0, 0}};
+    dc_.queue.enqueueFillBuffer(stats_buf_, init, 0, n * sizeof(dev::HitStats));
+    if (errors_) errors_->reset(stats_buf_);
+}
+
+void SppmIntegrator::enable_error_estimation() {
+    if (errors_) return;
+    errors_ = std::make_unique<ErrorEstimator>(dc_, program_, num_pixels_, stats_);
+    photons_->set_second_gather(errors_->gather_kernel(), errors_->laplacian(), "error_estimate");
+    if (stats_buf_()) errors_->reset(stats_buf_); // after prepare(): the estimate starts here
+}
+
+ErrorImage SppmIntegrator::error_estimate(double confidence) {
+    if (!errors_) throw Error("error estimation is not enabled");
+    return errors_->estimate(confidence, int(scene_.camera.width), int(scene_.camera.height));
+}
+
+// New visible points for every pixel; their seen emission joins the per-pixel running sum.
+void SppmIntegrator::eye_pass(uint64_t pass) {
+    set_args(k_eye_, scene_.set_scene_args(k_eye_), scene_.camera_buf, cl_ulong(settings_.seed), cl_ulong(pass),
+             cl_uint(0), cl_uint(num_pixels_), cl_uint(1), hitpoints_, sample_emission_);
+    cl::Event ev;
+    enqueue_1d(dc_.queue, k_eye_, num_pixels_, &ev);
+    add_event_time(stats_, "eye_pass", ev);
+}
+
+void SppmIntegrator::run_pass() {
+    const uint64_t pass = stats_.passes + 1;
+    if (pass > 1) eye_pass(pass);
+    set_args(k_emission_, 0, sample_emission_, stats_buf_, cl_uint(num_pixels_));
+    enqueue_1d(dc_.queue, k_emission_, num_pixels_);
+    if (settings_.direct == DirectLighting::Sample)
+        enqueue_direct_light(dc_, scene_, k_direct_, settings_.seed, pass, hitpoints_, stats_buf_, num_pixels_, stats_);
+
+    if (probabilistic_) {
+        const double r = std::sqrt(r2_);
+        photons_->run_pass(pass, hitpoints_, stats_buf_, num_pixels_, float(r2_), r, r, passflux_);
+        if (errors_) errors_->update(passflux_, hitpoints_, stats_buf_, r2_, power_per_photon());
+        set_args(k_accumulate_, 0, passflux_, hitpoints_, stats_buf_, cl_uint(num_pixels_),
+                 cl_double(1.0 / (M_PI * r2_)));
+        cl::Event ev;
+        enqueue_1d(dc_.queue, k_accumulate_, num_pixels_, &ev);
+        add_event_time(stats_, "update", ev);
+        dc_.queue.finish();
+        r2_ = next_pppm_radius2(r2_, pass, settings_.alpha);
+        stats_.mean_radius = std::sqrt(r2_);
+    } else {
+        photons_->run_pass(pass, hitpoints_, stats_buf_, num_pixels_, 0.f, typical_radius_, max_radius_, passflux_);
+        // Before the update: the statistics still hold the radius this pass gathered with.
+        if (errors_) errors_->update(passflux_, hitpoints_, stats_buf_, 0.0, power_per_photon());
+        auto [mean, mx] = enqueue_ppm_update(dc_, k_update_, passflux_, hitpoints_, stats_buf_, num_pixels_,
+                                             settings_.alpha, radius_partials_, stats_);
+        stats_.mean_radius = typical_radius_ = mean;
+        max_radius_ = mx;
+    }
+    collect_event_times(stats_);
+    stats_.passes = pass;
+    stats_.photons_emitted += settings_.photons;
+}
+
+// Visible points are drawn anew every pass from (seed, pass): only the statistics are state.
+void SppmIntegrator::save(Checkpoint& ck) {
+    IntegratorBase::save(ck);
+    ck.put("stats", read_buffer<dev::HitStats>(dc_.queue, stats_buf_, num_pixels_));
+    ck.header["pppm_r2"] = r2_;
+    ck.header["typical_radius"] = typical_radius_;
+    ck.header["max_radius"] = max_radius_;
+    if (errors_) ck.put("error_stats", errors_->read());
+}
+
+void SppmIntegrator::restore(const Checkpoint& ck) {
+    IntegratorBase::restore(ck);
+    write_buffer(dc_.queue, stats_buf_, ck.get<dev::HitStats>("stats", num_pixels_));
+    r2_ = ck.header.value("pppm_r2", r2_);
+    typical_radius_ = ck.header.value("typical_radius", typical_radius_);
+    max_radius_ = ck.header.value("max_radius", max_radius_);
+    if (!errors_) return;
+    // A checkpoint saved without error estimation: the estimate starts over from here.
+    auto blob = ck.blobs.find("error_stats");
+    if (blob != ck.blobs.end() && blob->second.size() == size_t(num_pixels_) * sizeof(dev::ErrorStats))
+        errors_->write(ck.get<dev::ErrorStats>("error_stats", num_pixels_));
+    else
+        errors_->reset(stats_buf_);
+}
+
+Image SppmIntegrator::image() {
+    int a = set_args(k_film_, 0, stats_buf_, cl_uint(num_pixels_));
+    if (probabilistic_) a = set_args(k_film_, a, cl_double(power_per_photon()));
+    else a = set_args(k_film_, a, cl_double(scene_.info.total_power), cl_double(double(stats_.photons_emitted)));
+    set_args(k_film_, a, cl_double(double(stats_.passes)), image_buf_);
+    enqueue_1d(dc_.queue, k_film_, num_pixels_);
+    return read_film(dc_, image_buf_, scene_.camera.width, scene_.camera.height);
+}
+
+} // namespace clppm

@@ -1,0 +1,120 @@
+#include "io/image_compare.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include "util/error.h"
+#include "io/stats_json.h"
+
+namespace clppm {
+
+namespace {
+
+bool finite_pixel(const Image& img, size_t p) {
+    return std::isfinite(img.rgb[3 * p]) && std::isfinite(img.rgb[3 * p + 1]) && std::isfinite(img.rgb[3 * p + 2]);
+}
+
+double srgb(double v) {
+    v = std::clamp(v, 0.0, 1.0);
+    return v <= 0.0031308 ? 12.92 * v : 1.055 * std::pow(v, 1 / 2.4) - 0.055;
+}
+
+} // namespace
+
+ImageDifference compare_images(const Image& a, const Image& b) {
+    if (a.width != b.width || a.height != b.height)
+        throw Error("cannot compare a " + std::to_string(a.width) + "x" + std::to_string(a.height) + " image with a " +
+                    std::to_string(b.width) + "x" + std::to_string(b.height) + " one");
+    ImageDifference d;
+    d.pixels = size_t(a.width) * a.height;
+    double se = 0, rel = 0, se_srgb = 0, sum_a = 0, sum_b = 0;
+    size_t n = 0;
+    for (size_t p = 0; p < d.pixels; ++p) {
+        bool fa = finite_pixel(a, p), fb = finite_pixel(b, p);
+        d.nonfinite_a += !fa, d.nonfinite_b += !fb;
+        if (!fa || !fb) continue;
+        for (int c = 0; c < 3; ++c) {
+            double va = a.rgb[3 * p + c], vb = b.rgb[3 * p + c];
+            se += (va - vb) * (va - vb);
+            rel += (va - vb) * (va - vb) / (vb * vb + 1e-2);
+            se_srgb += std::pow(srgb(va) - srgb(vb), 2);
+            sum_a += va, sum_b += vb;
+        }
+        n += 3;
+    }
+    if (n > 0) {
+        d.mean_a = sum_a / n, d.mean_b = sum_b / n;
+        d.rel_mse = rel / n;
+        d.rmse = std::sqrt(se / n);
+        d.rel_rmse = d.mean_b > 0 ? d.rmse / d.mean_b : 0;
+        d.rmse_srgb = std::sqrt(se_srgb / n);
+    }
+    return d;
+}
+
+Image difference_image(const Image& a, const Image& b, double scale) {
+    compare_images(a, b); // size check
+    size_t n = size_t(a.width) * a.height;
+    std::vector<double> diff(n, 0.0);
+    for (size_t p = 0; p < n; ++p)
+        for (int c = 0; c < 3; ++c) diff[p] += std::fabs(double(a.rgb[3 * p + c]) - b.rgb[3 * p + c]) / 3;
+    if (!(scale > 0)) {
+        std::vector<double> sorted;
+        for (double v : diff)
+            if (std::isfinite(v)) sorted.push_back(v);
+        std::sort(sorted.begin(), sorted.end());
+        scale = sorted.empty() ? 1 : std::max(1e-12, sorted[size_t(0.99 * (sorted.size() - 1))]);
+    }
+    // Black, blue, green, yellow, red at t = 0, 0.25, 0.5, 0.75, 1.
+    static const float ramp[5][3] = {{0, 0, 0}, {0, 0, 1}, {0, 1, 0}, {1, 1, 0}, {1, 0, 0}};
+    Image out;
+    out.width = a.width, out.height = a.height;
+    out.rgb.resize(3 * n);
+    for (size_t p = 0; p < n; ++p) {
+        double t = std::isfinite(diff[p]) ? std::clamp(diff[p] / scale, 0.0, 1.0) * 4 : 4;
+        int i = std::min(3, int(t));
+        double f = t - i;
+        for (int c = 0; c < 3; ++c) out.rgb[3 * p + c] = float(ramp[i][c] * (1 - f) + ramp[i + 1][c] * f);
+        if (!finite_pixel(a, p) || !finite_pixel(b, p)) out.rgb[3 * p] = 1, out.rgb[3 * p + 1] = 0, out.rgb[3 * p + 2] = 1;
+    }
+    return out;
+}
+
+int compare_command(int argc, char** argv) {
+    std::vector<std::string> files;
+    std::string diff_png;
+    for (int i = 0; i < argc; ++i) {
+        std::string s = argv[i];
+        if (s == "--diff") {
+            if (i + 1 >= argc) throw Error("compare --diff: missing value OUT.png");
+            diff_png = argv[++i];
+        } else if (s.rfind("--", 0) == 0) {
+            throw Error("compare: unknown option " + s + " (usage: clppm compare A.exr REFERENCE.exr [--diff OUT.png])");
+        } else {
+            files.push_back(s);
+        }
+    }
+    if (files.size() != 2) throw Error("compare: expected two EXR files (usage: clppm compare A.exr REFERENCE.exr [--diff OUT.png])");
+    Image a = read_exr(files[0]), b = read_exr(files[1]);
+    ImageDifference d = compare_images(a, b);
+    if (!diff_png.empty()) write_png(diff_png, difference_image(a, b));
+    Json j;
+    j["image"] = files[0];
+    j["reference"] = files[1];
+    j["pixels"] = d.pixels;
+    j["nonfinite_image"] = d.nonfinite_a;
+    j["nonfinite_reference"] = d.nonfinite_b;
+    j["mean_image"] = d.mean_a;
+    j["mean_reference"] = d.mean_b;
+    j["mean_ratio"] = d.mean_b > 0 ? d.mean_a / d.mean_b : 0.0;
+    j["rel_mse"] = d.rel_mse;
+    j["rmse"] = d.rmse;
+    j["rel_rmse"] = d.rel_rmse;
+    j["rmse_srgb"] = d.rmse_srgb;
+    std::fputs(to_json_text(j).c_str(), stdout);
+    return 0;
+}
+
+} // namespace clppm

@@ -1,0 +1,33 @@
+// `clppm compare A.exr B.exr`: how far an image is from a reference, in the metrics the
+// benchmarks report (relative MSE of the radiance, RMSE of the tonemapped image), with a count of
+// non-finite pixels and an optional false-colour difference image.
+#pragma once
+#include <string>
+
+#include "io/image_io.h"
+
+namespace clppm {
+
+struct ImageDifference {
+    size_t pixels = 0;
+    size_t nonfinite_a = 0, nonfinite_b = 0;
+    double mean_a = 0, mean_b = 0;  // mean radiance
+    double rel_mse = 0;             // mean over pixels and channels of (a-b)^2 / (b^2 + 1e-2)
+    double rmse = 0;                // of the radiance
+    double rel_rmse = 0;            // rmse / mean_b
+    double rmse_srgb = 0;           // of the 8-bit-style tonemapped images, in [0, 1]
+};
+
+// Compares a with the reference b (same size, or Error naming both sizes). Non-finite pixels are
+// counted and left out of the error sums.
+ImageDifference compare_images(const Image& a, const Image& b);
+
+// |a - b| per pixel (mean over channels) in false colour, scaled so that `scale` is the top of
+// the colour ramp (black, blue, green, yellow, red); 0 picks the 99th percentile.
+Image difference_image(const Image& a, const Image& b, double scale = 0);
+
+// The compare command: args are [A.exr, B.exr, optional --diff OUT.png]; prints the metrics as
+// JSON on stdout; returns the exit status.
+int compare_command(int argc, char** argv);
+
+} // namespace clppm

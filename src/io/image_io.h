@@ -1,0 +1,47 @@
+// Reading and writing rendered images: float EXR for the radiance itself, an 8-bit sRGB PNG preview
+// beside it. Every write is atomic (atomic_file.h), so a failed or interrupted save never leaves a
+// truncated file and never destroys the previous one.
+#pragma once
+#include <cstddef>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "io/atomic_file.h"
+
+namespace clppm {
+
+struct Image {
+    int width = 0, height = 0;
+    std::vector<float> rgb; // 3 floats per pixel, row-major, top row first, linear radiance
+};
+
+// A single-channel float layer stored beside R,G,B (e.g. "error"): width*height values.
+using ExrLayer = std::pair<std::string, const std::vector<float>*>;
+
+// Float32 R,G,B (plus `extra_layers`), ZIP compression. Throws clppm::Error naming the path.
+void write_exr(const std::string& path, const Image& img, const std::vector<ExrLayer>& extra_layers = {});
+
+// 8-bit sRGB preview: each channel is scaled by `exposure`, clamped to [0, 1] (a plain clip, no
+// tone curve: the EXR is the real output, this is a quick look) and encoded with the sRGB OETF,
+// rounded to nearest. A pixel with any NaN or Inf channel is drawn magenta so that it stands out.
+void write_png(const std::string& path, const Image& img, float exposure = 1.0f);
+
+// Reads R,G,B of an EXR as float; a file without all three channels is an error.
+Image read_exr(const std::string& path);
+
+// "out.exr" -> "out.png", "out" -> "out.png"; any other extension is kept: "out.hdr" ->
+// "out.hdr.png", so the preview can never overwrite a file the user named.
+std::string png_path_for(const std::string& exr_path);
+
+// The 8-bit sRGB code of a linear value in [0, 1] (values outside are clamped, NaN -> 0).
+unsigned char linear_to_srgb8(float linear);
+
+// Number of pixels with at least one NaN or Inf channel.
+size_t count_nonfinite(const Image& img);
+
+// Mean over all pixels and channels, accumulated in double. Non-finite values are included on
+// purpose: a NaN in the image makes the mean NaN rather than hiding it. 0 for an empty image.
+double mean_radiance(const Image& img);
+
+} // namespace clppm

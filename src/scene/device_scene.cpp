@@ -1,0 +1,261 @@
+#include "scene/device_scene.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "scene/bvh_build.h"
+#include "scene/light_power.h"
+#include "util/error.h"
+#include "util/narrow_to_float.h"
+
+namespace clppm {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+struct V3 {
+    double x, y, z;
+};
+V3 v3(const Vec3& v) { return {v.x, v.y, v.z}; }
+V3 sub(V3 a, V3 b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+V3 cross(V3 a, V3 b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
+double dot(V3 a, V3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+double length(V3 a) { return std::sqrt(dot(a, a)); }
+V3 normalize(V3 a) {
+    double l = length(a);
+    return l > 0 ? V3{a.x / l, a.y / l, a.z / l} : V3{0, 0, 1};
+}
+void store4(float out[4], V3 v, float w = 0.f) {
+    out[0] = float(v.x), out[1] = float(v.y), out[2] = float(v.z), out[3] = w;
+}
+
+template <class T>
+cl::Buffer upload(const DeviceContext& dc, const std::vector<T>& data, size_t* bytes) {
+    size_t n = std::max<size_t>(1, data.size()) * sizeof(T); // OpenCL forbids empty buffers
+    cl::Buffer b(dc.context, CL_MEM_READ_ONLY, n);
+    if (!data.empty()) dc.queue.enqueueWriteBuffer(b, CL_TRUE, 0, data.size() * sizeof(T), data.data());
+    *bytes += n;
+    return b;
+}
+
+double mean_rgb(const float c[3]) { return (double(c[0]) + c[1] + c[2]) / 3.0; }
+
+// Emissive triangles become area lights, punctual lights keep their parameters; power (mean over
+// RGB, watts) decides how often each light emits photons and is sampled for direct light.
+std::vector<dev::Light> collect_lights(const Scene& scene, const dev::SceneInfo& info) {
+    std::vector<dev::Light> lights;
+    for (size_t t = 0; t < scene.num_triangles(); ++t) {
+        const dev::Material& m = scene.materials[scene.shading[t].material];
+        double le = mean_rgb(m.emission);
+        if (!(le > 0)) continue;
+        V3 p0 = v3(scene.positions[3 * t]), p1 = v3(scene.positions[3 * t + 1]), p2 = v3(scene.positions[3 * t + 2]);
+        double area = 0.5 * length(cross(sub(p1, p0), sub(p2, p0)));
+        if (!(area > 0)) continue;
+        dev::Light l{};
+        l.type = LIGHT_TRIANGLE;
+        l.prim = uint32_t(t);
+        l.two_sided = (m.flags & MATERIAL_FLAG_DOUBLE_SIDED) ? 1u : 0u;
+        l.area = float(area);
+        for (int k = 0; k < 3; ++k) l.radiance[k] = m.emission[k];
+        const double power = le * area * kPi * (l.two_sided ? 2 : 1); // Phi = Le A pi per side
+        if (!std::isfinite(narrow_to_float(power)))
+            throw Error(scene.source + ": an emissive triangle's power (" + std::to_string(power) +
+                        " W) does not fit a float; scale the emission or the geometry down");
+        l.power = float(power);
+        lights.push_back(l);
+    }
+    for (dev::Light l : scene.punctual_lights) {
+        l.power = narrow_to_float(punctual_light_power(l, double(info.radius)));
+        if (l.power > 0 && std::isfinite(l.power)) lights.push_back(l);
+    }
+    return lights;
+}
+
+} // namespace
+
+void permute_triangles(Scene& scene, const std::vector<uint32_t>& order) {
+    std::vector<Vec3> positions(scene.positions.size());
+    std::vector<dev::TriShading> shading(scene.shading.size());
+    for (size_t i = 0; i < order.size(); ++i) {
+        for (int k = 0; k < 3; ++k) positions[3 * i + k] = scene.positions[3 * size_t(order[i]) + k];
+        shading[i] = scene.shading[order[i]];
+    }
+    scene.positions.swap(positions);
+    scene.shading.swap(shading);
+}
+
+namespace {
+
+// The scene's camera settings.camera, or null when the scene has none (then only camera 0, the
+// default view, may be asked for).
+const CameraDesc* chosen_camera(const Scene& scene, const SceneSettings& settings) {
+    if (scene.cameras.empty()) {
+        if (settings.camera != 0) throw Error("--camera " + std::to_string(settings.camera) + ": the scene has no camera");
+        return nullptr;
+    }
+    if (settings.camera >= scene.cameras.size())
+        throw Error("--camera " + std::to_string(settings.camera) + ": the scene has " +
+                    std::to_string(scene.cameras.size()) + " camera(s), indices 0.." +
+                    std::to_string(scene.cameras.size() - 1));
+    return &scene.cameras[settings.camera];
+}
+
+} // namespace
+
+ImageResolution image_resolution(const Scene& scene, const SceneSettings& settings) {
+    const CameraDesc* desc = chosen_camera(scene, settings);
+    unsigned w = settings.width, h = settings.height;
+    double aspect = desc && desc->aspect > 0 ? desc->aspect : 0;
+    if (w == 0 && h == 0) {
+        h = 512;
+        w = aspect > 0 ? unsigned(std::lround(h * aspect)) : 512;
+    } else if (w == 0) {
+        w = aspect > 0 ? unsigned(std::lround(h * aspect)) : h;
+    } else if (h == 0) {
+        h = aspect > 0 ? unsigned(std::lround(w / aspect)) : w;
+    }
+    return {std::max(1u, w), std::max(1u, h)};
+}
+
+dev::Camera make_camera(const Scene& scene, const SceneSettings& settings, const float bmin[3], const float bmax[3],
+                        std::string* note) {
+    CameraDesc desc;
+    if (const CameraDesc* chosen = chosen_camera(scene, settings)) {
+        desc = *chosen;
+    } else {
+        // Default view: from +Z towards the centre of the bounds, the bounding sphere filling the
+        // vertical field of view.
+        V3 c{0.5 * (bmin[0] + bmax[0]), 0.5 * (bmin[1] + bmax[1]), 0.5 * (bmin[2] + bmax[2])};
+        double r = 0.5 * length(V3{double(bmax[0]) - bmin[0], double(bmax[1]) - bmin[1], double(bmax[2]) - bmin[2]});
+        desc.yfov = 0.8f;
+        double d = r / std::sin(desc.yfov / 2) * 1.05;
+        desc.position[0] = float(c.x), desc.position[1] = float(c.y), desc.position[2] = float(c.z + d);
+        if (note) *note = "no camera in the scene: using the default view from +Z at distance " + std::to_string(d);
+    }
+    const auto [w, h] = image_resolution(scene, settings);
+    // The vertical field of view is the camera's; the horizontal one follows the image shape.
+    V3 f = normalize(V3{desc.forward[0], desc.forward[1], desc.forward[2]});
+    V3 up = V3{desc.up[0], desc.up[1], desc.up[2]};
+    V3 right = normalize(cross(f, up));
+    up = cross(right, f);
+    double ty = std::tan(desc.yfov / 2), tx = ty * double(w) / h;
+    dev::Camera cam{};
+    store4(cam.origin, V3{desc.position[0], desc.position[1], desc.position[2]});
+    store4(cam.forward, f);
+    store4(cam.right, V3{right.x * tx, right.y * tx, right.z * tx});
+    store4(cam.up, V3{up.x * ty, up.y * ty, up.z * ty});
+    cam.width = w, cam.height = h;
+    cam.lens_radius = float(settings.aperture >= 0 ? settings.aperture : desc.aperture_radius);
+    double focus = settings.focus_distance > 0 ? settings.focus_distance : desc.focus_distance;
+    if (!(focus > 0)) { // the plane through the centre of the scene
+        V3 c{0.5 * (bmin[0] + bmax[0]), 0.5 * (bmin[1] + bmax[1]), 0.5 * (bmin[2] + bmax[2])};
+        focus = std::max(1e-6, dot(sub(c, V3{desc.position[0], desc.position[1], desc.position[2]}), f));
+    }
+    cam.focus_distance = float(focus);
+    return cam;
+}
+
+namespace {
+
+cl::Buffer copy_buffer(const cl::Buffer& src, const DeviceContext& from, const DeviceContext& to) {
+    const size_t bytes = src.getInfo<CL_MEM_SIZE>();
+    std::vector<unsigned char> data(bytes);
+    from.queue.enqueueReadBuffer(src, CL_TRUE, 0, bytes, data.data());
+    cl::Buffer dst(to.context, CL_MEM_READ_ONLY, bytes);
+    to.queue.enqueueWriteBuffer(dst, CL_TRUE, 0, bytes, data.data());
+    return dst;
+}
+
+} // namespace
+
+DeviceScene DeviceScene::clone_to(const DeviceContext& from, const DeviceContext& to) const {
+    DeviceScene c = *this; // host-side values
+    for (cl::Buffer DeviceScene::*b : {&DeviceScene::bvh_nodes_buf, &DeviceScene::tris_buf, &DeviceScene::shading_buf,
+                                       &DeviceScene::materials_buf, &DeviceScene::textures_buf, &DeviceScene::texels_buf,
+                                       &DeviceScene::lights_buf, &DeviceScene::light_cdf_buf, &DeviceScene::info_buf,
+                                       &DeviceScene::camera_buf})
+        c.*b = copy_buffer(this->*b, from, to);
+    return c;
+}
+
+int DeviceScene::set_scene_args(cl::Kernel& k, int a) const {
+    k.setArg(a++, bvh_nodes_buf);
+    k.setArg(a++, tris_buf);
+    k.setArg(a++, shading_buf);
+    k.setArg(a++, materials_buf);
+    k.setArg(a++, textures_buf);
+    k.setArg(a++, texels_buf);
+    k.setArg(a++, lights_buf);
+    k.setArg(a++, light_cdf_buf);
+    k.setArg(a++, info_buf);
+    return a;
+}
+
+DeviceScene upload_scene(const DeviceContext& dc, Scene& scene, const SceneSettings& settings) {
+    DeviceScene ds;
+    BvhBuildResult bvh = build_bvh(scene.positions);
+    permute_triangles(scene, bvh.tri_order);
+    ds.bvh_build_seconds = bvh.build_seconds;
+    ds.bvh_nodes = bvh.nodes.size();
+    ds.num_triangles = scene.num_triangles();
+
+    // Bounds and the bounding sphere: ray offsets and grid cells are relative to them.
+    float lo[3] = {std::numeric_limits<float>::max(), std::numeric_limits<float>::max(), std::numeric_limits<float>::max()};
+    float hi[3] = {-lo[0], -lo[1], -lo[2]};
+    for (const Vec3& p : scene.positions) {
+        const float c[3] = {p.x, p.y, p.z};
+        for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], c[k]), hi[k] = std::max(hi[k], c[k]);
+    }
+    if (scene.positions.empty()) std::fill(lo, lo + 3, 0.f), std::fill(hi, hi + 3, 0.f);
+    std::copy(lo, lo + 3, ds.bounds_min);
+    std::copy(hi, hi + 3, ds.bounds_max);
+    V3 center{0.5 * (lo[0] + double(hi[0])), 0.5 * (lo[1] + double(hi[1])), 0.5 * (lo[2] + double(hi[2]))};
+    double radius = 0.5 * length(V3{double(hi[0]) - lo[0], double(hi[1]) - lo[1], double(hi[2]) - lo[2]});
+    if (!(radius > 0)) radius = 1;
+    store4(ds.info.center, center);
+    ds.info.radius = float(radius);
+    ds.info.ray_eps = float(radius * 1e-5);
+    ds.info.num_tris = uint32_t(scene.num_triangles());
+    ds.info.max_bounces = settings.max_bounces;
+
+    ds.lights = collect_lights(scene, ds.info);
+    if (ds.lights.empty())
+        throw Error(scene.source + ": no lights (no emissive material and no KHR_lights_punctual light): nothing to render");
+    double total = 0;
+    for (const dev::Light& l : ds.lights) total += l.power;
+    ds.light_cdf.assign(1, 0.f);
+    double run = 0;
+    for (const dev::Light& l : ds.lights) {
+        run += l.power;
+        ds.light_cdf.push_back(float(run / total));
+    }
+    ds.light_cdf.back() = 1.f;
+    if (!std::isfinite(narrow_to_float(total)))
+        throw Error(scene.source + ": the lights' total power (" + std::to_string(total) +
+                    " W) does not fit a float; scale the lights down");
+    ds.info.total_power = float(total);
+    ds.info.num_lights = uint32_t(ds.lights.size());
+    for (const dev::Light& l : ds.lights) ds.info.num_emissive_tris += l.type == LIGHT_TRIANGLE;
+
+    std::string note;
+    ds.camera = make_camera(scene, settings, lo, hi, &note);
+    if (!note.empty()) ds.notes.push_back(note);
+
+    std::vector<std::array<float, 4>> tri_data = bvh_triangle_data(scene.positions);
+    size_t& bytes = ds.device_bytes;
+    ds.bvh_nodes_buf = upload(dc, bvh.nodes, &bytes);
+    ds.tris_buf = upload(dc, tri_data, &bytes);
+    ds.shading_buf = upload(dc, scene.shading, &bytes);
+    ds.materials_buf = upload(dc, scene.materials, &bytes);
+    ds.textures_buf = upload(dc, scene.textures, &bytes);
+    ds.texels_buf = upload(dc, scene.texels, &bytes);
+    ds.lights_buf = upload(dc, ds.lights, &bytes);
+    ds.light_cdf_buf = upload(dc, ds.light_cdf, &bytes);
+    ds.info_buf = upload(dc, std::vector<dev::SceneInfo>{ds.info}, &bytes);
+    ds.camera_buf = upload(dc, std::vector<dev::Camera>{ds.camera}, &bytes);
+    return ds;
+}
+
+} // namespace clppm

@@ -1,0 +1,170 @@
+#include "scene/gltf/gltf_materials.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+namespace clppm::gltf {
+
+namespace {
+
+// 8-bit sRGB -> linear (IEC 61966-2-1).
+const std::array<float, 256>& srgb_to_linear_table() {
+    static const std::array<float, 256> table = [] {
+        std::array<float, 256> t{};
+        for (int i = 0; i < 256; ++i) {
+            double c = i / 255.0;
+            t[size_t(i)] = float(c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4));
+        }
+        return t;
+    }();
+    return table;
+}
+
+// A number inside a material/texture extension object, or `fallback` when absent.
+double extension_number(const tinygltf::ExtensionMap& extensions, const char* extension,
+                        const char* key, double fallback) {
+    auto it = extensions.find(extension);
+    if (it == extensions.end() || !it->second.IsObject() || !it->second.Has(key)) return fallback;
+    const tinygltf::Value& v = it->second.Get(key);
+    return v.IsNumber() ? v.GetNumberAsDouble() : fallback;
+}
+
+// The material kind mapping documented in gltf_load.h.
+uint32_t material_kind(float metallic, float roughness, float transmission) {
+    if (transmission > 0.f) return MATERIAL_DIELECTRIC;
+    if (metallic >= 1.f) return roughness > 0.f ? MATERIAL_GLOSSY : MATERIAL_MIRROR;
+    if (metallic > 0.f) return MATERIAL_METAL_MIX;
+    return MATERIAL_DIFFUSE;
+}
+
+// glTF 2.0 Sec. 5.19: the material of a primitive that names none.
+dev::Material default_material() {
+    dev::Material m{};
+    for (int c = 0; c < 3; ++c) m.base_color[c] = 1.f;
+    m.base_color[3] = 1.f;
+    m.metallic = 1.f;
+    m.roughness = 1.f;
+    m.ior = 1.5f;
+    m.base_color_tex = -1;
+    m.kind = material_kind(m.metallic, m.roughness, m.transmission);
+    return m;
+}
+
+} // namespace
+
+void MaterialConverter::convert_materials() {
+    for (size_t i = 0; i < m_.materials.size(); ++i) s_.materials.push_back(convert_material(int(i)));
+}
+
+void MaterialConverter::copy_finite(float* dst, const std::vector<double>& src, size_t n, const std::string& what,
+                 const std::string& label) {
+    if (src.size() != n) ctx_.fail(label + " " + what + " must have " + std::to_string(n) + " components");
+    for (size_t c = 0; c < n; ++c) {
+        dst[c] = narrow_to_float(src[c]);
+        if (!std::isfinite(dst[c])) ctx_.fail(label + " has a non-finite " + what);
+    }
+}
+
+float MaterialConverter::finite_factor(double v, const std::string& what, const std::string& label) {
+    float f = narrow_to_float(v);
+    if (!std::isfinite(f)) ctx_.fail(label + " has a non-finite " + what);
+    return f;
+}
+
+dev::Material MaterialConverter::convert_material(int index) {
+    const tinygltf::Material& g = m_.materials[size_t(index)];
+    const auto& pbr = g.pbrMetallicRoughness;
+    std::string label = labelled("material", index, g.name);
+    dev::Material m{};
+    copy_finite(m.base_color, pbr.baseColorFactor, 4, "baseColorFactor", label);
+    for (int c = 0; c < 4; ++c) m.base_color[c] = std::clamp(m.base_color[c], 0.f, 1.f);
+    copy_finite(m.emission, g.emissiveFactor, 3, "emissiveFactor", label);
+    float strength = finite_factor(
+        extension_number(g.extensions, "KHR_materials_emissive_strength", "emissiveStrength", 1.0),
+        "emissiveStrength", label);
+    for (int c = 0; c < 3; ++c) // each factor finite as a float, their product may not be
+        m.emission[c] = std::max(0.f, finite_factor(double(m.emission[c]) * strength,
+                                                    "emissiveFactor * emissiveStrength", label));
+    m.metallic = std::clamp(finite_factor(pbr.metallicFactor, "metallicFactor", label), 0.f, 1.f);
+    m.roughness = std::clamp(finite_factor(pbr.roughnessFactor, "roughnessFactor", label), 0.f, 1.f);
+    m.transmission = std::clamp(finite_factor(
+        extension_number(g.extensions, "KHR_materials_transmission", "transmissionFactor", 0.0),
+        "transmissionFactor", label), 0.f, 1.f);
+    m.ior = finite_factor(extension_number(g.extensions, "KHR_materials_ior", "ior", 1.5), "ior", label);
+    if (m.ior < 1.f) {
+        ctx_.warn(label + " ior " + std::to_string(m.ior) + " is below 1; using 1");
+        m.ior = 1.f;
+    }
+    m.base_color_tex = texture_for(pbr.baseColorTexture, label);
+    if (g.emissiveTexture.index >= 0) ctx_.warn(label + " emissiveTexture is not supported; emission is uniform");
+    if (pbr.metallicRoughnessTexture.index >= 0)
+        ctx_.warn(label + " metallicRoughnessTexture is not supported; factors only");
+    m.flags = g.doubleSided ? MATERIAL_FLAG_DOUBLE_SIDED : 0u;
+    m.kind = material_kind(m.metallic, m.roughness, m.transmission);
+    return m;
+}
+
+uint32_t MaterialConverter::material_index(int gltf_material, const std::string& owner) {
+    if (gltf_material >= 0 && size_t(gltf_material) < m_.materials.size()) return uint32_t(gltf_material);
+    if (gltf_material >= 0) ctx_.fail(owner + " material " + std::to_string(gltf_material) + " out of range");
+    if (default_material_ < 0) {
+        default_material_ = int(s_.materials.size());
+        s_.materials.push_back(default_material());
+    }
+    return uint32_t(default_material_);
+}
+
+int32_t MaterialConverter::texture_for(const tinygltf::TextureInfo& info, const std::string& label) {
+    if (info.index < 0) return -1;
+    if (size_t(info.index) >= m_.textures.size())
+        ctx_.fail(label + " baseColorTexture " + std::to_string(info.index) + " out of range");
+    if (info.texCoord != 0) {
+        ctx_.warn(label + " baseColorTexture uses TEXCOORD_" + std::to_string(info.texCoord) +
+                  "; only TEXCOORD_0 is supported, texture ignored");
+        return -1;
+    }
+    if (info.extensions.count("KHR_texture_transform"))
+        ctx_.warn(label + " KHR_texture_transform is not supported; ignored");
+    auto cached = texture_cache_.find(info.index);
+    if (cached != texture_cache_.end()) return cached->second;
+    return texture_cache_[info.index] = convert_texture(info.index);
+}
+
+int32_t MaterialConverter::convert_texture(int index) {
+    const tinygltf::Texture& t = m_.textures[size_t(index)];
+    std::string label = labelled("texture", index, t.name);
+    if (t.source < 0 || size_t(t.source) >= m_.images.size()) {
+        ctx_.warn(label + " has no valid image source; texture ignored");
+        return -1;
+    }
+    const tinygltf::Image& img = m_.images[size_t(t.source)];
+    size_t texels = (img.width > 0 && img.height > 0) ? size_t(img.width) * size_t(img.height) : 0;
+    if (texels == 0 || img.component != 4 || img.bits != 8 || img.image.size() != texels * 4) {
+        ctx_.warn(label + " image " + std::to_string(t.source) + " has no decoded pixels; texture ignored");
+        return -1;
+    }
+    if (s_.texels.size() + texels > kMaxTexels) ctx_.fail("textures exceed 2^26 texels in total");
+    dev::Texture tex{uint32_t(s_.texels.size()), uint32_t(img.width), uint32_t(img.height), wrap_bits(t.sampler, label)};
+    append_linear_texels(img);
+    s_.textures.push_back(tex);
+    return int32_t(s_.textures.size() - 1);
+}
+
+// Texels are stored top row first, so glTF's (u, v) (origin top left) index them directly.
+void MaterialConverter::append_linear_texels(const tinygltf::Image& img) {
+    const auto& lut = srgb_to_linear_table();
+    const unsigned char* p = img.image.data();
+    for (size_t i = 0, n = img.image.size() / 4; i < n; ++i, p += 4)
+        s_.texels.push_back({lut[p[0]], lut[p[1]], lut[p[2]], p[3] / 255.f});
+}
+
+uint32_t MaterialConverter::wrap_bits(int sampler, const std::string& label) {
+    if (sampler < 0 || size_t(sampler) >= m_.samplers.size()) return 0; // repeat
+    const tinygltf::Sampler& s = m_.samplers[size_t(sampler)];
+    if (s.wrapS == TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT || s.wrapT == TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT)
+        ctx_.warn(label + " MIRRORED_REPEAT is not supported; using REPEAT");
+    return (s.wrapS == TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE ? 1u : 0u) |
+           (s.wrapT == TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE ? 2u : 0u);
+}
+} // namespace clppm::gltf

@@ -1,0 +1,282 @@
+#include "scene/gltf/gltf_scene_builder.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "scene/gltf/gltf_transform.h"
+
+namespace clppm::gltf {
+
+void SceneBuilder::build() {
+    warn_unsupported_extensions();
+    materials_.convert_materials();
+    std::vector<int> roots = root_nodes();
+    // Instancing multiplies triangles: a few kilobytes of nodes can name 2^26 of them. A first
+    // pass that only counts makes such a file fail before it fills gigabytes.
+    counting_ = true;
+    traverse(roots);
+    counting_ = false;
+    visits_ = 0;
+    traverse(roots);
+    if (s_.shading.empty()) ctx_.fail("no triangle geometry");
+}
+
+void SceneBuilder::warn_unsupported_extensions() {
+    for (const std::string& name : m_.extensionsUsed)
+        if (!kSupportedExtensions.count(name)) ctx_.warn("extension " + name + " is not supported; ignored");
+}
+
+std::vector<int> SceneBuilder::root_nodes() {
+    if (m_.scenes.empty()) return parentless_nodes();
+    int scene = m_.defaultScene >= 0 ? m_.defaultScene : 0;
+    if (size_t(scene) >= m_.scenes.size())
+        ctx_.fail("default scene " + std::to_string(scene) + " out of range (" +
+                  std::to_string(m_.scenes.size()) + " scenes)");
+    return m_.scenes[size_t(scene)].nodes;
+}
+
+// Without a `scenes` array, render every node that is nobody's child.
+std::vector<int> SceneBuilder::parentless_nodes() {
+    std::vector<char> is_child(m_.nodes.size(), 0);
+    for (const auto& n : m_.nodes)
+        for (int c : n.children)
+            if (c >= 0 && size_t(c) < m_.nodes.size()) is_child[size_t(c)] = 1;
+    std::vector<int> roots;
+    for (size_t i = 0; i < m_.nodes.size(); ++i)
+        if (!is_child[i]) roots.push_back(int(i));
+    return roots;
+}
+
+struct SceneBuilder::Frame {
+    int node;
+    glm::dmat4 world;
+    size_t next_child;
+};
+
+// Depth-first with an explicit stack (no recursion limit on deep chains); a node already on
+// the current path is its own ancestor: a cycle.
+void SceneBuilder::traverse(const std::vector<int>& roots) {
+    on_path_.assign(m_.nodes.size(), 0);
+    for (int root : roots) {
+        std::vector<Frame> stack;
+        enter(root, glm::dmat4(1.0), -1, stack);
+        while (!stack.empty()) {
+            Frame& top = stack.back();
+            const std::vector<int>& children = m_.nodes[size_t(top.node)].children;
+            if (top.next_child == children.size()) {
+                on_path_[size_t(top.node)] = 0;
+                stack.pop_back();
+                continue;
+            }
+            int child = children[top.next_child++];
+            glm::dmat4 parent = top.world; // copied: push_back may move `top`
+            enter(child, parent, top.node, stack);
+        }
+    }
+}
+
+// Labels are built only on the way to an error: shared subtrees make this path hot.
+void SceneBuilder::enter(int index, const glm::dmat4& parent, int parent_index, std::vector<Frame>& stack) {
+    if (index < 0 || size_t(index) >= m_.nodes.size())
+        ctx_.fail((parent_index < 0 ? std::string("scene root") : node_label(parent_index) + " child") +
+                  " node " + std::to_string(index) + " out of range (" + std::to_string(m_.nodes.size()) + " nodes)");
+    const tinygltf::Node& node = m_.nodes[size_t(index)];
+    if (on_path_[size_t(index)]) ctx_.fail("node graph cycle: " + node_label(index) + " is its own ancestor");
+    if (++visits_ > kMaxNodeVisits) ctx_.fail("the node hierarchy instances more than 2^20 nodes");
+    glm::dmat4 world(1.0); // the counting pass needs no transforms
+    if (counting_) {
+        count_triangles(node.mesh);
+    } else {
+        if (!transform_arrays_valid(node))
+            ctx_.fail(node_label(index) + " has a transform array of the wrong length");
+        glm::dmat4 local = local_matrix(node);
+        world = parent * local;
+        if (!finite(local) || !finite(world)) ctx_.fail(node_label(index) + " has a non-finite transform");
+        instantiate(index, world);
+    }
+    on_path_[size_t(index)] = 1;
+    stack.push_back({index, world, 0});
+}
+
+void SceneBuilder::instantiate(int index, const glm::dmat4& world) {
+    const tinygltf::Node& node = m_.nodes[size_t(index)];
+    auto light = node.extensions.find("KHR_lights_punctual");
+    bool has_light = light != node.extensions.end();
+    if (node.mesh == -1 && node.camera == -1 && !has_light) return;
+    std::string label = node_label(index);
+    if (node.mesh != -1) add_mesh(node.mesh, world, label);
+    if (node.camera != -1) lights_cameras_.add_camera(node, world, label);
+    if (has_light) lights_cameras_.add_light(light->second, world, label);
+}
+
+// Adds the triangles an instance of `mesh` will add (an upper bound: degenerate ones count).
+void SceneBuilder::count_triangles(int mesh) {
+    if (mesh < 0 || size_t(mesh) >= m_.meshes.size()) return; // add_mesh reports it
+    auto cached = mesh_triangles_.find(mesh);
+    if (cached == mesh_triangles_.end()) {
+        size_t n = 0; // each count <= 2^31 (AccessorReader)
+        const tinygltf::Mesh& g = m_.meshes[size_t(mesh)];
+        for (size_t p = 0; p < g.primitives.size(); ++p) {
+            const tinygltf::Primitive& prim = g.primitives[p];
+            if (prim.mode != TINYGLTF_MODE_TRIANGLES || !prim.attributes.count("POSITION")) continue;
+            std::string label = labelled("mesh", mesh, g.name) + " primitive " + std::to_string(p);
+            size_t vertices = attribute(prim, "POSITION", label).count;
+            n += (prim.indices < 0 ? vertices : reader_.view(prim.indices, label + " indices").count) / 3;
+        }
+        cached = mesh_triangles_.emplace(mesh, n).first;
+    }
+    instanced_triangles_ += cached->second;
+    if (instanced_triangles_ > kMaxTriangles) ctx_.fail("the scene has more than 2^25 triangles");
+}
+
+void SceneBuilder::add_mesh(int mesh, const glm::dmat4& world, const std::string& node_label) {
+    if (size_t(mesh) >= m_.meshes.size())
+        ctx_.fail(node_label + " mesh " + std::to_string(mesh) + " out of range");
+    const tinygltf::Mesh& g = m_.meshes[size_t(mesh)];
+    for (size_t p = 0; p < g.primitives.size(); ++p) {
+        std::string label = labelled("mesh", mesh, g.name) + " primitive " + std::to_string(p);
+        const tinygltf::Primitive& prim = g.primitives[p];
+        if (prim.mode != TINYGLTF_MODE_TRIANGLES) {
+            ctx_.warn(label + ": mode " + std::to_string(prim.mode) + " is not TRIANGLES; skipped");
+            continue;
+        }
+        if (!prim.attributes.count("POSITION")) {
+            ctx_.warn(label + ": no POSITION attribute; skipped");
+            continue;
+        }
+        if (!prim.attributes.count("NORMAL") && meshes_without_normals_.insert(mesh).second)
+            ++s_.meshes_without_normals;
+        add_primitive(prim, world, label);
+    }
+}
+
+AccessorView SceneBuilder::attribute(const tinygltf::Primitive& prim, const char* name, const std::string& label) {
+    return reader_.view(prim.attributes.at(name), label + " " + name);
+}
+
+void SceneBuilder::require(bool ok, const std::string& what) {
+    if (!ok) ctx_.fail(what);
+}
+
+WorldVertices SceneBuilder::world_vertices(const tinygltf::Primitive& prim, const glm::dmat4& world, const std::string& label) {
+    WorldVertices v;
+    AccessorView pos = attribute(prim, "POSITION", label);
+    require(pos.components == 3 && pos.component_type == TINYGLTF_COMPONENT_TYPE_FLOAT,
+            label + ": POSITION must be a FLOAT VEC3 accessor");
+    v.position.resize(pos.count);
+    for (size_t i = 0; i < pos.count; ++i)
+        v.position[i] = transform_point(world, {pos.get(i, 0), pos.get(i, 1), pos.get(i, 2)});
+    if (prim.attributes.count("NORMAL")) read_normals(prim, world, label, &v);
+    if (prim.attributes.count("TEXCOORD_0")) read_uvs(prim, label, &v);
+    return v;
+}
+
+// Normals by the inverse transpose, so they stay perpendicular under non-uniform scale.
+void SceneBuilder::read_normals(const tinygltf::Primitive& prim, const glm::dmat4& world, const std::string& label, WorldVertices* v) {
+    AccessorView n = attribute(prim, "NORMAL", label);
+    require(n.components == 3 && n.component_type == TINYGLTF_COMPONENT_TYPE_FLOAT,
+            label + ": NORMAL must be a FLOAT VEC3 accessor");
+    require(n.count >= v->position.size(), label + ": NORMAL has fewer elements than POSITION");
+    glm::dmat3 linear(world);
+    double det = glm::determinant(linear);
+    glm::dmat3 normal_matrix = std::abs(det) > 1e-300 ? glm::transpose(glm::inverse(linear)) : glm::dmat3(0.0);
+    v->normal.resize(v->position.size());
+    for (size_t i = 0; i < v->normal.size(); ++i)
+        v->normal[i] = unit_or_zero(normal_matrix * glm::dvec3(n.get(i, 0), n.get(i, 1), n.get(i, 2)));
+}
+
+void SceneBuilder::read_uvs(const tinygltf::Primitive& prim, const std::string& label, WorldVertices* v) {
+    AccessorView t = attribute(prim, "TEXCOORD_0", label);
+    bool float_or_unorm = t.component_type == TINYGLTF_COMPONENT_TYPE_FLOAT ||
+                          (t.normalized && (t.component_type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
+                                            t.component_type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT));
+    require(t.components == 2 && float_or_unorm,
+            label + ": TEXCOORD_0 must be a VEC2 of FLOAT or normalized UNSIGNED_BYTE/UNSIGNED_SHORT");
+    require(t.count >= v->position.size(), label + ": TEXCOORD_0 has fewer elements than POSITION");
+    v->uv.resize(v->position.size());
+    for (size_t i = 0; i < v->uv.size(); ++i) {
+        v->uv[i] = {narrow_to_float(t.get(i, 0)), narrow_to_float(t.get(i, 1))};
+        if (!std::isfinite(v->uv[i].x) || !std::isfinite(v->uv[i].y)) v->uv[i] = {0.f, 0.f};
+    }
+}
+
+// Vertex indices of the primitive, three per triangle (a trailing partial triangle dropped).
+std::vector<uint32_t> SceneBuilder::triangle_indices(const tinygltf::Primitive& prim, size_t vertex_count, const std::string& label) {
+    std::vector<uint32_t> idx;
+    if (prim.indices < 0) {
+        if (vertex_count % 3) ctx_.warn(label + ": vertex count is not a multiple of 3");
+        reserve_triangles(vertex_count / 3);
+        idx.resize(vertex_count / 3 * 3);
+        for (size_t i = 0; i < idx.size(); ++i) idx[i] = uint32_t(i);
+        return idx;
+    }
+    AccessorView a = reader_.view(prim.indices, label + " indices");
+    std::string name = "accessor " + std::to_string(prim.indices);
+    bool index_type = a.component_type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
+                      a.component_type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT ||
+                      a.component_type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
+    require(a.components == 1 && index_type && !a.normalized,
+            label + ": indices " + name + " must be a SCALAR of UNSIGNED_BYTE/SHORT/INT");
+    if (a.count % 3) ctx_.warn(label + ": index count is not a multiple of 3");
+    reserve_triangles(a.count / 3);
+    idx.resize(a.count / 3 * 3);
+    for (size_t i = 0; i < idx.size(); ++i) {
+        idx[i] = a.index(i);
+        if (idx[i] >= vertex_count)
+            ctx_.fail("indices " + name + " reference vertex " + std::to_string(idx[i]) + " beyond the " +
+                      std::to_string(vertex_count) + " vertices of " + label + " POSITION");
+    }
+    return idx;
+}
+
+void SceneBuilder::reserve_triangles(size_t count) {
+    if (count > kMaxTriangles || s_.shading.size() + count > kMaxTriangles)
+        ctx_.fail("the scene has more than 2^25 triangles");
+}
+
+void SceneBuilder::add_primitive(const tinygltf::Primitive& prim, const glm::dmat4& world, const std::string& label) {
+    uint32_t material = materials_.material_index(prim.material, label);
+    WorldVertices v = world_vertices(prim, world, label);
+    if (v.uv.empty() && s_.materials[material].base_color_tex >= 0)
+        ctx_.warn(label + ": textured material without TEXCOORD_0; every texel lookup uses (0, 0)");
+    std::vector<uint32_t> idx = triangle_indices(prim, v.position.size(), label);
+    // A mirroring transform reverses the winding; swapping two vertices restores the
+    // counter-clockwise front face that agrees with the (inverse-transpose) normals.
+    bool mirrored = glm::determinant(glm::dmat3(world)) < 0.0;
+    for (size_t t = 0; t + 2 < idx.size(); t += 3) {
+        std::array<uint32_t, 3> tri = {idx[t], idx[t + 1], idx[t + 2]};
+        if (mirrored) std::swap(tri[1], tri[2]);
+        add_triangle(tri, v, material);
+    }
+}
+
+void SceneBuilder::add_triangle(const std::array<uint32_t, 3>& tri, const WorldVertices& v, uint32_t material) {
+    Vec3 p[3];
+    glm::dvec3 q[3]; // the float positions as stored, for the area test
+    for (int k = 0; k < 3; ++k) {
+        const glm::dvec3& w = v.position[tri[size_t(k)]];
+        p[k] = {narrow_to_float(w.x), narrow_to_float(w.y), narrow_to_float(w.z)};
+        q[k] = {p[k].x, p[k].y, p[k].z};
+    }
+    glm::dvec3 e1 = q[1] - q[0], e2 = q[2] - q[0], c = glm::cross(e1, e2);
+    double c2 = glm::dot(c, c);
+    // Zero area (or sin(angle) < 1e-7) and non-finite corners give no usable plane.
+    if (!finite(q[0]) || !finite(q[1]) || !finite(q[2]) || !(c2 > 1e-14 * glm::dot(e1, e1) * glm::dot(e2, e2))) {
+        ++s_.degenerate_triangles_skipped;
+        return;
+    }
+    glm::dvec3 flat = c / std::sqrt(c2);
+    dev::TriShading sh{};
+    bool smooth = !v.normal.empty();
+    for (int k = 0; k < 3 && smooth; ++k) smooth = v.normal[tri[size_t(k)]] != glm::dvec3(0.0);
+    float* n[3] = {sh.n0, sh.n1, sh.n2};
+    float* uv[3] = {sh.uv0, sh.uv1, sh.uv2};
+    for (int k = 0; k < 3; ++k) {
+        store3(n[k], smooth ? v.normal[tri[size_t(k)]] : flat);
+        if (!v.uv.empty()) uv[k][0] = v.uv[tri[size_t(k)]].x, uv[k][1] = v.uv[tri[size_t(k)]].y;
+    }
+    sh.material = material;
+    s_.positions.insert(s_.positions.end(), p, p + 3);
+    s_.shading.push_back(sh);
+}
+} // namespace clppm::gltf

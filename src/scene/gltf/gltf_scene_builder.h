@@ -1,0 +1,100 @@
+// Flattening a parsed glTF into the Scene: the node hierarchy walked depth-first (cycles and
+// instancing bombs refused), each mesh instance's primitives turned into world-space triangles,
+// with materials, lights and cameras converted by their own classes.
+#pragma once
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <map>
+#include <set>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+#include <tiny_gltf.h>
+
+#include "scene/gltf/gltf_accessors.h"
+#include "scene/gltf/gltf_context.h"
+#include "scene/gltf/gltf_lights_cameras.h"
+#include "scene/gltf/gltf_materials.h"
+
+namespace clppm::gltf {
+
+// World-space vertex data of one primitive instance.
+struct WorldVertices {
+    std::vector<glm::dvec3> position;
+    std::vector<glm::dvec3> normal; // empty: none in the file; (0,0,0): unusable
+    std::vector<glm::vec2> uv;      // empty: none
+};
+
+class SceneBuilder {
+public:
+    SceneBuilder(const tinygltf::Model& m, LoadContext& ctx, Scene& s)
+        : m_(m), ctx_(ctx), s_(s), reader_(m, ctx), materials_(m, ctx, s), lights_cameras_(m, ctx, s) {}
+
+    // Fills the scene: materials, then every triangle, light and camera of the default scene.
+    void build();
+
+private:
+    void warn_unsupported_extensions();
+
+    std::vector<int> root_nodes();
+
+    // Without a `scenes` array, render every node that is nobody's child.
+    std::vector<int> parentless_nodes();
+
+    struct Frame; // a node on the traversal's stack
+
+    // Depth-first with an explicit stack (no recursion limit on deep chains); a node already on
+    // the current path is its own ancestor: a cycle.
+    void traverse(const std::vector<int>& roots);
+
+    std::string node_label(int index) const { return labelled("node", index, m_.nodes[size_t(index)].name); }
+
+    // Labels are built only on the way to an error: shared subtrees make this path hot.
+    void enter(int index, const glm::dmat4& parent, int parent_index, std::vector<Frame>& stack);
+
+    void instantiate(int index, const glm::dmat4& world);
+
+    // -- meshes --
+
+    // Adds the triangles an instance of `mesh` will add (an upper bound: degenerate ones count).
+    void count_triangles(int mesh);
+
+    void add_mesh(int mesh, const glm::dmat4& world, const std::string& node_label);
+
+    AccessorView attribute(const tinygltf::Primitive& prim, const char* name, const std::string& label);
+
+    void require(bool ok, const std::string& what);
+
+    WorldVertices world_vertices(const tinygltf::Primitive& prim, const glm::dmat4& world, const std::string& label);
+
+    // Normals by the inverse transpose, so they stay perpendicular under non-uniform scale.
+    void read_normals(const tinygltf::Primitive& prim, const glm::dmat4& world, const std::string& label, WorldVertices* v);
+
+    void read_uvs(const tinygltf::Primitive& prim, const std::string& label, WorldVertices* v);
+
+    // Vertex indices of the primitive, three per triangle (a trailing partial triangle dropped).
+    std::vector<uint32_t> triangle_indices(const tinygltf::Primitive& prim, size_t vertex_count, const std::string& label);
+
+    void reserve_triangles(size_t count);
+
+    void add_primitive(const tinygltf::Primitive& prim, const glm::dmat4& world, const std::string& label);
+
+    void add_triangle(const std::array<uint32_t, 3>& tri, const WorldVertices& v, uint32_t material);
+
+    const tinygltf::Model& m_;
+    LoadContext& ctx_;
+    Scene& s_;
+    AccessorReader reader_;
+    MaterialConverter materials_;
+    LightsAndCameras lights_cameras_;
+    std::set<int> meshes_without_normals_;
+    std::vector<char> on_path_;
+    size_t visits_ = 0;
+    bool counting_ = false;          // the first traversal: count, build nothing
+    size_t instanced_triangles_ = 0; // counted so far, all instances
+    std::map<int, size_t> mesh_triangles_;
+};
+
+} // namespace clppm::gltf

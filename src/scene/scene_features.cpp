@@ -1,0 +1,63 @@
+#include "scene/scene_features.h"
+
+namespace clppm {
+
+SceneFeatures scene_features(const Scene& scene, const DeviceScene& ds) {
+    SceneFeatures f;
+    // Only materials some triangle uses count.
+    std::vector<bool> used(scene.materials.size(), false);
+    for (const dev::TriShading& t : scene.shading)
+        if (t.material < used.size()) used[t.material] = true;
+    for (size_t i = 0; i < scene.materials.size(); ++i) {
+        if (!used[i]) continue;
+        const dev::Material& m = scene.materials[i];
+        const bool metal_is_glossy = m.roughness > 0.f;
+        switch (m.kind) {
+        case MATERIAL_MIRROR: f.mirror = true; break;
+        case MATERIAL_GLOSSY: f.glossy = true; break;
+        case MATERIAL_DIELECTRIC: f.dielectric = true; break;
+        case MATERIAL_METAL_MIX:
+            f.metal_mix = true;
+            (metal_is_glossy ? f.glossy : f.mirror) = true;
+            break;
+        default: break;
+        }
+        if (m.base_color_tex >= 0) f.textures = true;
+    }
+    for (const dev::Light& l : ds.lights) {
+        if (l.type == LIGHT_TRIANGLE) f.area_lights = true;
+        if (l.type == LIGHT_POINT) f.point_lights = true;
+        if (l.type == LIGHT_SPOT) f.spot_lights = true;
+        if (l.type == LIGHT_DIRECTIONAL) f.directional_lights = true;
+    }
+    f.thin_lens = ds.camera.lens_radius > 0.f;
+    return f;
+}
+
+SceneFeatures SceneFeatures::all() {
+    SceneFeatures f;
+#define CLPPM_FEATURE_ON(flag, field, text) f.field = true;
+    CLPPM_KERNEL_FEATURES(CLPPM_FEATURE_ON)
+#undef CLPPM_FEATURE_ON
+    return f;
+}
+
+std::string feature_build_options(const SceneFeatures& f) {
+    std::string o;
+#define CLPPM_FEATURE_OPTION(flag, field, text)                                                                        \
+    if (!f.field) o += std::string(o.empty() ? "" : " ") + "-D" #flag "=0";
+    CLPPM_KERNEL_FEATURES(CLPPM_FEATURE_OPTION)
+#undef CLPPM_FEATURE_OPTION
+    return o;
+}
+
+std::string describe_features(const SceneFeatures& f) {
+    std::string s = "diffuse";
+#define CLPPM_FEATURE_TEXT(flag, field, text)                                                                          \
+    if (f.field) s += std::string(", ") + text;
+    CLPPM_KERNEL_FEATURES(CLPPM_FEATURE_TEXT)
+#undef CLPPM_FEATURE_TEXT
+    return s;
+}
+
+} // namespace clppm

@@ -1,0 +1,27 @@
+#include "scene/scene_fingerprint.h"
+
+#include <vector>
+
+#include "util/hash.h"
+
+namespace clppm {
+
+uint64_t scene_fingerprint(const Scene& s) {
+    uint64_t h = kFnv1a64Basis;
+    h = fnv1a64(s.positions, h);
+    h = fnv1a64(s.shading, h);
+    h = fnv1a64(s.materials, h);
+    h = fnv1a64(s.textures, h);
+    h = fnv1a64(s.texels, h);
+    h = fnv1a64(s.punctual_lights, h);
+    for (const CameraDesc& c : s.cameras) {
+        std::vector<float> v(c.position, c.position + 3);
+        v.insert(v.end(), c.forward, c.forward + 3);
+        v.insert(v.end(), c.up, c.up + 3);
+        v.insert(v.end(), {c.yfov, c.aspect, c.aperture_radius, c.focus_distance});
+        h = fnv1a64(v, h);
+    }
+    return h;
+}
+
+} // namespace clppm
