@@ -61,30 +61,9 @@ __kernel void lambert(__global const HitPoint* hp, float nx, float ny, float nz,
 }
 )CL";
 
-struct Device {
-    DeviceContext dc{test_device()};
-    cl::Program program;
+struct Device : KernelHarness {
     // Include guards make the second file add only what the first lacked (hitpoint.cl).
-    Device()
-        : program(dc.context, assemble_kernel_source("bsdf.cl") + assemble_kernel_source("hitpoint.cl") + kWrappers) {
-        try {
-            program.build({dc.info.device}, "-cl-std=CL1.2");
-        } catch (const cl::Error&) {
-            ADD_FAILURE() << program.getBuildInfo<CL_PROGRAM_BUILD_LOG>(dc.info.device);
-            throw;
-        }
-    }
-    template <class T> cl::Buffer input(const std::vector<T>& v) const {
-        return cl::Buffer(dc.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
-                          std::max<size_t>(1, v.size()) * sizeof(T), const_cast<T*>(v.data()));
-    }
-    cl::Buffer output(size_t bytes) const { return cl::Buffer(dc.context, CL_MEM_WRITE_ONLY, bytes); }
-    template <class T> std::vector<T> read(const cl::Buffer& b, size_t n) const {
-        std::vector<T> v(n);
-        dc.queue.enqueueReadBuffer(b, CL_TRUE, 0, n * sizeof(T), v.data());
-        return v;
-    }
-    void run(cl::Kernel& k, size_t n) const { dc.queue.enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(n)); }
+    Device() : KernelHarness(assemble_kernel_source("bsdf.cl") + assemble_kernel_source("hitpoint.cl") + kWrappers) {}
 
     std::vector<float> fresnel(const std::vector<float>& cos_eta) const {
         size_t n = cos_eta.size() / 2;
@@ -103,21 +82,6 @@ const Device& device() {
 
 // ---- host vectors and references ----
 
-struct D3 {
-    double x, y, z;
-};
-D3 operator+(D3 a, D3 b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
-D3 operator-(D3 a, D3 b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-D3 operator*(double s, D3 a) { return {s * a.x, s * a.y, s * a.z}; }
-double dot(D3 a, D3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-D3 cross(D3 a, D3 b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
-double length(D3 a) { return std::sqrt(dot(a, a)); }
-D3 normalized(D3 a) { return (1.0 / length(a)) * a; }
-void host_frame(D3 n, D3& t, D3& b) {
-    D3 h = std::fabs(n.x) < 0.5 ? D3{1, 0, 0} : D3{0, 1, 0};
-    t = normalized(h - dot(h, n) * n);
-    b = cross(n, t);
-}
 void push3(std::vector<float>& v, D3 a) { v.push_back(float(a.x)), v.push_back(float(a.y)), v.push_back(float(a.z)); }
 D3 at3(const std::vector<float>& v, size_t i) { return {v[3 * i], v[3 * i + 1], v[3 * i + 2]}; }
 

@@ -18,21 +18,12 @@
 namespace clppm {
 namespace {
 
+using test::D3;
+using test::d3;
 using Tris = std::vector<Vec3>; // 3 per triangle
 
 // ---- the reference: double-precision Moller-Trumbore over every triangle --------------------------
 
-struct D3 {
-    double x, y, z;
-};
-D3 d3(const Vec3& v) { return {v.x, v.y, v.z}; }
-D3 d3(const float* v) { return {v[0], v[1], v[2]}; }
-D3 operator-(D3 a, D3 b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-D3 operator+(D3 a, D3 b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
-D3 operator*(D3 a, double s) { return {a.x * s, a.y * s, a.z * s}; }
-double dot(D3 a, D3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-D3 cross(D3 a, D3 b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
-double length(D3 a) { return std::sqrt(dot(a, a)); }
 
 // Where a ray meets one triangle's plane: t, barycentrics of v1 and v2, and how far outside the
 // triangle that point is (0 inside; else the most negative barycentric, as a positive number).

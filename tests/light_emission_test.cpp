@@ -56,23 +56,6 @@ __kernel void sample_light_many(SCENE_PARAMS, ulong seed, float px, float py, fl
 }
 )CL";
 
-struct D3 {
-    double x, y, z;
-};
-D3 operator+(D3 a, D3 b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
-D3 operator-(D3 a, D3 b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-D3 operator*(double s, D3 a) { return {s * a.x, s * a.y, s * a.z}; }
-double dot(D3 a, D3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-D3 cross(D3 a, D3 b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
-double length(D3 a) { return std::sqrt(dot(a, a)); }
-D3 normalized(D3 a) { return (1.0 / length(a)) * a; }
-D3 d3(const float* v) { return {v[0], v[1], v[2]}; }
-D3 d3(Vec3 v) { return {v.x, v.y, v.z}; }
-void host_frame(D3 n, D3& t, D3& b) {
-    D3 h = std::fabs(n.x) < 0.5 ? D3{1, 0, 0} : D3{0, 1, 0};
-    t = normalized(h - dot(h, n) * n);
-    b = cross(n, t);
-}
 
 // The scene: three emissive triangles (areas 0.5, 0.125, 2; radiance 2, RGB (5, 3, 1) two-sided,
 // 0.5 on a tilted plane), a point light, a spot light (cones 0.3 / 0.5 rad) and a directional
@@ -175,13 +158,7 @@ struct Fixture {
 
     Fixture()
         : ds(upload_scene(dc, scene, RenderSettings{})),
-          program(dc.context, assemble_kernel_source("rng.cl") + assemble_kernel_source("lights.cl") + kWrappers) {
-        try {
-            program.build({dc.info.device}, "-cl-std=CL1.2");
-        } catch (const cl::Error&) {
-            ADD_FAILURE() << program.getBuildInfo<CL_PROGRAM_BUILD_LOG>(dc.info.device);
-            throw;
-        }
+          program(build_test_program(dc, assemble_kernel_source("rng.cl") + assemble_kernel_source("lights.cl") + kWrappers)) {
         lights = describe_lights(scene, ds);
         emit();
     }

@@ -96,27 +96,8 @@ __kernel void splitmix(__global const ulong* in, __global ulong* out) {
 }
 )CL";
 
-struct Device {
-    DeviceContext dc{test_device()};
-    cl::Program program;
-    Device() : program(dc.context, assemble_kernel_source("rng.cl") + kWrappers) {
-        try {
-            program.build({dc.info.device}, "-cl-std=CL1.2");
-        } catch (const cl::Error&) {
-            ADD_FAILURE() << program.getBuildInfo<CL_PROGRAM_BUILD_LOG>(dc.info.device);
-            throw;
-        }
-    }
-    template <class T> cl::Buffer input(const std::vector<T>& v) const {
-        return cl::Buffer(dc.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, v.size() * sizeof(T),
-                          const_cast<T*>(v.data()));
-    }
-    template <class T> std::vector<T> read(const cl::Buffer& b, size_t n) const {
-        std::vector<T> v(n);
-        dc.queue.enqueueReadBuffer(b, CL_TRUE, 0, n * sizeof(T), v.data());
-        return v;
-    }
-    void run(cl::Kernel& k, size_t n) const { dc.queue.enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(n)); }
+struct Device : KernelHarness {
+    Device() : KernelHarness(assemble_kernel_source("rng.cl") + kWrappers) {}
 
     // count outputs of each stream named by params (4 values per stream).
     template <class T>

@@ -55,27 +55,8 @@ __kernel void frames(__global const float* n, __global float* out) {
 }
 )CL";
 
-struct Device {
-    DeviceContext dc{test_device()};
-    cl::Program program;
-    Device() : program(dc.context, assemble_kernel_source("sampling.cl") + kWrappers) {
-        try {
-            program.build({dc.info.device}, "-cl-std=CL1.2");
-        } catch (const cl::Error&) {
-            ADD_FAILURE() << program.getBuildInfo<CL_PROGRAM_BUILD_LOG>(dc.info.device);
-            throw;
-        }
-    }
-    template <class T> cl::Buffer input(const std::vector<T>& v) const {
-        return cl::Buffer(dc.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, v.size() * sizeof(T),
-                          const_cast<T*>(v.data()));
-    }
-    template <class T> std::vector<T> read(const cl::Buffer& b, size_t n) const {
-        std::vector<T> v(n);
-        dc.queue.enqueueReadBuffer(b, CL_TRUE, 0, n * sizeof(T), v.data());
-        return v;
-    }
-    void run(cl::Kernel& k, size_t n) const { dc.queue.enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(n)); }
+struct Device : KernelHarness {
+    Device() : KernelHarness(assemble_kernel_source("sampling.cl") + kWrappers) {}
 };
 
 const Device& device() {
@@ -91,24 +72,6 @@ std::vector<float> uniforms(size_t n, uint64_t seed) {
     for (float& x : u)
         x = float(g() >> 40) * (1.0f / 16777216.0f);
     return u;
-}
-
-struct D3 {
-    double x, y, z;
-};
-double dot(D3 a, D3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-D3 cross(D3 a, D3 b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
-D3 normalized(D3 a) {
-    double l = std::sqrt(dot(a, a));
-    return {a.x / l, a.y / l, a.z / l};
-}
-
-// A host frame about n by Gram-Schmidt against the least aligned axis (independent of make_frame).
-void host_frame(D3 n, D3& t, D3& b) {
-    D3 h = std::fabs(n.x) < 0.5 ? D3{1, 0, 0} : D3{0, 1, 0};
-    double d = dot(h, n);
-    t = normalized({h.x - d * n.x, h.y - d * n.y, h.z - d * n.z});
-    b = cross(n, t);
 }
 
 // Histogram of device directions in (cos theta, phi) about axis n; `outside` counts directions

@@ -1,5 +1,7 @@
 #include "test_util.h"
 
+#include <gtest/gtest.h>
+
 #include <array>
 #include <cstdio>
 #include <cstdlib>
@@ -78,5 +80,18 @@ double region_mean(const Image& img, int x0, int y0, int x1, int y1, int c) {
             }
     return n ? sum / double(n) : 0.0;
 }
+
+cl::Program build_test_program(const DeviceContext& dc, const std::string& source) {
+    cl::Program program(dc.context, source);
+    try {
+        program.build({dc.info.device}, "-cl-std=CL1.2");
+    } catch (const cl::Error&) {
+        ADD_FAILURE() << program.getBuildInfo<CL_PROGRAM_BUILD_LOG>(dc.info.device);
+        throw;
+    }
+    return program;
+}
+
+KernelHarness::KernelHarness(const std::string& source) : program(build_test_program(dc, source)) {}
 
 } // namespace clppm::test

@@ -24,6 +24,11 @@ int run_clppm(const std::string& args, std::string* output);
 
 } // namespace clppm::test
 
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "device/cl.h"
 #include "io/image_io.h"
 #include "integrators/integrator.h"
 #include "integrators/render_settings.h"
@@ -33,6 +38,55 @@ namespace clppm::test {
 
 // Renders `scene` in this process on test_device() for `passes` passes and returns the image.
 Image render_passes(Scene scene, const RenderSettings& settings, uint64_t passes, IntegratorStats* stats = nullptr);
+
+// A double-precision 3-vector for the host references.
+struct D3 {
+    double x, y, z;
+};
+inline D3 operator+(D3 a, D3 b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
+inline D3 operator-(D3 a, D3 b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+inline D3 operator*(double s, D3 a) { return {s * a.x, s * a.y, s * a.z}; }
+inline D3 operator*(D3 a, double s) { return {a.x * s, a.y * s, a.z * s}; }
+inline double dot(D3 a, D3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+inline D3 cross(D3 a, D3 b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
+inline double length(D3 a) { return std::sqrt(dot(a, a)); }
+inline D3 normalized(D3 a) { return (1.0 / length(a)) * a; }
+inline D3 d3(const float* v) { return {v[0], v[1], v[2]}; }
+inline D3 d3(const Vec3& v) { return {v.x, v.y, v.z}; }
+// A frame (t, b) about unit n by Gram-Schmidt against the least aligned axis, independent of the
+// kernels' make_frame.
+inline void host_frame(D3 n, D3& t, D3& b) {
+    D3 h = std::fabs(n.x) < 0.5 ? D3{1, 0, 0} : D3{0, 1, 0};
+    t = normalized(h - dot(h, n) * n);
+    b = cross(n, t);
+}
+
+// A program built from `source` for dc's device as OpenCL C 1.2; a build failure is a test
+// failure with the build log.
+cl::Program build_test_program(const DeviceContext& dc, const std::string& source);
+
+// A test's own kernel program on test_device(): kernel files' sources (assemble_kernel_source)
+// followed by the test's wrapper kernels, built as OpenCL C 1.2; a build failure is a test failure
+// with the build log. Buffers in and out, and 1-D launches.
+struct KernelHarness {
+    DeviceContext dc{test_device()};
+    cl::Program program;
+
+    explicit KernelHarness(const std::string& source);
+    template <class T>
+    cl::Buffer input(const std::vector<T>& v) const {
+        return cl::Buffer(dc.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, std::max<size_t>(1, v.size()) * sizeof(T),
+                          const_cast<T*>(v.data()));
+    }
+    cl::Buffer output(size_t bytes) const { return cl::Buffer(dc.context, CL_MEM_WRITE_ONLY, bytes); }
+    template <class T>
+    std::vector<T> read(const cl::Buffer& b, size_t n) const {
+        std::vector<T> v(n);
+        dc.queue.enqueueReadBuffer(b, CL_TRUE, 0, n * sizeof(T), v.data());
+        return v;
+    }
+    void run(cl::Kernel& k, size_t n) const { dc.queue.enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(n)); }
+};
 
 // Mean of channel c (or of all channels when c < 0) over the pixel rectangle [x0,x1) x [y0,y1).
 double region_mean(const Image& img, int x0, int y0, int x1, int y1, int c = -1);
