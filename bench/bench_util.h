@@ -9,12 +9,12 @@
 #include <vector>
 
 #include "device/device.h"
-#include "util/error.h"
-#include "scene/gltf/gltf_load.h"
-#include "integrators/integrator_factory.h"
 #include "device/kernel_program.h"
+#include "integrators/integrator_factory.h"
 #include "scene/device_scene.h"
+#include "scene/gltf/gltf_load.h"
 #include "scene/scene_features.h"
+#include "util/error.h"
 
 namespace clppm::bench {
 

@@ -130,7 +130,9 @@ int main(int argc, char** argv) try {
     std::ostringstream csv;
     csv << "scene,group,setting,seconds,passes,rel_rmse,rel_mse,mean_ratio\n";
     std::ostringstream md;
-    md << "Scene " << a.scene << ", " << a.size << "x" << a.size << ", device " << dev.name << "; relative MSE against the reference at each time, mean over pixels of (I - R)^2 / (R^2 + 0.01) (lower is better)\n\n";
+    md << "Scene " << a.scene << ", " << a.size << "x" << a.size << ", device " << dev.name
+       << "; relative MSE against the reference at each time, mean over pixels of (I - R)^2 / (R^2 + 0.01) (lower is "
+          "better)\n\n";
     std::vector<double> times;
     for (double t = a.seconds; t >= a.seconds / 32 - 1e-9; t /= 2) times.insert(times.begin(), t);
     md << "| setting |";
@@ -146,8 +148,8 @@ int main(int argc, char** argv) try {
             while (now_s() - t0 < t) r.integ->run_pass();
             const double elapsed = now_s() - t0;
             ImageDifference d = compare_images(r.integ->image(), ref);
-            csv << a.scene << "," << st.group << "," << st.name << "," << elapsed << "," << r.integ->stats().passes << ","
-                << d.rel_rmse << "," << d.rel_mse << "," << (d.mean_b > 0 ? d.mean_a / d.mean_b : 0.0) << "\n";
+            csv << a.scene << "," << st.group << "," << st.name << "," << elapsed << "," << r.integ->stats().passes
+                << "," << d.rel_rmse << "," << d.rel_mse << "," << (d.mean_b > 0 ? d.mean_a / d.mean_b : 0.0) << "\n";
             md << " " << fmt("%.5f", d.rel_mse) << " |";
         }
         md << "\n";

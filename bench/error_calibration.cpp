@@ -77,7 +77,8 @@ int main(int argc, char** argv) {
             Render ref(device, scene, s);
             for (uint64_t p = 0; p < a.ref_passes; ++p) ref.integ->run_pass();
             const std::vector<float> ref_y = luminance(ref.integ->image());
-            std::fprintf(stderr, "%s: reference of %llu passes done\n", scene.c_str(), (unsigned long long)a.ref_passes);
+            std::fprintf(stderr, "%s: reference of %llu passes done\n", scene.c_str(),
+                         (unsigned long long)a.ref_passes);
 
             s.seed = 1;
             Render r(device, scene, s);
@@ -97,14 +98,16 @@ int main(int argc, char** argv) {
                     ratio.push_back(e.absolute[i] > 0 ? actual[i] / e.absolute[i] : 0.0);
                 }
                 std::nth_element(ratio.begin(), ratio.begin() + ratio.size() / 2, ratio.end());
-                rows.push_back({scene, p, now_s() - t0, e.image_error, image_error(relative_bounds(actual, e.luminance)),
+                rows.push_back({scene, p, now_s() - t0, e.image_error,
+                                image_error(relative_bounds(actual, e.luminance)),
                                 double(within) / double(actual.size()), ratio[ratio.size() / 2]});
                 std::fprintf(stderr, "%s pass %llu: estimated %.4f actual %.4f coverage %.3f\n", scene.c_str(),
                              (unsigned long long)p, rows.back().estimated, rows.back().actual, rows.back().coverage);
             }
         }
         std::ofstream csv(a.out + ".csv");
-        csv << "scene,pass,seconds,estimated_error_p90,actual_error_p90,fraction_within_bound,median_actual_over_bound\n";
+        csv << "scene,pass,seconds,estimated_error_p90,actual_error_p90,fraction_within_bound,median_actual_over_"
+               "bound\n";
         std::ostringstream md;
         md << "Device: " << device.name << "; " << a.size << "x" << a.size << ", " << a.photons
            << " photons per pass, SPPM alpha 0.7; reference: " << a.ref_passes << " passes (seed 1000); confidence "
@@ -116,7 +119,8 @@ int main(int argc, char** argv) {
             csv << r.scene << ',' << r.pass << ',' << r.seconds << ',' << r.estimated << ',' << r.actual << ','
                 << r.coverage << ',' << r.median_ratio << '\n';
             std::snprintf(buf, sizeof buf, "| %s | %llu | %.1f | %.4f | %.4f | %.1f%% | %.3f |\n", r.scene.c_str(),
-                          (unsigned long long)r.pass, r.seconds, r.estimated, r.actual, 100 * r.coverage, r.median_ratio);
+                          (unsigned long long)r.pass, r.seconds, r.estimated, r.actual, 100 * r.coverage,
+                          r.median_ratio);
             md << buf;
         }
         std::ofstream(a.out + ".md") << md.str();

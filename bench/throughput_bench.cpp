@@ -102,14 +102,17 @@ int main(int argc, char** argv) try {
         else if (s == "--device") a.device = next();
         else if (s == "--out") a.out = next();
         else if (s == "--seconds") a.seconds = std::stod(next());
-        else throw Error("unknown option " + s + " (throughput_bench [--quick] [--device SPEC] [--out DIR] [--seconds S])");
+        else
+            throw Error("unknown option " + s +
+                        " (throughput_bench [--quick] [--device SPEC] [--out DIR] [--seconds S])");
     }
     if (a.quick) a.seconds = 0.2;
     const DeviceInfo& dev = bench_device(a.device);
     const unsigned size = a.quick ? 32 : 256;
     const uint64_t photons = a.quick ? 5000 : 200000;
-    std::vector<std::string> scenes = a.quick ? std::vector<std::string>{"cornell_box"}
-                                              : std::vector<std::string>{"cornell_box", "caustic", "bunny_100k", "furnace"};
+    std::vector<std::string> scenes = a.quick
+                                          ? std::vector<std::string>{"cornell_box"}
+                                          : std::vector<std::string>{"cornell_box", "caustic", "bunny_100k", "furnace"};
     Json j;
     j["device"] = dev.name + " (" + dev.platform_name + ", " + dev.driver_version + ")";
     j["size"] = size;
@@ -119,7 +122,8 @@ int main(int argc, char** argv) try {
 
     // 1. Every integrator on every scene, with phases; specialised vs generic (PPM, SPPM).
     md << "### Passes per second, " << size << "x" << size << ", " << photons << " photons per pass\n\n"
-       << "| scene | integrator | passes/s | Mphotons/s | generic passes/s | specialised/generic | device ms per pass by phase |\n"
+       << "| scene | integrator | passes/s | Mphotons/s | generic passes/s | specialised/generic | device ms per pass "
+          "by phase |\n"
        << "|---|---|---|---|---|---|---|\n";
     Json rows = Json::array();
     for (const std::string& scene : scenes) {
@@ -156,13 +160,18 @@ int main(int argc, char** argv) try {
     Json scaling = Json::array();
     auto scale_row = [&](const std::string& what, const std::string& scene, unsigned sz, uint64_t ph) {
         Measure m = measure(dev, scene, settings(Integrator::SPPM, sz, ph), a.seconds);
-        scaling.push_back({{"vary", what}, {"scene", scene}, {"size", sz}, {"photons", ph},
-                           {"seconds_per_pass", m.seconds_per_pass}, {"photons_per_second", m.photons_per_s}});
+        scaling.push_back({{"vary", what},
+                           {"scene", scene},
+                           {"size", sz},
+                           {"photons", ph},
+                           {"seconds_per_pass", m.seconds_per_pass},
+                           {"photons_per_second", m.photons_per_s}});
         md << "| " << what << " | " << scene << " | " << sz << "x" << sz << " | " << ph << " | "
            << fmt("%.4f", m.seconds_per_pass) << " | " << fmt("%.2f", m.photons_per_s * 1e-6) << " |\n";
         std::cerr << what << " " << scene << " " << sz << " " << ph << ": " << m.seconds_per_pass << " s/pass\n";
     };
-    md << "\n### How a pass's cost grows (SPPM)\n\n| varied | scene | size | photons | s/pass | Mphotons/s |\n|---|---|---|---|---|---|\n";
+    md << "\n### How a pass's cost grows (SPPM)\n\n| varied | scene | size | photons | s/pass | Mphotons/s "
+          "|\n|---|---|---|---|---|---|\n";
     for (uint64_t ph : a.quick ? std::vector<uint64_t>{5000, 10000}
                                : std::vector<uint64_t>{10000, 30000, 100000, 300000, 1000000, 3000000, 10000000})
         scale_row("photons", "cornell_box", a.quick ? 32 : 128, ph);
@@ -176,11 +185,12 @@ int main(int argc, char** argv) try {
     // 3. Kernel builds and the first image, through the clppm binary with fresh caches.
     Json builds = build_times(a.out, a.quick);
     j["builds"] = builds;
-    md << "\n### Kernel build and time to first image (64x64, one pass)\n\n| integrator | caches | build s | first image s |\n|---|---|---|---|\n";
+    md << "\n### Kernel build and time to first image (64x64, one pass)\n\n| integrator | caches | build s | first "
+          "image s |\n|---|---|---|---|\n";
     for (const Json& b : builds)
         md << "| " << b["integrator"].get<std::string>() << " | " << b["cache"].get<std::string>() << " | "
-           << fmt("%.3f", b["build_seconds"].get<double>()) << " | " << fmt("%.3f", b["first_image_seconds"].get<double>())
-           << " |\n";
+           << fmt("%.3f", b["build_seconds"].get<double>()) << " | "
+           << fmt("%.3f", b["first_image_seconds"].get<double>()) << " |\n";
 
     write_stats_json(a.out + "/throughput.json", j);
     write_file_atomic(a.out + "/throughput.md", md.str());

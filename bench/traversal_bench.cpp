@@ -23,9 +23,9 @@
 
 #include <sys/resource.h>
 
+#include "device/device.h"
 #include "scene/bvh_build.h"
 #include "scene/bvh_trace.h"
-#include "device/device.h"
 #include "util/error.h"
 
 #ifdef CLPPM_HAVE_EMBREE
@@ -52,12 +52,12 @@ V d3(const float* p) { return {p[0], p[1], p[2]}; }
 void add_displaced_icosphere(std::vector<Vec3>& out, int subdivisions, V center, double radius, double bumps,
                              double freq) {
     const double g = (1 + std::sqrt(5.0)) / 2;
-    std::vector<V> v = {{-1, g, 0}, {1, g, 0}, {-1, -g, 0}, {1, -g, 0}, {0, -1, g}, {0, 1, g},
-                        {0, -1, -g}, {0, 1, -g}, {g, 0, -1}, {g, 0, 1}, {-g, 0, -1}, {-g, 0, 1}};
-    std::vector<std::array<int, 3>> f = {{0, 11, 5}, {0, 5, 1}, {0, 1, 7}, {0, 7, 10}, {0, 10, 11},
-                                         {1, 5, 9}, {5, 11, 4}, {11, 10, 2}, {10, 7, 6}, {7, 1, 8},
-                                         {3, 9, 4}, {3, 4, 2}, {3, 2, 6}, {3, 6, 8}, {3, 8, 9},
-                                         {4, 9, 5}, {2, 4, 11}, {6, 2, 10}, {8, 6, 7}, {9, 8, 1}};
+    std::vector<V> v = {{-1, g, 0},  {1, g, 0},  {-1, -g, 0}, {1, -g, 0}, {0, -1, g},  {0, 1, g},
+                        {0, -1, -g}, {0, 1, -g}, {g, 0, -1},  {g, 0, 1},  {-g, 0, -1}, {-g, 0, 1}};
+    std::vector<std::array<int, 3>> f = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11},
+                                         {1, 5, 9},  {5, 11, 4}, {11, 10, 2}, {10, 7, 6}, {7, 1, 8},
+                                         {3, 9, 4},  {3, 4, 2},  {3, 2, 6},   {3, 6, 8},  {3, 8, 9},
+                                         {4, 9, 5},  {2, 4, 11}, {6, 2, 10},  {8, 6, 7},  {9, 8, 1}};
     for (V& p : v) p = normalize(p);
     for (int s = 0; s < subdivisions; ++s) {
         std::vector<std::array<int, 3>> next;
@@ -75,8 +75,9 @@ void add_displaced_icosphere(std::vector<Vec3>& out, int subdivisions, V center,
     }
     std::vector<Vec3> pos;
     for (const V& p : v) {
-        const double d = 1 + bumps * (std::sin(freq * p.x) * std::sin(1.3 * freq * p.y + 1) * std::sin(0.7 * freq * p.z + 2) +
-                                      0.3 * std::sin(3.1 * freq * (p.x + p.y)) * std::sin(2.3 * freq * p.z));
+        const double d =
+            1 + bumps * (std::sin(freq * p.x) * std::sin(1.3 * freq * p.y + 1) * std::sin(0.7 * freq * p.z + 2) +
+                         0.3 * std::sin(3.1 * freq * (p.x + p.y)) * std::sin(2.3 * freq * p.z));
         pos.push_back(f3(center + p * (radius * d)));
     }
     for (auto& t : f) out.insert(out.end(), {pos[t[0]], pos[t[1]], pos[t[2]]});
@@ -98,7 +99,8 @@ void add_room(std::vector<Vec3>& out, double w, double h, int n) {
             };
             for (int i = 0; i < n; ++i)
                 for (int j = 0; j < n; ++j)
-                    out.insert(out.end(), {p(i, j), p(i + 1, j), p(i + 1, j + 1), p(i, j), p(i + 1, j + 1), p(i, j + 1)});
+                    out.insert(out.end(),
+                               {p(i, j), p(i + 1, j), p(i + 1, j + 1), p(i, j), p(i + 1, j + 1), p(i, j + 1)});
         }
 }
 
@@ -116,15 +118,15 @@ std::vector<Vec3> make_scene() {
 // ---- rays ---------------------------------------------------------------------------------------
 
 TraceRay ray(V o, V d, double tmax, bool any) {
-    return TraceRay{{float(o.x), float(o.y), float(o.z)}, float(tmax), {float(d.x), float(d.y), float(d.z)},
-                    any ? 1.0f : 0.0f};
+    return TraceRay{
+        {float(o.x), float(o.y), float(o.z)}, float(tmax), {float(d.x), float(d.y), float(d.z)}, any ? 1.0f : 0.0f};
 }
 
 // A pinhole camera in the room looking at the big sphere; rays in scanline order (coherent).
 std::vector<TraceRay> primary_rays(size_t n) {
     const int w = int(std::sqrt(double(n))), h = int((n + w - 1) / w);
     const V eye{0.3, 0.4, 4.6}, fwd = normalize(V{0, -0.6, 0} - eye), right = normalize(cross(fwd, {0, 1, 0})),
-            up = cross(right, fwd);
+                                up = cross(right, fwd);
     const double tx = std::tan(0.5 * 1.1), ty = tx * h / w;
     std::vector<TraceRay> rays;
     rays.reserve(n);
@@ -162,7 +164,8 @@ std::vector<TraceRay> diffuse_rays(const std::vector<Surface>& s, size_t n, doub
     rays.reserve(n);
     for (size_t i = 0; i < n; ++i) {
         const Surface& h = s[i % s.size()];
-        const V t = normalize(std::fabs(h.n.x) > 0.5 ? cross(h.n, {0, 1, 0}) : cross(h.n, {1, 0, 0})), b = cross(h.n, t);
+        const V t = normalize(std::fabs(h.n.x) > 0.5 ? cross(h.n, {0, 1, 0}) : cross(h.n, {1, 0, 0})),
+                b = cross(h.n, t);
         const double r = std::sqrt(u01(rng)), phi = 2 * M_PI * u01(rng);
         const V d = t * (r * std::cos(phi)) + b * (r * std::sin(phi)) + h.n * std::sqrt(std::max(0.0, 1 - r * r));
         rays.push_back(ray(h.p + h.n * eps, normalize(d), INFINITY, false));
@@ -283,7 +286,8 @@ struct EmbreeScene {
                 RTCRayHit rh;
                 rh.ray.org_x = r.org[0], rh.ray.org_y = r.org[1], rh.ray.org_z = r.org[2];
                 rh.ray.dir_x = r.dir[0], rh.ray.dir_y = r.dir[1], rh.ray.dir_z = r.dir[2];
-                rh.ray.tnear = 0, rh.ray.tfar = r.tmax, rh.ray.time = 0, rh.ray.mask = ~0u, rh.ray.id = 0, rh.ray.flags = 0;
+                rh.ray.tnear = 0, rh.ray.tfar = r.tmax, rh.ray.time = 0, rh.ray.mask = ~0u, rh.ray.id = 0,
+                rh.ray.flags = 0;
                 if (r.any_hit != 0) {
                     rtcOccluded1(scene, &ctx, &rh.ray);
                 } else {
@@ -427,7 +431,8 @@ int run(int argc, char** argv) {
     EmbreeScene embree(scene);
 #endif
     std::printf("\nMrays/s, best of %d; 'wall': wall clock; 'cpu': rays per CPU-second times 2 cores, which\n"
-                "is what an otherwise idle machine gives when other processes share the cores.\n", runs);
+                "is what an otherwise idle machine gives when other processes share the cores.\n",
+                runs);
     std::printf("%-16s %6s %12s %12s %12s %12s %7s\n", "rays", "hit %", "clppm wall", "clppm cpu", "Embree wall",
                 "Embree cpu", "ratio");
     for (Case& c : cases) {
@@ -447,7 +452,8 @@ int run(int argc, char** argv) {
 #endif
     }
 #ifdef CLPPM_HAVE_EMBREE
-    std::printf("(Embree 3: rtcIntersect1/rtcOccluded1, 2 threads; its build took %.1f ms)\n", embree.build_seconds * 1e3);
+    std::printf("(Embree 3: rtcIntersect1/rtcOccluded1, 2 threads; its build took %.1f ms)\n",
+                embree.build_seconds * 1e3);
 #else
     std::printf("(built without Embree: no comparison)\n");
 #endif
@@ -455,18 +461,20 @@ int run(int argc, char** argv) {
     if (!json_path.empty()) {
         std::ofstream f(json_path);
         if (!f) throw Error(json_path + ": cannot write");
-        f << "{\n  \"triangles\": " << ntris << ",\n  \"nodes\": " << bvh.nodes.size() << ",\n  \"leaves\": "
-          << bvh.leaf_count << ",\n  \"max_depth\": " << bvh.max_depth << ",\n  \"sah_cost\": " << bvh_sah_cost(bvh.nodes)
-          << ",\n  \"build_ms\": " << build_best * 1e3 << ",\n  \"device\": \"" << dc.info.name << "\",\n  \"options\": \""
-          << options << "\",\n  \"local_size\": " << local << ",\n  \"local_size_sweep\": {";
+        f << "{\n  \"triangles\": " << ntris << ",\n  \"nodes\": " << bvh.nodes.size()
+          << ",\n  \"leaves\": " << bvh.leaf_count << ",\n  \"max_depth\": " << bvh.max_depth
+          << ",\n  \"sah_cost\": " << bvh_sah_cost(bvh.nodes) << ",\n  \"build_ms\": " << build_best * 1e3
+          << ",\n  \"device\": \"" << dc.info.name << "\",\n  \"options\": \"" << options
+          << "\",\n  \"local_size\": " << local << ",\n  \"local_size_sweep\": {";
         for (size_t i = 0; i < local_sizes.size(); ++i)
             f << (i ? ", " : "") << "\"" << (local_sizes[i].first ? std::to_string(local_sizes[i].first) : "NULL")
               << "\": " << local_sizes[i].second.cpu;
         f << "},\n  \"cases\": [\n";
         for (size_t i = 0; i < cases.size(); ++i) {
             const Case& c = cases[i];
-            f << "    {\"name\": \"" << c.name << "\", \"rays\": " << c.rays.size() << ", \"hit_fraction\": " << c.hit_fraction
-              << ", \"mrays_per_s\": " << c.clppm.wall << ", \"mrays_per_cpu_s_x2\": " << c.clppm.cpu;
+            f << "    {\"name\": \"" << c.name << "\", \"rays\": " << c.rays.size()
+              << ", \"hit_fraction\": " << c.hit_fraction << ", \"mrays_per_s\": " << c.clppm.wall
+              << ", \"mrays_per_cpu_s_x2\": " << c.clppm.cpu;
             if (stats) f << ", \"nodes_per_ray\": " << c.nodes_per_ray << ", \"tris_per_ray\": " << c.tris_per_ray;
 #ifdef CLPPM_HAVE_EMBREE
             f << ", \"embree_mrays_per_s\": " << c.embree.wall << ", \"embree_mrays_per_cpu_s_x2\": " << c.embree.cpu;

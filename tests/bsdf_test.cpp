@@ -89,8 +89,7 @@ D3 at3(const std::vector<float>& v, size_t i) { return {v[3 * i], v[3 * i + 1], 
 // Rs = sin^2(ti - tt) / sin^2(ti + tt), Rp = tan^2(ti - tt) / tan^2(ti + tt); 1 under TIR.
 double ref_fresnel_hecht(double cos_i, double eta) {
     double ti = std::acos(cos_i), s = std::sin(ti) / eta;
-    if (s >= 1)
-        return 1;
+    if (s >= 1) return 1;
     double tt = std::asin(s);
     double rs = std::sin(ti - tt) / std::sin(ti + tt), rp = std::tan(ti - tt) / std::tan(ti + tt);
     return 0.5 * (rs * rs + rp * rp);
@@ -105,16 +104,14 @@ double ref_d(double c, double a) {
 double ref_lambda(double c, double a) { return 0.5 * (-1 + std::sqrt(1 + a * a * (1 - c * c) / (c * c))); }
 double ref_eval(D3 n, D3 wo, D3 wi, double f0, double a) {
     double co = dot(n, wo), ci = dot(n, wi);
-    if (co <= 0 || ci <= 0)
-        return 0;
+    if (co <= 0 || ci <= 0) return 0;
     D3 h = normalized(wo + wi);
     double F = f0 + (1 - f0) * std::pow(1 - dot(wi, h), 5);
     return F * ref_d(dot(n, h), a) / (1 + ref_lambda(co, a) + ref_lambda(ci, a)) / (4 * co * ci);
 }
 double ref_pdf(D3 n, D3 wo, D3 wi, double a) {
     double co = dot(n, wo), ci = dot(n, wi);
-    if (co <= 0 || ci <= 0)
-        return 0;
+    if (co <= 0 || ci <= 0) return 0;
     D3 h = normalized(wo + wi);
     return ref_d(dot(n, h), a) / (1 + ref_lambda(co, a)) / (4 * co);
 }
@@ -140,8 +137,7 @@ struct HalfVectorGrid {
         double c = std::min(1.0, dot(h, n)), s2 = std::max(0.0, 1 - c * c);
         *u = s2 / (s2 + c * c * alpha * alpha);
         *phi = std::atan2(dot(h, b), dot(h, t));
-        if (*phi < 0)
-            *phi += 2 * M_PI;
+        if (*phi < 0) *phi += 2 * M_PI;
     }
 };
 
@@ -169,11 +165,9 @@ void quadrature_cell(const HalfVectorGrid& g, double u0, double u1, double p0, d
     if (depth > 0) {
         int count = 0, total = 0;
         for (double a : {0.0, 0.5, 1.0})
-            for (double c : {0.0, 0.5, 1.0})
-                count += above(u0 + a * du, p0 + c * dp), ++total;
+            for (double c : {0.0, 0.5, 1.0}) count += above(u0 + a * du, p0 + c * dp), ++total;
         for (int a = 0; a < 4; ++a)
-            for (int c = 0; c < 4; ++c)
-                count += above(u0 + kGlX[a] * du, p0 + kGlX[c] * dp), ++total;
+            for (int c = 0; c < 4; ++c) count += above(u0 + kGlX[a] * du, p0 + kGlX[c] * dp), ++total;
         if (count > 0 && count < total) {
             const double um = u0 + 0.5 * du, pm = p0 + 0.5 * dp;
             quadrature_cell(g, u0, um, p0, pm, depth - 1, id, q);
@@ -187,8 +181,7 @@ void quadrature_cell(const HalfVectorGrid& g, double u0, double u1, double p0, d
         for (int c = 0; c < 4; ++c) {
             double u = u0 + kGlX[a] * du, phi = p0 + kGlX[c] * dp;
             D3 h = g.half(u, phi);
-            if (dot(g.wo, h) <= 0)
-                continue;
+            if (dot(g.wo, h) <= 0) continue;
             push3(q.wi, normalized(g.wi(h)));
             q.weight.push_back(kGlW[a] * kGlW[c] * du * dp * g.jacobian(h));
             q.cell.push_back(id);
@@ -233,8 +226,7 @@ std::vector<float> device_samples(D3 n, D3 wo, double f0, double alpha, const st
 std::vector<float> uniforms(size_t n, uint64_t seed) {
     std::mt19937_64 g(seed);
     std::vector<float> u(n);
-    for (float& x : u)
-        x = float(g() >> 40) * (1.0f / 16777216.0f);
+    for (float& x : u) x = float(g() >> 40) * (1.0f / 16777216.0f);
     return u;
 }
 
@@ -262,10 +254,8 @@ TEST(Bsdf, FresnelDielectricClosedForms) {
     const Device& d = device();
     const double etas[] = {1.0, 1.1, 1.33, 1.5, 2.4, 1 / 1.33, 1 / 1.5, 1 / 2.4};
     std::vector<float> in;
-    for (double eta : etas)
-        in.insert(in.end(), {1.0f, float(eta), 0.0f, float(eta)});
-    for (double eta : etas)
-        in.insert(in.end(), {float(1 / std::sqrt(1 + eta * eta)), float(eta)});
+    for (double eta : etas) in.insert(in.end(), {1.0f, float(eta), 0.0f, float(eta)});
+    for (double eta : etas) in.insert(in.end(), {float(1 / std::sqrt(1 + eta * eta)), float(eta)});
     std::vector<float> f = d.fresnel(in);
     const size_t ne = std::size(etas);
     for (size_t i = 0; i < ne; ++i) {
@@ -283,12 +273,10 @@ TEST(Bsdf, FresnelDielectricClosedForms) {
     // cos sqrt(1 - eta^2) = 0.745 reflects everything; just above it the value drops below 1.
     std::vector<float> tir;
     const double eta = 1 / 1.5, cos_c = std::sqrt(1 - eta * eta);
-    for (int k = 0; k <= 100; ++k)
-        tir.insert(tir.end(), {float(cos_c * k / 100.0 * 0.9999), float(eta)});
+    for (int k = 0; k <= 100; ++k) tir.insert(tir.end(), {float(cos_c * k / 100.0 * 0.9999), float(eta)});
     tir.insert(tir.end(), {float(cos_c + 1e-3), float(eta)});
     std::vector<float> ft = d.fresnel(tir);
-    for (int k = 0; k <= 100; ++k)
-        EXPECT_EQ(ft[k], 1.0f) << "cos_i " << tir[2 * k];
+    for (int k = 0; k <= 100; ++k) EXPECT_EQ(ft[k], 1.0f) << "cos_i " << tir[2 * k];
     EXPECT_LT(ft[101], 1.0f);
     EXPECT_GT(ft[101], 0.5f) << "continuous at the critical angle";
 }
@@ -303,8 +291,7 @@ TEST(Bsdf, FresnelDielectricMatchesHechtEverywhere) {
     std::vector<float> in;
     const double etas[] = {1.05, 1.33, 1.5, 2.4, 1 / 1.05, 1 / 1.33, 1 / 1.5, 1 / 2.4};
     for (double eta : etas)
-        for (int k = 1; k < 1000; ++k)
-            in.insert(in.end(), {float(k / 1000.0), float(eta)});
+        for (int k = 1; k < 1000; ++k) in.insert(in.end(), {float(k / 1000.0), float(eta)});
     std::vector<float> f = d.fresnel(in);
     double worst = 0;
     for (size_t i = 0; i < f.size(); ++i) {
@@ -316,8 +303,7 @@ TEST(Bsdf, FresnelDielectricMatchesHechtEverywhere) {
         ASSERT_NEAR(f[i], ref, 2e-6 + moved) << "cos_i " << c << " eta " << e;
     }
     std::vector<float> odd = {-1e-7f, 1.5f, -0.5f, 1.5f, 1.0000001f, 1.5f, 2.0f, 1.0f / 1.5f, -1.0f, 1.0f / 1.5f};
-    for (float v : d.fresnel(odd))
-        EXPECT_TRUE(v >= 0.0f && v <= 1.0f) << v;
+    for (float v : d.fresnel(odd)) EXPECT_TRUE(v >= 0.0f && v <= 1.0f) << v;
 }
 
 // refract_dir: unit, through the surface, in the plane of incidence, eta sin_t = sin_i, and
@@ -367,8 +353,7 @@ TEST(Bsdf, RefractSatisfiesSnellsLaw) {
     }
     std::vector<float> back = refract(back_d, back_n, back_e);
     double worst = 0;
-    for (size_t i = 0; i < m; ++i)
-        worst = std::max(worst, length(at3(back, i) + at3(dirs, i)));
+    for (size_t i = 0; i < m; ++i) worst = std::max(worst, length(at3(back, i) + at3(dirs, i)));
     // Back and forth through float: directions within 1e-5 unless near the critical angle, where
     // cos_t -> 0 amplifies rounding; the margin 0.9999 on sin keeps cos_t >= 0.014.
     EXPECT_LT(worst, 2e-4);
@@ -399,10 +384,8 @@ TEST(Bsdf, GgxEvalAndPdfMatchReference) {
             std::vector<float> wo, wi;
             for (int i = 0; i < 50000; ++i) {
                 D3 a = normalized({gauss(g), gauss(g), gauss(g)}), b = normalized({gauss(g), gauss(g), gauss(g)});
-                if (dot(a, n) < 0)
-                    a = -1.0 * a;
-                if (i % 4 != 0 && dot(b, n) < 0)
-                    b = -1.0 * b; // a quarter may lie below
+                if (dot(a, n) < 0) a = -1.0 * a;
+                if (i % 4 != 0 && dot(b, n) < 0) b = -1.0 * b; // a quarter may lie below
                 if (i % 3 == 0)
                     b = normalized((2 * dot(a, n)) * n - a + (0.3 * alpha * gauss(g)) * D3{1, 0, 0}); // near the peak
                 push3(wo, a), push3(wi, b);
@@ -423,8 +406,7 @@ TEST(Bsdf, GgxEvalAndPdfMatchReference) {
                 double se = 3e-3 * re + 1e-6 * peak / std::max(1e-3, 4 * dot(n, a) * std::fabs(dot(n, b)));
                 double sp = 3e-3 * rp + 1e-6 * peak / std::max(1e-3, 4 * dot(n, a));
                 ASSERT_TRUE(std::isfinite(v[2 * i]) && std::isfinite(v[2 * i + 1]));
-                if (dot(n, a) < 1e-5 || std::fabs(dot(n, b)) < 1e-5)
-                    continue;
+                if (dot(n, a) < 1e-5 || std::fabs(dot(n, b)) < 1e-5) continue;
                 worst_eval = std::max(worst_eval, std::fabs(v[2 * i] - re) / se);
                 worst_pdf = std::max(worst_pdf, std::fabs(v[2 * i + 1] - rp) / sp);
                 if (dot(n, b) <= 0) {
@@ -446,10 +428,8 @@ TEST(Bsdf, GgxEvalIsReciprocal) {
         std::vector<float> a, b;
         for (int i = 0; i < 20000; ++i) {
             D3 x = normalized({gauss(g), gauss(g), gauss(g)}), y = normalized({gauss(g), gauss(g), gauss(g)});
-            if (dot(x, n) < 0)
-                x = -1.0 * x;
-            if (dot(y, n) < 0)
-                y = -1.0 * y;
+            if (dot(x, n) < 0) x = -1.0 * x;
+            if (dot(y, n) < 0) y = -1.0 * y;
             push3(a, x), push3(b, y);
         }
         const Device& d = device();
@@ -484,13 +464,11 @@ TEST(Bsdf, GgxPdfIntegratesToTheSampledFraction) {
             Quadrature q = half_vector_quadrature(grid, 64, 64);
             std::vector<float> v = device_eval_pdf(n, wo, 1.0, alpha, q.wi);
             double integral = 0;
-            for (size_t i = 0; i < q.weight.size(); ++i)
-                integral += v[2 * i + 1] * q.weight[i];
+            for (size_t i = 0; i < q.weight.size(); ++i) integral += v[2 * i + 1] * q.weight[i];
             const size_t m = 250000;
             std::vector<float> s = device_samples(n, wo, 1.0, alpha, uniforms(2 * m, 31));
             double above = 0;
-            for (size_t i = 0; i < m; ++i)
-                above += dot(at3(s, 2 * i), n) > 0; // at3 of 6-float records: index 2i
+            for (size_t i = 0; i < m; ++i) above += dot(at3(s, 2 * i), n) > 0; // at3 of 6-float records: index 2i
             above /= m;
             EXPECT_LE(integral, 1.0 + 1e-3) << "alpha " << alpha << " cos_o " << cos_o;
             EXPECT_NEAR(integral, above, 3e-3 + 5 * std::sqrt(above * (1 - above) / m))
@@ -524,8 +502,7 @@ TEST(Bsdf, GgxSampleMatchesPdfChiSquare) {
                 expected[bu * nphi + bp] += m * v[2 * i + 1] * q.weight[i];
             }
             double inside = 0;
-            for (int k = 0; k < nu * nphi; ++k)
-                inside += expected[k];
+            for (int k = 0; k < nu * nphi; ++k) inside += expected[k];
             expected[nu * nphi] = std::max(0.0, m - inside);
             std::vector<float> s =
                 device_samples(n, wo, 1.0, alpha, uniforms(2 * m, 32 + uint64_t(alpha * 100 + cos_o * 10)));
@@ -595,15 +572,13 @@ TEST(Bsdf, GgxAlbedoIsAtMostOne) {
             const size_t m = 100000;
             std::vector<float> s = device_samples(n, wo, 1.0, alpha, uniforms(2 * m, 51));
             std::vector<double> w(m);
-            for (size_t i = 0; i < m; ++i)
-                w[i] = s[6 * i + 3];
+            for (size_t i = 0; i < m; ++i) w[i] = s[6 * i + 3];
             MeanSe mc = mean_se(w);
             EXPECT_LE(albedo, 1.0 + 1e-3) << "alpha " << alpha << " cos_o " << cos_o;
             EXPECT_LE(mc.mean, 1.0) << "alpha " << alpha << " cos_o " << cos_o;
             EXPECT_NEAR(albedo, ref, 2e-3) << "alpha " << alpha << " cos_o " << cos_o;
             EXPECT_NEAR(mc.mean, albedo, 5 * mc.se + 2e-3) << "alpha " << alpha << " cos_o " << cos_o;
-            for (double x : w)
-                ASSERT_TRUE(x >= 0 && x <= 1.0 + 1e-6) << "F0 = 1: the weight G2/G1 lies in [0, 1]";
+            for (double x : w) ASSERT_TRUE(x >= 0 && x <= 1.0 + 1e-6) << "F0 = 1: the weight G2/G1 lies in [0, 1]";
             if (alpha == 0.05) {
                 EXPECT_GT(albedo, cos_o >= 0.2 ? 0.95 : 0.8) << "a smooth conductor reflects nearly all";
             }
@@ -661,8 +636,7 @@ TEST(Bsdf, GgxAtExtremesStaysFinite) {
     const float top = 1.0f - 1.0f / 16777216.0f;
     std::vector<float> u;
     for (float a : {0.0f, 1e-7f, 0.5f, top})
-        for (float b : {0.0f, 0.5f, top})
-            u.push_back(a), u.push_back(b);
+        for (float b : {0.0f, 0.5f, top}) u.push_back(a), u.push_back(b);
     for (double alpha : {1e-4, 1e-3, 0.04, 1.0})
         for (double cos_o : {1.0, 0.5, 1e-3, 1e-5, 1e-7}) {
             std::vector<float> s = device_samples(n, view(cos_o), 1.0, alpha, u);
@@ -695,8 +669,7 @@ TEST(Bsdf, GgxEvalAndPdfFiniteAtMaterialAlphaFloor) {
             D3 wo{std::sqrt(1 - cos_o * cos_o), 0, cos_o};
             std::vector<float> wi;
             push3(wi, D3{-wo.x, 0, wo.z}); // the mirror direction: h = n
-            for (double e : {1e-5, 1e-4, 1e-3})
-                push3(wi, normalized(D3{-wo.x + e, e, wo.z}));
+            for (double e : {1e-5, 1e-4, 1e-3}) push3(wi, normalized(D3{-wo.x + e, e, wo.z}));
             std::vector<float> v = device_eval_pdf(n, wo, 1.0, alpha, wi);
             for (size_t i = 0; i < wi.size() / 3; ++i) {
                 EXPECT_TRUE(std::isfinite(v[2 * i]))

@@ -24,7 +24,6 @@ using Tris = std::vector<Vec3>; // 3 per triangle
 
 // ---- the reference: double-precision Moller-Trumbore over every triangle --------------------------
 
-
 // Where a ray meets one triangle's plane: t, barycentrics of v1 and v2, and how far outside the
 // triangle that point is (0 inside; else the most negative barycentric, as a positive number).
 struct RefHit {
@@ -78,12 +77,12 @@ Tris random_soup(int n) {
 // An icosphere: closed, every vertex bitwise shared by its triangles.
 Tris icosphere(int subdivisions, double radius) {
     const double g = (1 + std::sqrt(5.0)) / 2;
-    std::vector<D3> v = {{-1, g, 0}, {1, g, 0}, {-1, -g, 0}, {1, -g, 0}, {0, -1, g}, {0, 1, g},
-                         {0, -1, -g}, {0, 1, -g}, {g, 0, -1}, {g, 0, 1}, {-g, 0, -1}, {-g, 0, 1}};
-    std::vector<std::array<int, 3>> f = {{0, 11, 5}, {0, 5, 1}, {0, 1, 7}, {0, 7, 10}, {0, 10, 11},
-                                         {1, 5, 9}, {5, 11, 4}, {11, 10, 2}, {10, 7, 6}, {7, 1, 8},
-                                         {3, 9, 4}, {3, 4, 2}, {3, 2, 6}, {3, 6, 8}, {3, 8, 9},
-                                         {4, 9, 5}, {2, 4, 11}, {6, 2, 10}, {8, 6, 7}, {9, 8, 1}};
+    std::vector<D3> v = {{-1, g, 0},  {1, g, 0},  {-1, -g, 0}, {1, -g, 0}, {0, -1, g},  {0, 1, g},
+                         {0, -1, -g}, {0, 1, -g}, {g, 0, -1},  {g, 0, 1},  {-g, 0, -1}, {-g, 0, 1}};
+    std::vector<std::array<int, 3>> f = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11},
+                                         {1, 5, 9},  {5, 11, 4}, {11, 10, 2}, {10, 7, 6}, {7, 1, 8},
+                                         {3, 9, 4},  {3, 4, 2},  {3, 2, 6},   {3, 6, 8},  {3, 8, 9},
+                                         {4, 9, 5},  {2, 4, 11}, {6, 2, 10},  {8, 6, 7},  {9, 8, 1}};
     for (int s = 0; s < subdivisions; ++s) {
         std::vector<std::array<int, 3>> next;
         std::map<std::pair<int, int>, int> mid;
@@ -178,8 +177,8 @@ D3 maybe_axis_parallel(D3 d, int i) {
 }
 
 TraceRay make_ray(D3 o, D3 d, double tmax = INFINITY, bool any = false) {
-    return TraceRay{{float(o.x), float(o.y), float(o.z)}, float(tmax), {float(d.x), float(d.y), float(d.z)},
-                    any ? 1.0f : 0.0f};
+    return TraceRay{
+        {float(o.x), float(o.y), float(o.z)}, float(tmax), {float(d.x), float(d.y), float(d.z)}, any ? 1.0f : 0.0f};
 }
 
 D3 tri_point(const Tris& t, size_t prim, double u, double v) {
@@ -224,7 +223,7 @@ std::vector<TraceRay> mixed_rays(const Tris& t, int n) {
             d = target - o;
             d = d * (1 / length(d));
             if (i % 16 == 0) d = maybe_axis_parallel(d, i / 16);
-        } else if (kind == 1) { // from inside the bounds, any direction
+        } else if (kind == 1) {             // from inside the bounds, any direction
             const double pad = 0.01 * size; // off flat bounds: a ray starting on a triangle is ill-posed
             o = {uniform(b.lo.x - pad, b.hi.x + pad), uniform(b.lo.y - pad, b.hi.y + pad),
                  uniform(b.lo.z - pad, b.hi.z + pad)};
@@ -323,9 +322,10 @@ void check_ray(const Tris& tris, size_t i, const TraceRay& r, const TraceHit& k,
         return;
     }
     if (!loose(h)) {
-        c.fail(i, r, "hit triangle " + std::to_string(k.prim) + " at t=" + std::to_string(k.t) +
-                         " which the reference misses (outside " + std::to_string(h.outside) + ", t " +
-                         std::to_string(h.t) + ")");
+        c.fail(i, r,
+               "hit triangle " + std::to_string(k.prim) + " at t=" + std::to_string(k.t) +
+                   " which the reference misses (outside " + std::to_string(h.outside) + ", t " + std::to_string(h.t) +
+                   ")");
         return;
     }
     if (!t_close(k.t, h)) return c.fail(i, r, "t=" + std::to_string(k.t) + " vs reference " + std::to_string(h.t));
@@ -341,8 +341,9 @@ void check_ray(const Tris& tris, size_t i, const TraceRay& r, const TraceHit& k,
         ++c.ambiguous;
         return;
     }
-    c.fail(i, r, "hit triangle " + std::to_string(k.prim) + " at t=" + std::to_string(h.t) +
-                     " but reference's nearest is " + std::to_string(best_prim) + " at t=" + std::to_string(best));
+    c.fail(i, r,
+           "hit triangle " + std::to_string(k.prim) + " at t=" + std::to_string(h.t) + " but reference's nearest is " +
+               std::to_string(best_prim) + " at t=" + std::to_string(best));
 }
 
 // ---- fixtures ---------------------------------------------------------------------------------
@@ -386,8 +387,8 @@ protected:
                                         << all;
         // Edge ambiguity must stay rare, or it would hide real misses.
         EXPECT_LE(c.ambiguous, c.checked / 200 + 2) << what;
-        std::printf("%-20s %6d rays checked, %d at an edge or the origin (either answer accepted)\n", what,
-                    c.checked, c.ambiguous);
+        std::printf("%-20s %6d rays checked, %d at an edge or the origin (either answer accepted)\n", what, c.checked,
+                    c.ambiguous);
     }
 
     // Host-side invariants of the flattened tree.
@@ -475,7 +476,9 @@ std::vector<TraceRay> rays_from_inside(const Tris& t, double inner_radius, int n
     return rays;
 }
 
-TEST_F(BvhTest, RandomSoup) { trace_and_compare(random_soup(3000), mixed_rays(random_soup(3000), 6000), false, "soup"); }
+TEST_F(BvhTest, RandomSoup) {
+    trace_and_compare(random_soup(3000), mixed_rays(random_soup(3000), 6000), false, "soup");
+}
 
 TEST_F(BvhTest, RandomSoupScaled) {
     const Tris soup = random_soup(1500);
@@ -518,7 +521,7 @@ TEST_F(BvhTest, CoplanarGridSharedEdges) {
         const int i = 1 + int(uniform(0, 2 * n - 3)), j = 1 + int(uniform(0, 2 * n - 3));
         const D3 target{i * 0.5 / n, j * 0.5 / n, 0};
         D3 o = {uniform(-0.5, 1.5), uniform(-0.5, 1.5), uniform(0.05, 1.0) * (r % 2 ? 1 : -1)};
-        if (r % 5 == 0) o = {target.x, target.y, o.z};                   // straight down or up: d.x = d.y = 0
+        if (r % 5 == 0) o = {target.x, target.y, o.z}; // straight down or up: d.x = d.y = 0
         if (r % 7 == 0) o = {target.x, target.y + 0.7, o.z * 1e-3 * (r % 3 ? 1 : 10)}; // grazing, d.x = 0
         D3 d = target - o;
         if (r % 3 == 0) d = d * (1 / length(d));
@@ -547,7 +550,8 @@ TEST_F(BvhTest, SingleTriangle) {
     }
     // Behind the origin, at t = 0 exactly, and beyond tmax: no hit.
     std::vector<TraceRay> misses = {make_ray({0.2, 0.2, -1}, {0, 0, -1}), make_ray({0.2, 0.2, 0}, {0, 0, 1}),
-                                    make_ray({0.2, 0.2, 1}, {0, 0, -1}, 0.999), make_ray({0.2, 0.2, 1}, {0, 0, -1}, 1.0),
+                                    make_ray({0.2, 0.2, 1}, {0, 0, -1}, 0.999),
+                                    make_ray({0.2, 0.2, 1}, {0, 0, -1}, 1.0),
                                     make_ray({0.2, 0.2, 1}, {0, 0, -1}, 0.5, true)};
     for (const TraceHit& h : tracer_->trace(dbvh, misses)) EXPECT_FALSE(h.hit()) << "t=" << h.t;
 }
@@ -558,7 +562,8 @@ TEST_F(BvhTest, EmptyScene) {
     EXPECT_EQ(bvh.leaf_count, 0u);
     DeviceBvh dbvh(*dc_, bvh.nodes, bvh_triangle_data({}));
     std::vector<TraceRay> rays;
-    for (int i = 0; i < 100; ++i) rays.push_back(make_ray(random_dir(), maybe_axis_parallel(random_dir(), i), INFINITY, i % 2));
+    for (int i = 0; i < 100; ++i)
+        rays.push_back(make_ray(random_dir(), maybe_axis_parallel(random_dir(), i), INFINITY, i % 2));
     for (const TraceHit& h : tracer_->trace(dbvh, rays)) {
         EXPECT_FALSE(h.hit());
         EXPECT_EQ(h.prim, ~0u);

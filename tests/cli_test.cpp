@@ -61,10 +61,14 @@ TEST(Cli, ImageDoesNotDependOnWorkGroupSizeOrPhotonBatches) {
         std::string dir = make_temp_dir("cli"), out;
         const std::string args = std::string(kSmall) + " --no-png --seed 7 --integrator " + integrator;
         ASSERT_EQ(run_command("CLPPM_LOCAL_SIZE=1 " + clppm_binary() + " -o " + dir + "/a.exr" + args, &out), 0) << out;
-        ASSERT_EQ(run_command("CLPPM_LOCAL_SIZE=64 " + clppm_binary() + " -o " + dir + "/b.exr" + args, &out), 0) << out;
+        ASSERT_EQ(run_command("CLPPM_LOCAL_SIZE=64 " + clppm_binary() + " -o " + dir + "/b.exr" + args, &out), 0)
+            << out;
         ASSERT_EQ(run_clppm("-o " + dir + "/c.exr" + args, &out), 0) << out;
         ASSERT_EQ(run_command("CLPPM_PHOTON_BATCH=777 " + clppm_binary() + " -o " + dir + "/d.exr" + args +
-                                  " --stats-json " + dir + "/d.json", &out), 0) << out;
+                                  " --stats-json " + dir + "/d.json",
+                              &out),
+                  0)
+            << out;
         Image a = read_exr(dir + "/a.exr"), b = read_exr(dir + "/b.exr"), c = read_exr(dir + "/c.exr"),
               d = read_exr(dir + "/d.exr");
         ASSERT_EQ(a.rgb.size(), b.rgb.size());

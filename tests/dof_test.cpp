@@ -58,7 +58,8 @@ TEST(DepthOfField, FocalPlaneSharpDefocusMatchesCircleOfConfusion) {
     const double blurred = edge_spread(img, 40, 60); // lower half: beyond focus
     // The box pixel filter alone spreads an edge by 1/4 pixel when it falls inside a pixel; here
     // the edge lies on a pixel boundary, so an in-focus edge has (almost) no spread.
-    std::printf("edge spread in focus %.3f px; blur radius %.3f px, thin lens %.3f px\n", sharp, blurred * 3 * M_PI / 4, coc_px);
+    std::printf("edge spread in focus %.3f px; blur radius %.3f px, thin lens %.3f px\n", sharp, blurred * 3 * M_PI / 4,
+                coc_px);
     EXPECT_LT(sharp, 0.25) << "the plane of focus is not sharp";
     const double radius = blurred * 3 * M_PI / 4;
     EXPECT_NEAR(radius, coc_px, 1.0) << "measured blur radius " << radius << " px, thin lens predicts " << coc_px;

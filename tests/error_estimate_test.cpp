@@ -9,11 +9,11 @@
 
 #include <nlohmann/json.hpp>
 
-#include "integrators/error_estimate.h"
-#include "device/kernel_program.h"
 #include "cli/progress.h"
-#include "scene_builders.h"
+#include "device/kernel_program.h"
+#include "integrators/error_estimate.h"
 #include "integrators/integrator_factory.h"
+#include "scene_builders.h"
 #include "test_util.h"
 
 using namespace clppm;
@@ -214,7 +214,8 @@ TEST(ErrorEstimate, BoundCoversTheActualErrorOnTheAnalyticPlane) {
         for (int y = 0; y < int(size); ++y)
             for (int x = 0; x < int(size); ++x) {
                 double truth = 0;
-                for (int k = 0; k < 64; ++k) truth += plane_L(pixel_r(x, y, size, (k % 8 + 0.5) / 8, (k / 8 + 0.5) / 8));
+                for (int k = 0; k < 64; ++k)
+                    truth += plane_L(pixel_r(x, y, size, (k % 8 + 0.5) / 8, (k / 8 + 0.5) / 8));
                 truth /= 64;
                 const size_t i = size_t(y) * size + x;
                 const double actual = std::fabs(r.errors.luminance[i] - truth);
@@ -240,7 +241,8 @@ TEST(ErrorEstimate, TargetErrorHaltsTheRender) {
     const std::string common = " --integrator sppm --width 32 --height 32 --photons 10000 --quiet --no-png -o " + dir +
                                "/out.exr --stats-json " + dir + "/stats.json";
     std::string out;
-    ASSERT_EQ(run_clppm("--target-error 0.35 --passes 300 --error-output " + dir + "/err.exr" + common, &out), 0) << out;
+    ASSERT_EQ(run_clppm("--target-error 0.35 --passes 300 --error-output " + dir + "/err.exr" + common, &out), 0)
+        << out;
     nlohmann::json j = read_json(dir + "/stats.json");
     const uint64_t passes = j["passes"];
     std::printf("--target-error 0.35 reached after %llu passes\n", static_cast<unsigned long long>(passes));

@@ -41,8 +41,7 @@ Image render(const Scene& scene, const RenderSettings& s, uint64_t passes, Integ
 double plane_radiance(const dev::Camera& cam, double px, double py, double rho, double I, double h) {
     double sx = 2 * px / cam.width - 1, sy = 1 - 2 * py / cam.height;
     double d[3], o[3];
-    for (int k = 0; k < 3; ++k)
-        d[k] = cam.forward[k] + cam.right[k] * sx + cam.up[k] * sy, o[k] = cam.origin[k];
+    for (int k = 0; k < 3; ++k) d[k] = cam.forward[k] + cam.right[k] * sx + cam.up[k] * sy, o[k] = cam.origin[k];
     double t = -o[1] / d[1];
     double x = o[0] + t * d[0], z = o[2] + t * d[2];
     double d2 = x * x + z * z + h * h;
@@ -57,8 +56,7 @@ double plane_error(const Scene& scene, const RenderSettings& s, const Image& img
     float bmin[3] = {-4 * float(scale), 0, -4 * float(scale)}, bmax[3] = {4 * float(scale), 0, 4 * float(scale)};
     dev::Camera cam = make_camera(scene, s, bmin, bmax, nullptr);
     // The closed form is scale free once positions are in units of `scale`.
-    for (int k = 0; k < 3; ++k)
-        cam.origin[k] /= float(scale);
+    for (int k = 0; k < 3; ++k) cam.origin[k] /= float(scale);
     double err = 0, ref = 0, signed_err = 0;
     const int w = img.width, m = w / 8;
     for (int y = m; y < w - m; ++y)
@@ -68,8 +66,7 @@ double plane_error(const Scene& scene, const RenderSettings& s, const Image& img
             signed_err += img.rgb[3 * (y * w + x) + 1] - expect;
             ref += expect;
         }
-    if (bias)
-        *bias = signed_err / ref;
+    if (bias) *bias = signed_err / ref;
     return err / ref;
 }
 
@@ -77,17 +74,13 @@ double plane_error(const Scene& scene, const RenderSettings& s, const Image& img
 // point and spot intensities times s^2 so that irradiance (I / d^2) is unchanged; area light
 // radiance and directional irradiance unchanged.
 Scene scaled(Scene scene, double s) {
-    for (Vec3& p : scene.positions)
-        p.x *= float(s), p.y *= float(s), p.z *= float(s);
+    for (Vec3& p : scene.positions) p.x *= float(s), p.y *= float(s), p.z *= float(s);
     for (CameraDesc& c : scene.cameras)
-        for (float& v : c.position)
-            v *= float(s);
+        for (float& v : c.position) v *= float(s);
     for (dev::Light& l : scene.punctual_lights) {
-        for (int k = 0; k < 3; ++k)
-            l.position[k] *= float(s);
+        for (int k = 0; k < 3; ++k) l.position[k] *= float(s);
         if (l.type == LIGHT_POINT || l.type == LIGHT_SPOT)
-            for (int k = 0; k < 3; ++k)
-                l.radiance[k] *= float(s * s);
+            for (int k = 0; k < 3; ++k) l.radiance[k] *= float(s * s);
     }
     return scene;
 }
@@ -95,11 +88,9 @@ Scene scaled(Scene scene, double s) {
 // Every light's emitted power times f.
 Scene brighter(Scene scene, double f) {
     for (dev::Material& m : scene.materials)
-        for (float& e : m.emission)
-            e *= float(f);
+        for (float& e : m.emission) e *= float(f);
     for (dev::Light& l : scene.punctual_lights)
-        for (float& r : l.radiance)
-            r *= float(f);
+        for (float& r : l.radiance) r *= float(f);
     return scene;
 }
 
@@ -108,8 +99,7 @@ std::vector<double> block_means(const Image& img) {
     std::vector<double> b;
     const int n = 4, bw = img.width / n, bh = img.height / n;
     for (int j = 0; j < n; ++j)
-        for (int i = 0; i < n; ++i)
-            b.push_back(region_mean(img, i * bw, j * bh, (i + 1) * bw, (j + 1) * bh));
+        for (int i = 0; i < n; ++i) b.push_back(region_mean(img, i * bw, j * bh, (i + 1) * bw, (j + 1) * bh));
     return b;
 }
 
@@ -125,8 +115,7 @@ TEST(Extremes, AlphaFromOneHundredthToOneConvergesOnTheFurnace) {
     for (Integrator integ : {Integrator::PPM, Integrator::SPPM, Integrator::PPPM}) {
         double previous_radius = 0;
         for (double alpha : {0.01, 0.5, 0.99, 1.0}) {
-            if (integ != Integrator::PPM && alpha != 0.5 && alpha != 1.0)
-                continue; // the cheap subset
+            if (integ != Integrator::PPM && alpha != 0.5 && alpha != 1.0) continue; // the cheap subset
             RenderSettings s = small(16, 10000, DirectLighting::Photons, integ);
             s.alpha = alpha;
             IntegratorStats st;
@@ -166,8 +155,7 @@ TEST(Extremes, InitialRadiusOfAThousandthOfAPixel) {
         EXPECT_LT(plane_error(scene, s, img, rho, I, h, 1.0), 0.03) << name(integ);
         s.direct = DirectLighting::Photons;
         Image ph = render(scene, s, 12, &st);
-        for (float v : ph.rgb)
-            ASSERT_GE(v, 0.0f) << name(integ);
+        for (float v : ph.rgb) ASSERT_GE(v, 0.0f) << name(integ);
         EXPECT_TRUE(std::isfinite(st.mean_radius) && st.mean_radius > 0 && st.mean_radius <= s.radius * (1 + 1e-6));
     }
 }
@@ -188,8 +176,7 @@ TEST(Extremes, InitialRadiusOfATenthOfTheScene) {
         Image blur = render(plane, s, 8);
         const double peak = 0.5 / M_PI * 10.0; // rho / pi * I / h^2 right below the light
         double lo = 1e30, hi = 0;
-        for (float v : blur.rgb)
-            lo = std::min(lo, double(v)), hi = std::max(hi, double(v));
+        for (float v : blur.rgb) lo = std::min(lo, double(v)), hi = std::max(hi, double(v));
         EXPECT_GT(lo, 0.0) << name(integ) << ": every pixel sees the lit plane";
         EXPECT_LT(hi, 1.05 * peak) << name(integ);
     }
@@ -226,13 +213,11 @@ TEST(Extremes, SceneScaledBy1eMinus4And1e4RendersTheSame) {
         // edge of the box (pixels (2,2) and (13,13) graze the wall/ceiling edges) may hit either
         // face. So: the median pixel within 1e-3, and at most 4 of 256 pixels off by more than 2%.
         std::vector<double> dev;
-        for (size_t i = 1; i < img.rgb.size(); i += 3)
-            dev.push_back(std::fabs(img.rgb[i] / ref.rgb[i] - 1));
+        for (size_t i = 1; i < img.rgb.size(); i += 3) dev.push_back(std::fabs(img.rgb[i] / ref.rgb[i] - 1));
         std::sort(dev.begin(), dev.end());
         EXPECT_LT(dev[dev.size() / 2], 1e-3) << "scale " << scale << ": median pixel deviation";
         size_t off = 0;
-        for (double d : dev)
-            off += !(d <= 0.02);
+        for (double d : dev) off += !(d <= 0.02);
         EXPECT_LE(off, 4u) << "scale " << scale << ": pixels that differ by more than 2%";
     }
 }
@@ -280,8 +265,7 @@ TEST(Extremes, HitPointsNoPhotonReachesStayZeroForThousandsOfPasses) {
         RenderSettings rs = small(4, 256, DirectLighting::Sample, integ);
         IntegratorStats st;
         Image img = render(s, rs, integ == Integrator::PPM ? 2000 : 200, &st);
-        for (float v : img.rgb)
-            ASSERT_EQ(v, 0.0f) << name(integ);
+        for (float v : img.rgb) ASSERT_EQ(v, 0.0f) << name(integ);
         EXPECT_EQ(st.photons_stored, 0u) << name(integ);
         EXPECT_NEAR(st.mean_radius / st.initial_radius, 1.0, 1e-6) << name(integ) << ": R changed without photons";
     }
@@ -379,7 +363,6 @@ TEST(Extremes, DegenerateAndNeedleTrianglesRenderFinite) {
         RenderSettings s = small(16, 20000, DirectLighting::Sample, integ);
         std::vector<double> ref = block_means(render(box, s, 4));
         std::vector<double> b = block_means(render(odd, s, 4));
-        for (size_t i = 0; i < b.size(); ++i)
-            EXPECT_NEAR(b[i] / ref[i], 1.0, 0.1) << name(integ) << " block " << i;
+        for (size_t i = 0; i < b.size(); ++i) EXPECT_NEAR(b[i] / ref[i], 1.0, 0.1) << name(integ) << " block " << i;
     }
 }

@@ -25,8 +25,8 @@
 #include <string>
 #include <vector>
 
-#include "util/error.h"
 #include "test_util.h"
+#include "util/error.h"
 
 namespace clppm {
 namespace {
@@ -166,8 +166,7 @@ TEST(FuzzRegressions, EveryFindingLoadsOrFailsCleanly) {
         if (want == kRegressionExpected.end()) continue;
         ++listed;
         EXPECT_FALSE(r.loaded) << f << " loaded";
-        EXPECT_NE(r.error.find(want->second), std::string::npos)
-            << "expected '" << want->second << "' in: " << r.error;
+        EXPECT_NE(r.error.find(want->second), std::string::npos) << "expected '" << want->second << "' in: " << r.error;
     }
     EXPECT_EQ(listed, kRegressionExpected.size()) << "a listed regression file is missing";
 }
@@ -378,10 +377,16 @@ TEST(FuzzHostile, ChainOfThirtyThousandNodesLoadsWithoutRecursion) {
 TEST(FuzzHostile, AbsurdSizesFailWithoutALargeAllocation) {
     HostileDir dir;
     fs::copy_file(fuzz_dir() / "regressions" / "triangle_instancing_bomb.gltf", dir / "triangle_bomb.gltf");
-    const char* files[] = {"triangle_bomb.gltf", "node_instancing_bomb.gltf", "accessor_count_u64_max.gltf",
-                           "accessor_count_times_stride.gltf", "buffer_length_petabyte.gltf",
-                           "view_length_u64_max.gltf", "glb_bin_length_huge.glb", "glb_json_length_huge.glb",
-                           "glb_total_length_huge.glb", "image_claims_1e5_by_1e5.gltf",
+    const char* files[] = {"triangle_bomb.gltf",
+                           "node_instancing_bomb.gltf",
+                           "accessor_count_u64_max.gltf",
+                           "accessor_count_times_stride.gltf",
+                           "buffer_length_petabyte.gltf",
+                           "view_length_u64_max.gltf",
+                           "glb_bin_length_huge.glb",
+                           "glb_json_length_huge.glb",
+                           "glb_total_length_huge.glb",
+                           "image_claims_1e5_by_1e5.gltf",
                            "image_claims_16384_square.gltf"};
     // Not image_claims_8192_square_truncated.gltf: 8192^2 texels is inside the loader's 2^26
     // texel budget, so stb_image may allocate its 256 MiB before it finds the data missing.
@@ -417,12 +422,36 @@ TEST(FuzzHostile, AbsurdSizesFailWithoutALargeAllocation) {
 // ---- deterministic mutations of the seeds ---------------------------------------------------
 
 // Tokens that make glTF hostile: the fuzzer's dictionary (tests/fuzz/gltf.dict) in short.
-const char* const kTokens[] = {
-    "-1", "0", "4294967295", "4294967296", "2147483648", "18446744073709551615", "1e39", "-1e39", "1e308",
-    "3.4e38", "1e-45", "null", "true", "[]", "{}", "\"\"", "\"../outside.bin\"", "\"%2e%2e/outside.bin\"",
-    "\"/etc/passwd\"", "\"external.bin\"", "\"link_out.bin\"", "\"children\":[0],", "\"scene\":9,",
-    "\"byteStride\":252,", "\"sparse\":{},", "\"mode\":4,", "\"count\":99999999,", "\"byteOffset\":4294967295,",
-    "\"KHR_lights_punctual\"", "\"extensionsRequired\":[\"x\"],"};
+const char* const kTokens[] = {"-1",
+                               "0",
+                               "4294967295",
+                               "4294967296",
+                               "2147483648",
+                               "18446744073709551615",
+                               "1e39",
+                               "-1e39",
+                               "1e308",
+                               "3.4e38",
+                               "1e-45",
+                               "null",
+                               "true",
+                               "[]",
+                               "{}",
+                               "\"\"",
+                               "\"../outside.bin\"",
+                               "\"%2e%2e/outside.bin\"",
+                               "\"/etc/passwd\"",
+                               "\"external.bin\"",
+                               "\"link_out.bin\"",
+                               "\"children\":[0],",
+                               "\"scene\":9,",
+                               "\"byteStride\":252,",
+                               "\"sparse\":{},",
+                               "\"mode\":4,",
+                               "\"count\":99999999,",
+                               "\"byteOffset\":4294967295,",
+                               "\"KHR_lights_punctual\"",
+                               "\"extensionsRequired\":[\"x\"],"};
 
 struct Mutator {
     uint64_t state;
@@ -456,7 +485,7 @@ struct Mutator {
             break;
         }
         case 2: // a little-endian u32 overwritten, often a GLB field: total length (8), JSON
-                // chunk length (12) and type (16), BIN chunk length (20 + JSON chunk length)
+            // chunk length (12) and type (16), BIN chunk length (20 + JSON chunk length)
             if (s.size() >= 24) {
                 size_t bin = 20;
                 for (int k = 0; k < 4; ++k) bin += size_t(uint8_t(s[12 + size_t(k)])) << (8 * k);

@@ -12,8 +12,8 @@
 #include <iterator>
 #include <sstream>
 
-#include "util/error.h"
 #include "test_util.h"
+#include "util/error.h"
 
 namespace clppm {
 namespace {
@@ -274,9 +274,8 @@ TEST(GltfTextures, SrgbTexelsDecodeToLinearWithWrapBits) {
     EXPECT_EQ(s.textures[1].offset, 4u);
     EXPECT_EQ(s.textures[1].wrap, 3u); // clamp s and t; image from a bufferView
     // Top row first: (0,0,0,255) (255,255,255,255) / (128,64,188,255) (10,200,30,128).
-    const std::array<float, 4> want[4] = {{0, 0, 0, 1}, {1, 1, 1, 1},
-                                          {srgb(128), srgb(64), srgb(188), 1},
-                                          {srgb(10), srgb(200), srgb(30), 128 / 255.f}};
+    const std::array<float, 4> want[4] = {
+        {0, 0, 0, 1}, {1, 1, 1, 1}, {srgb(128), srgb(64), srgb(188), 1}, {srgb(10), srgb(200), srgb(30), 128 / 255.f}};
     for (size_t t = 0; t < 8; ++t)
         for (int c = 0; c < 4; ++c) EXPECT_NEAR(s.texels[t][size_t(c)], want[t % 4][size_t(c)], 1e-6) << t << c;
     EXPECT_NEAR(s.texels[2][0], 0.2158605, 1e-6); // sRGB 128
@@ -310,8 +309,8 @@ TEST(GltfLights, PointSpotAndDirectional) {
     EXPECT_NEAR(spot.cos_inner, std::cos(0.2), 1e-6);
     EXPECT_NEAR(spot.cos_outer, std::cos(0.4), 1e-6);
     // The glTF falloff integrated over the cone: 2 pi I ((1 - cos_inner) + (cos_inner - cos_outer) / 3).
-    EXPECT_NEAR(punctual_light_power(spot, 0), 2 * kPi * 20 * ((1 - std::cos(0.2)) + (std::cos(0.2) - std::cos(0.4)) / 3),
-                1e-3);
+    EXPECT_NEAR(punctual_light_power(spot, 0),
+                2 * kPi * 20 * ((1 - std::cos(0.2)) + (std::cos(0.2) - std::cos(0.4)) / 3), 1e-3);
 
     const dev::Light& cone = s.punctual_lights[2];
     expect_vec3(cone.direction, 0, 0, -1);
@@ -335,7 +334,7 @@ TEST(GltfCameras, PerspectiveCamerasInTraversalOrderWithExtras) {
     expect_vec3(side.forward, -1, 0, 0);
     expect_vec3(side.up, 0, 1, 0);
     EXPECT_FLOAT_EQ(side.yfov, 0.8f);
-    EXPECT_EQ(side.aspect, 0.f); // aspectRatio absent
+    EXPECT_EQ(side.aspect, 0.f);                 // aspectRatio absent
     EXPECT_FLOAT_EQ(side.aperture_radius, 0.1f); // node extras
     EXPECT_FLOAT_EQ(side.focus_distance, 2.f);
 
@@ -369,9 +368,7 @@ TEST(GltfErrors, UnsupportedRequiredExtension) {
     expect_error("ext_required.gltf", "required extension 'KHR_texture_transform' is not supported");
 }
 TEST(GltfErrors, AccessorIndexOutOfRange) { expect_error("accessor_range.gltf", "POSITION accessor 99 out of range"); }
-TEST(GltfErrors, IndexBeyondVertices) {
-    expect_error("index_range.gltf", "reference vertex 7 beyond the 3 vertices");
-}
+TEST(GltfErrors, IndexBeyondVertices) { expect_error("index_range.gltf", "reference vertex 7 beyond the 3 vertices"); }
 TEST(GltfErrors, AccessorPastBufferView) {
     expect_error("accessor_past_view.gltf", "accessor 0 reads past the end of bufferView 0");
 }
@@ -452,8 +449,8 @@ std::string mutate(std::string s, uint64_t* state) {
 }
 
 TEST(GltfRobustness, MutatedFilesLoadOrFailCleanly) {
-    const char* files[] = {"hierarchy.gltf", "byte_stride.gltf", "texture.gltf", "lights.gltf", "cameras.gltf",
-                           "index_types.gltf", "box.glb"};
+    const char* files[] = {"hierarchy.gltf", "byte_stride.gltf", "texture.gltf", "lights.gltf",
+                           "cameras.gltf",   "index_types.gltf", "box.glb"};
     std::string dir = test::make_temp_dir("gltf_fuzz");
     uint64_t state = 12345;
     int loaded = 0, failed = 0;
@@ -520,9 +517,9 @@ TEST(GltfShippedScenes, AllLoadWithTheDocumentedContents) {
         const char* file;
         size_t triangles, lights;
     };
-    for (const Expect& e : {Expect{"cornell_box.gltf", 5964, 0}, Expect{"caustic.gltf", 6020, 1},
-                            Expect{"furnace.gltf", 960, 0}, Expect{"plane_point_light.gltf", 2, 1},
-                            Expect{"bunny_100k.gltf", 101772, 0}}) {
+    for (const Expect& e :
+         {Expect{"cornell_box.gltf", 5964, 0}, Expect{"caustic.gltf", 6020, 1}, Expect{"furnace.gltf", 960, 0},
+          Expect{"plane_point_light.gltf", 2, 1}, Expect{"bunny_100k.gltf", 101772, 0}}) {
         SCOPED_TRACE(e.file);
         Scene s = load_gltf(scene_file(e.file));
         EXPECT_EQ(s.num_triangles(), e.triangles);

@@ -21,8 +21,8 @@
 #include <gtest/gtest.h>
 #include <stb_image.h>
 
-#include "util/error.h"
 #include "test_util.h"
+#include "util/error.h"
 
 namespace clppm {
 namespace {
@@ -164,8 +164,8 @@ TEST(ImageIo, SrgbCodesOfKnownValues) {
     EXPECT_EQ(linear_to_srgb8(0.5f), 188);
     EXPECT_EQ(linear_to_srgb8(0.8f), 231);
     EXPECT_EQ(linear_to_srgb8(1.0f), 255);
-    EXPECT_EQ(linear_to_srgb8(7.0f), 255);  // clamped
-    EXPECT_EQ(linear_to_srgb8(-3.0f), 0);   // clamped
+    EXPECT_EQ(linear_to_srgb8(7.0f), 255); // clamped
+    EXPECT_EQ(linear_to_srgb8(-3.0f), 0);  // clamped
     EXPECT_EQ(linear_to_srgb8(std::nanf("")), 0);
 }
 
@@ -176,15 +176,15 @@ TEST(ImageIo, PngHasSrgbValuesAndMagentaForNonFinite) {
     Image img;
     img.width = 3;
     img.height = 2;
-    img.rgb = {0.5f, 0.0f, 1.0f,   2.0f, -1.0f, 0.18f,   nan, 0.5f, 0.5f, // top row
-               0.25f, 0.25f, 0.25f, 0.5f, inf, 0.5f,   0.5f, 0.5f, -inf};
+    img.rgb = {0.5f,  0.0f,  1.0f,  2.0f, -1.0f, 0.18f, nan,  0.5f, 0.5f, // top row
+               0.25f, 0.25f, 0.25f, 0.5f, inf,   0.5f,  0.5f, 0.5f, -inf};
     write_png(dir + "/p.png", img);
     int w = 0, h = 0;
     std::vector<unsigned char> px = load_png(dir + "/p.png", &w, &h);
     ASSERT_EQ(w, 3);
     ASSERT_EQ(h, 2);
-    std::vector<unsigned char> expected = {188, 0, 255,   255, 0, 118,   255, 0, 255,
-                                           137, 137, 137, 255, 0, 255,   255, 0, 255};
+    std::vector<unsigned char> expected = {188, 0,   255, 255, 0, 118, 255, 0, 255,
+                                           137, 137, 137, 255, 0, 255, 255, 0, 255};
     EXPECT_EQ(px, expected);
 }
 
@@ -245,8 +245,7 @@ TEST(ImageIo, WriteErrorsNameThePathAndReason) {
               "cannot write " + under_file + ": " + dir + "/file is not a directory");
 
     fs::create_directory(dir + "/d.exr");
-    EXPECT_EQ(error_of([&] { write_exr(dir + "/d.exr", img); }),
-              "cannot write " + dir + "/d.exr: it is a directory");
+    EXPECT_EQ(error_of([&] { write_exr(dir + "/d.exr", img); }), "cannot write " + dir + "/d.exr: it is a directory");
     EXPECT_EQ(entries(dir), (std::vector<std::string>{"d.exr", "file"}));
 }
 

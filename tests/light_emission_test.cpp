@@ -56,7 +56,6 @@ __kernel void sample_light_many(SCENE_PARAMS, ulong seed, float px, float py, fl
 }
 )CL";
 
-
 // The scene: three emissive triangles (areas 0.5, 0.125, 2; radiance 2, RGB (5, 3, 1) two-sided,
 // 0.5 on a tilted plane), a point light, a spot light (cones 0.3 / 0.5 rad) and a directional
 // light, over a non-emissive floor.
@@ -158,12 +157,14 @@ struct Fixture {
 
     Fixture()
         : ds(upload_scene(dc, scene, RenderSettings{})),
-          program(build_test_program(dc, assemble_kernel_source("rng.cl") + assemble_kernel_source("lights.cl") + kWrappers)) {
+          program(build_test_program(dc, assemble_kernel_source("rng.cl") + assemble_kernel_source("lights.cl") +
+                                             kWrappers)) {
         lights = describe_lights(scene, ds);
         emit();
     }
 
-    template <class T> std::vector<T> read(const cl::Buffer& b, size_t n) const {
+    template <class T>
+    std::vector<T> read(const cl::Buffer& b, size_t n) const {
         std::vector<T> v(n);
         dc.queue.enqueueReadBuffer(b, CL_TRUE, 0, n * sizeof(T), v.data());
         return v;
@@ -177,18 +178,14 @@ struct Fixture {
         const double offset = ds.info.ray_eps + 4e-6 * m; // offset_origin's, kernels/scene.cl
         for (size_t i = 0; i < lights.size(); ++i) {
             const HostLight& h = lights[i];
-            if ((h.kind == Kind::Point || h.kind == Kind::Spot) && length(org - h.position) < 1e-6)
-                return int(i);
-            if (h.kind == Kind::Directional && length(dir - h.direction) < 1e-6)
-                return int(i);
+            if ((h.kind == Kind::Point || h.kind == Kind::Spot) && length(org - h.position) < 1e-6) return int(i);
+            if (h.kind == Kind::Directional && length(dir - h.direction) < 1e-6) return int(i);
             if (h.kind == Kind::Triangle) {
                 double dist = dot(org - h.v0, h.n);
-                if (std::fabs(std::fabs(dist) - offset) > 1e-3 * offset + 1e-6)
-                    continue;
+                if (std::fabs(std::fabs(dist) - offset) > 1e-3 * offset + 1e-6) continue;
                 double b1, b2;
                 barycentrics(h, org, &b1, &b2);
-                if (b1 >= -1e-5 && b2 >= -1e-5 && b1 + b2 <= 1 + 1e-5)
-                    return int(i);
+                if (b1 >= -1e-5 && b2 >= -1e-5 && b1 + b2 <= 1 + 1e-5) return int(i);
             }
         }
         return -1;
@@ -210,8 +207,7 @@ struct Fixture {
         dc.queue.enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(kPhotons));
         photons = read<float>(out, 9 * kPhotons);
         source.resize(kPhotons);
-        for (size_t i = 0; i < kPhotons; ++i)
-            source[i] = identify(&photons[9 * i]);
+        for (size_t i = 0; i < kPhotons; ++i) source[i] = identify(&photons[9 * i]);
     }
 
     // sample_light at x (normal n) on scene `on`: per channel the mean of contrib * cos and its
@@ -230,20 +226,17 @@ struct Fixture {
         *min_dist = INFINITY;
         for (int c = 0; c < 3; ++c) {
             double sum = 0, sum_sq = 0;
-            for (size_t i = 0; i < items; ++i)
-                sum += v[7 * i + c], sum_sq += v[7 * i + 3 + c];
+            for (size_t i = 0; i < items; ++i) sum += v[7 * i + c], sum_sq += v[7 * i + 3 + c];
             r.push_back(mean_se(sum, sum_sq, 16.0 * items));
         }
-        for (size_t i = 0; i < items; ++i)
-            *min_dist = std::min(*min_dist, v[7 * i + 6]);
+        for (size_t i = 0; i < items; ++i) *min_dist = std::min(*min_dist, v[7 * i + 6]);
         return r;
     }
 
     std::vector<size_t> photons_of(size_t light) const {
         std::vector<size_t> v;
         for (size_t i = 0; i < kPhotons; ++i)
-            if (source[i] == int(light))
-                v.push_back(i);
+            if (source[i] == int(light)) v.push_back(i);
         return v;
     }
 };
@@ -268,20 +261,16 @@ double polygon_irradiance(D3 x, D3 n, std::vector<D3> poly, double L) {
     for (size_t i = 0; i < poly.size(); ++i) {
         D3 a = poly[i], b = poly[(i + 1) % poly.size()];
         double da = dot(a - x, n), db = dot(b - x, n);
-        if (da > 0)
-            clipped.push_back(a);
-        if ((da > 0) != (db > 0))
-            clipped.push_back(a + (da / (da - db)) * (b - a));
+        if (da > 0) clipped.push_back(a);
+        if ((da > 0) != (db > 0)) clipped.push_back(a + (da / (da - db)) * (b - a));
     }
-    if (clipped.size() < 3)
-        return 0;
+    if (clipped.size() < 3) return 0;
     double sum = 0;
     for (size_t i = 0; i < clipped.size(); ++i) {
         D3 r0 = normalized(clipped[i] - x), r1 = normalized(clipped[(i + 1) % clipped.size()] - x);
         D3 c = cross(r0, r1);
         double s = length(c);
-        if (s == 0)
-            continue;
+        if (s == 0) continue;
         sum += std::atan2(s, dot(r0, r1)) * dot(n, (1.0 / s) * c);
     }
     return 0.5 * L * std::fabs(sum);
@@ -294,8 +283,7 @@ TEST(LightEmission, EveryPhotonLeavesALight) {
     Fixture& f = fixture();
     ASSERT_EQ(f.lights.size(), 6u);
     size_t unknown = 0;
-    for (int s : f.source)
-        unknown += s < 0;
+    for (int s : f.source) unknown += s < 0;
     EXPECT_EQ(unknown, 0u);
 }
 
@@ -305,15 +293,13 @@ TEST(LightEmission, LightsArePickedInProportionToPower) {
     Fixture& f = fixture();
     std::vector<double> observed(f.lights.size(), 0), expected(f.lights.size(), 0);
     for (int s : f.source)
-        if (s >= 0)
-            observed[s] += 1;
+        if (s >= 0) observed[s] += 1;
     for (size_t i = 0; i < f.lights.size(); ++i)
         expected[i] = Fixture::kPhotons * f.ds.lights[i].power / f.ds.info.total_power;
     Chi2Result c = chi2_test(observed, expected);
     EXPECT_GT(c.p_value, kAlpha) << "chi2 " << c.chi2 << " dof " << c.dof;
     double total = 0;
-    for (const dev::Light& l : f.ds.lights)
-        total += l.power;
+    for (const dev::Light& l : f.ds.lights) total += l.power;
     EXPECT_NEAR(f.ds.info.total_power / total, 1.0, 1e-6);
 }
 
@@ -357,12 +343,10 @@ TEST(LightEmission, EmittedFluxSumsToEachLightsPower) {
     // Uniform emitters give every photon of a light the same flux: Le A pi sides / (pick P) for
     // triangles, 4 pi I / (pick P) for the point light, E pi R^2 / (pick P) for the sun.
     for (const HostLight& h : f.lights) {
-        if (h.kind == Kind::Spot)
-            continue;
+        if (h.kind == Kind::Spot) continue;
         double pick = f.ds.lights[h.index].power / P;
         double want = h.power_rgb.x / (pick * P);
-        for (size_t i : f.photons_of(h.index))
-            ASSERT_NEAR(f.photons[9 * i + 6] / want, 1.0, 1e-5) << name(h);
+        for (size_t i : f.photons_of(h.index)) ASSERT_NEAR(f.photons[9 * i + 6] / want, 1.0, 1e-5) << name(h);
     }
     std::printf("emitted power: %.5g %.5g %.5g W, lights: %.5g %.5g %.5g W\n", total.x, total.y, total.z,
                 total_expected.x, total_expected.y, total_expected.z);
@@ -374,8 +358,7 @@ TEST(LightEmission, EmittedFluxSumsToEachLightsPower) {
 TEST(LightEmission, TrianglePointsAreUniformByArea) {
     Fixture& f = fixture();
     for (const HostLight& h : f.lights) {
-        if (h.kind != Kind::Triangle)
-            continue;
+        if (h.kind != Kind::Triangle) continue;
         std::vector<size_t> ids = f.photons_of(h.index);
         ASSERT_GT(ids.size(), 10000u) << name(h);
         const int g = 8;
@@ -409,8 +392,7 @@ TEST(LightEmission, TrianglePointsAreUniformByArea) {
 TEST(LightEmission, TriangleDirectionsAreCosineAboutTheEmittingSide) {
     Fixture& f = fixture();
     for (const HostLight& h : f.lights) {
-        if (h.kind != Kind::Triangle)
-            continue;
+        if (h.kind != Kind::Triangle) continue;
         std::vector<size_t> ids = f.photons_of(h.index);
         size_t back = 0;
         SphereBins bins{10, 8, 0, 1};
@@ -421,8 +403,7 @@ TEST(LightEmission, TriangleDirectionsAreCosineAboutTheEmittingSide) {
             D3 dir = d3(&f.photons[9 * id + 3]);
             double c = dot(dir, h.n);
             D3 side_n = h.n;
-            if (c < 0)
-                ++back, c = -c, side_n = -1.0 * h.n;
+            if (c < 0) ++back, c = -c, side_n = -1.0 * h.n;
             // Fold the back side onto the front (phi mirrored, which a cosine lobe does not see).
             int k = bins.index(std::min(c, 1.0), std::atan2(dot(dir, b), dot(dir, t)));
             ASSERT_GE(k, 0);
@@ -447,8 +428,7 @@ TEST(LightEmission, TriangleDirectionsAreCosineAboutTheEmittingSide) {
 TEST(LightEmission, PointLightIsIsotropic) {
     Fixture& f = fixture();
     for (const HostLight& h : f.lights) {
-        if (h.kind != Kind::Point)
-            continue;
+        if (h.kind != Kind::Point) continue;
         std::vector<size_t> ids = f.photons_of(h.index);
         SphereBins bins{10, 16, -1, 1};
         std::vector<double> observed(bins.size(), 0);
@@ -470,8 +450,7 @@ TEST(LightEmission, SpotEmitsInsideTheOuterConeWithGltfFalloff) {
     const double ci = std::cos(double(kSpotInner)), co = std::cos(double(kSpotOuter));
     const double P = f.ds.info.total_power, N = double(Fixture::kPhotons);
     for (const HostLight& h : f.lights) {
-        if (h.kind != Kind::Spot)
-            continue;
+        if (h.kind != Kind::Spot) continue;
         std::vector<size_t> ids = f.photons_of(h.index);
         const int nb = 12;
         std::vector<double> observed(nb, 0), expected(nb, 0);
@@ -487,15 +466,13 @@ TEST(LightEmission, SpotEmitsInsideTheOuterConeWithGltfFalloff) {
             sum[k] += x, sum_sq[k] += x * x;
         }
         EXPECT_GE(min_cos, lo - 1e-6) << "a photon outside the outer cone";
-        for (int k = 0; k < nb; ++k)
-            expected[k] = ids.size() / double(nb);
+        for (int k = 0; k < nb; ++k) expected[k] = ids.size() / double(nb);
         Chi2Result c = chi2_test(observed, expected);
         EXPECT_GT(c.p_value, kAlpha) << "chi2 " << c.chi2 << " dof " << c.dof;
         for (int k = 0; k < nb; ++k) {
             double c0 = lo + (1 - lo) * k / nb, c1 = lo + (1 - lo) * (k + 1) / nb;
             double want = 0; // 2 pi I int falloff, by 64-point midpoint (the integrand is smooth)
-            for (int s = 0; s < 64; ++s)
-                want += spot_falloff(c0 + (c1 - c0) * (s + 0.5) / 64, ci, co) * (c1 - c0) / 64;
+            for (int s = 0; s < 64; ++s) want += spot_falloff(c0 + (c1 - c0) * (s + 0.5) / 64, ci, co) * (c1 - c0) / 64;
             want *= 2 * M_PI * h.rgb.x;
             MeanSe m = mean_se(sum[k], sum_sq[k], N);
             EXPECT_NEAR(m.mean, want, 5 * m.se + 1e-4 * want) << "cos bin " << k << " [" << c0 << ", " << c1 << ")";
@@ -511,8 +488,7 @@ TEST(LightEmission, DirectionalPhotonsCoverTheSceneDiscUniformly) {
     const D3 center = d3(f.ds.info.center);
     const double R = f.ds.info.radius;
     for (const HostLight& h : f.lights) {
-        if (h.kind != Kind::Directional)
-            continue;
+        if (h.kind != Kind::Directional) continue;
         std::vector<size_t> ids = f.photons_of(h.index);
         D3 t, b;
         host_frame(h.direction, t, b);

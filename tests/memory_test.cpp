@@ -2,10 +2,10 @@
 // within 1 GiB for SPPM and PPPM at 1920x1080 with a million photons per pass.
 #include <gtest/gtest.h>
 
-#include "util/error.h"
 #include "integrators/memory_estimate.h"
 #include "scene_builders.h"
 #include "test_util.h"
+#include "util/error.h"
 
 using namespace clppm;
 using namespace clppm::test;

@@ -66,11 +66,46 @@ protected:
 };
 
 TEST_P(BothForms, EveryValuedOption) {
-    Options o = parse({"--output", "r/x.exr", "--width", "640", "--height", "480", "--passes", "10", "--time", "2.5",
-                       "--photons", "1000", "--alpha", "0.5", "--radius", "0.25", "--seed", "18446744073709551615",
-                       "--device", "gpu", "--device", "1", "--camera", "2", "--stats-json", "s.json",
-                       "--integrator", "pt", "--direct", "photons", "--spp", "256", "--max-bounces", "1024",
-                       "--progressive-output", "8", "--kernel-dir", "kernels", "--dump-kernel-source", "k.cl"});
+    Options o = parse({"--output",
+                       "r/x.exr",
+                       "--width",
+                       "640",
+                       "--height",
+                       "480",
+                       "--passes",
+                       "10",
+                       "--time",
+                       "2.5",
+                       "--photons",
+                       "1000",
+                       "--alpha",
+                       "0.5",
+                       "--radius",
+                       "0.25",
+                       "--seed",
+                       "18446744073709551615",
+                       "--device",
+                       "gpu",
+                       "--device",
+                       "1",
+                       "--camera",
+                       "2",
+                       "--stats-json",
+                       "s.json",
+                       "--integrator",
+                       "pt",
+                       "--direct",
+                       "photons",
+                       "--spp",
+                       "256",
+                       "--max-bounces",
+                       "1024",
+                       "--progressive-output",
+                       "8",
+                       "--kernel-dir",
+                       "kernels",
+                       "--dump-kernel-source",
+                       "k.cl"});
     EXPECT_EQ(o.output, "r/x.exr");
     EXPECT_EQ(o.width, 640);
     EXPECT_EQ(o.height, 480);
@@ -93,9 +128,8 @@ TEST_P(BothForms, EveryValuedOption) {
 }
 
 TEST_P(BothForms, RangeEnds) {
-    Options o = parse({"--width", "16384", "--height", "1", "--photons", "2147483647", "--alpha", "1",
-                       "--seed", "0", "--integrator", "ppm", "--direct", "sample", "--spp", "1",
-                       "--max-bounces", "1"});
+    Options o = parse({"--width", "16384", "--height", "1", "--photons", "2147483647", "--alpha", "1", "--seed", "0",
+                       "--integrator", "ppm", "--direct", "sample", "--spp", "1", "--max-bounces", "1"});
     EXPECT_EQ(o.width, 16384);
     EXPECT_EQ(o.height, 1);
     EXPECT_EQ(o.photons_per_pass, 2147483647u);
@@ -180,10 +214,8 @@ INSTANTIATE_TEST_SUITE_P(
     ::testing::Values(
         BadValue{{"--output", "x.png"}, "--output x.png: must be a file name ending in .exr"},
         BadValue{{"-o", ".exr"}, "-o .exr: must be a file name ending in .exr"},
-        BadValue{{"--width", "16385"}, "--width 16385" + kSize},
-        BadValue{{"--width", "-1"}, "--width -1" + kSize},
-        BadValue{{"--width", "12.5"}, "--width 12.5" + kSize},
-        BadValue{{"--height=abc"}, "--height abc" + kSize},
+        BadValue{{"--width", "16385"}, "--width 16385" + kSize}, BadValue{{"--width", "-1"}, "--width -1" + kSize},
+        BadValue{{"--width", "12.5"}, "--width 12.5" + kSize}, BadValue{{"--height=abc"}, "--height abc" + kSize},
         BadValue{{"--height="}, "--height ''" + kSize},
         BadValue{{"--passes", "-3"}, "--passes -3: must be an integer >= 1 (0 = unlimited, with --time)"},
         BadValue{{"--passes", "99999999999999999999"},
@@ -223,8 +255,8 @@ TEST(Options, ErrorEstimation) {
     EXPECT_EQ(d.confidence, 0.95);
     EXPECT_EQ(d.error_output, "");
     EXPECT_FALSE(wants_error_estimate(d));
-    Options o = parse_options(Args{"--integrator", "sppm", "--target-error", "0.05", "--confidence=0.9",
-                                   "--error-output", "e.exr"});
+    Options o = parse_options(
+        Args{"--integrator", "sppm", "--target-error", "0.05", "--confidence=0.9", "--error-output", "e.exr"});
     EXPECT_EQ(o.target_error, 0.05);
     EXPECT_EQ(o.confidence, 0.9);
     EXPECT_EQ(o.error_output, "e.exr");
@@ -263,16 +295,37 @@ std::string unwrapped_usage() {
 
 TEST(Options, UsageListsEveryOptionWithDefaultAndRange) {
     std::string text = unwrapped_usage();
-    for (const char* name : {"-o, --output FILE", "--no-png", "--width N", "--height N", "--passes N", "--time SECONDS",
-                             "--photons N", "--alpha A", "--radius R", "--seed S", "--list-devices", "--device SPEC",
-                             "--camera N", "--quiet", "--stats-json FILE", "--integrator NAME", "--direct MODE",
-                             "--spp N", "--max-bounces N", "--progressive-output K", "--kernel-dir DIR",
-                             "--dump-kernel-source FILE", "--target-error E", "--confidence P",
-                             "--error-output FILE", "-h, --help", "--version"})
+    for (const char* name : {"-o, --output FILE",
+                             "--no-png",
+                             "--width N",
+                             "--height N",
+                             "--passes N",
+                             "--time SECONDS",
+                             "--photons N",
+                             "--alpha A",
+                             "--radius R",
+                             "--seed S",
+                             "--list-devices",
+                             "--device SPEC",
+                             "--camera N",
+                             "--quiet",
+                             "--stats-json FILE",
+                             "--integrator NAME",
+                             "--direct MODE",
+                             "--spp N",
+                             "--max-bounces N",
+                             "--progressive-output K",
+                             "--kernel-dir DIR",
+                             "--dump-kernel-source FILE",
+                             "--target-error E",
+                             "--confidence P",
+                             "--error-output FILE",
+                             "-h, --help",
+                             "--version"})
         EXPECT_NE(text.find(name), std::string::npos) << name;
-    for (const char* fragment : {"Default: clppm.exr", "Default: 0.7", "in (0, 1]", "Default: 200000", "Default: 16",
-                                 "1..256", "Default: ppm", "Default: sample", "Default: 64",
-                                 "Default: 0.95", "in (0, 1)"})
+    for (const char* fragment :
+         {"Default: clppm.exr", "Default: 0.7", "in (0, 1]", "Default: 200000", "Default: 16", "1..256", "Default: ppm",
+          "Default: sample", "Default: 64", "Default: 0.95", "in (0, 1)"})
         EXPECT_NE(text.find(fragment), std::string::npos) << fragment;
 }
 

@@ -88,7 +88,8 @@ TEST(Ppm, SpotAndDirectionalLightsMatchAnalyticRadiance) {
         const float E = 3.f, c = std::cos(0.5f);
         add_directional_light(sun, {std::sin(0.5f), -c, 0}, E);
         Image lit = render_passes(sun, small(32, 32, 100000, direct), 16);
-        EXPECT_NEAR(region_mean(lit, 8, 8, 24, 24) / (rho / M_PI * E * c), 1.0, 0.03) << "directional, direct=" << to_string(direct);
+        EXPECT_NEAR(region_mean(lit, 8, 8, 24, 24) / (rho / M_PI * E * c), 1.0, 0.03)
+            << "directional, direct=" << to_string(direct);
     }
 }
 
@@ -106,8 +107,8 @@ TEST(Ppm, AgreesWithPathTracerOnDiffuseBox) {
     for (int q = 0; q < 4; ++q) {
         int x0 = (q & 1) * 16, y0 = (q >> 1) * 16;
         for (int c = 0; c < 3; ++c)
-            EXPECT_NEAR(region_mean(ppm, x0, y0, x0 + 16, y0 + 16, c) / region_mean(pt, x0, y0, x0 + 16, y0 + 16, c), 1.0,
-                        0.05)
+            EXPECT_NEAR(region_mean(ppm, x0, y0, x0 + 16, y0 + 16, c) / region_mean(pt, x0, y0, x0 + 16, y0 + 16, c),
+                        1.0, 0.05)
                 << "quadrant " << q << " channel " << c;
     }
 }
@@ -141,5 +142,6 @@ TEST(Ppm, ErrorFallsAsPassesGrow) {
         EXPECT_LT(errors[i], errors[i - 1]) << "error did not fall from " << errors[i - 1] << " to " << errors[i];
     EXPECT_LT(errors.back(), 0.5 * errors.front());
     ::testing::Test::RecordProperty("relative_rmse_64_passes", std::to_string(errors.back()));
-    std::printf("relative RMSE after 1, 4, 16, 64 passes: %.4f %.4f %.4f %.4f\n", errors[0], errors[1], errors[2], errors[3]);
+    std::printf("relative RMSE after 1, 4, 16, 64 passes: %.4f %.4f %.4f %.4f\n", errors[0], errors[1], errors[2],
+                errors[3]);
 }

@@ -48,7 +48,8 @@ std::vector<dev::HitStats> run_updates(const std::vector<uint32_t>& M, const std
     cl::Program program(dc.context, assemble_kernel_source("ppm_update.cl") + kLoopKernel);
     program.build({dc.info.device}, "-cl-std=CL1.2");
     std::vector<dev::HitStats> stats(items, dev::HitStats{r0 * r0, 0, {0, 0, 0}, {0, 0, 0}});
-    cl::Buffer sb(dc.context, CL_MEM_READ_WRITE | CL_MEM_COPY_HOST_PTR, stats.size() * sizeof(dev::HitStats), stats.data());
+    cl::Buffer sb(dc.context, CL_MEM_READ_WRITE | CL_MEM_COPY_HOST_PTR, stats.size() * sizeof(dev::HitStats),
+                  stats.data());
     cl::Buffer mb(dc.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, M.size() * sizeof(uint32_t),
                   const_cast<uint32_t*>(M.data()));
     cl::Buffer tb(dc.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, tau_M.size() * sizeof(double),

@@ -116,7 +116,7 @@ TEST(Progress, PlainLinesAreSparse) {
     std::fclose(f);
     EXPECT_EQ(out.find('\r'), std::string::npos);
     EXPECT_EQ(out.find('['), std::string::npos); // no bar in logs
-    EXPECT_LE(count_of(out, '\n'), 6u);         // 20 s at one line per 5 s, plus the final one
+    EXPECT_LE(count_of(out, '\n'), 6u);          // 20 s at one line per 5 s, plus the final one
     EXPECT_GE(count_of(out, '\n'), 4u);
 }
 

@@ -44,8 +44,8 @@ TEST(Resume, RefusesACheckpointOfAnotherRenderSayingWhatDiffers) {
     EXPECT_EQ(run_clppm(kArgs + " --passes 2 -o " + d + "/b.exr --alpha 0.5 --resume " + d + "/c.ck", &out), 1);
     EXPECT_NE(out.find("--alpha 0.7 in the checkpoint, 0.5 now"), std::string::npos) << out;
     EXPECT_EQ(run_clppm(std::string(CLPPM_SCENES_DIR) + "/furnace.gltf" + kArgs + " --passes 2 -o " + d +
-                        "/b.exr --resume " + d + "/c.ck",
-                    &out),
+                            "/b.exr --resume " + d + "/c.ck",
+                        &out),
               1);
     EXPECT_NE(out.find("scene"), std::string::npos) << out;
     EXPECT_EQ(run_clppm(kArgs + " --passes 2 -o " + d + "/b.exr --seed 9 --resume " + d + "/c.ck", &out), 1);
@@ -92,7 +92,8 @@ TEST(Resume, InterruptWritesEverythingAndResumesExactly) {
         const uint64_t passes = std::stoull(stats.substr(at + 10));
         ASSERT_GE(passes, 1u);
         const std::string target = std::to_string(passes + 2);
-        ASSERT_EQ(run_clppm(kArgs + " --passes " + target + " -o " + d + "/r.exr --resume " + d + "/c.ck", &out), 0) << out;
+        ASSERT_EQ(run_clppm(kArgs + " --passes " + target + " -o " + d + "/r.exr --resume " + d + "/c.ck", &out), 0)
+            << out;
         ASSERT_EQ(run_clppm(kArgs + " --passes " + target + " -o " + d + "/n.exr", &out), 0) << out;
         EXPECT_EQ(read_exr(d + "/r.exr").rgb, read_exr(d + "/n.exr").rgb) << sig;
     }

@@ -166,17 +166,14 @@ TEST(Rng, DeviceStreamsMatchHostReferenceBitForBit) {
     std::vector<cl_ulong> params;
     const uint64_t extremes[] = {0, 1, 0xffffffffull, 0x100000000ull, ~0ull};
     for (uint64_t a : extremes)
-        for (uint64_t b : extremes)
-            params.insert(params.end(), {a, b, a ^ b, uint64_t(b & 0xffffffffu)});
-    for (int i = 0; i < 1000; ++i)
-        params.insert(params.end(), {gen(), gen() % 100000, gen() % (1u << 24), gen() % 5});
+        for (uint64_t b : extremes) params.insert(params.end(), {a, b, a ^ b, uint64_t(b & 0xffffffffu)});
+    for (int i = 0; i < 1000; ++i) params.insert(params.end(), {gen(), gen() % 100000, gen() % (1u << 24), gen() % 5});
     const uint32_t count = 16;
     std::vector<cl_uint> got = d.streams<cl_uint>("streams_raw", params, count);
     size_t mismatches = 0;
     for (size_t s = 0; s < params.size() / 4; ++s) {
         RefPcg32 r = ref_stream(params[4 * s], params[4 * s + 1], params[4 * s + 2], uint32_t(params[4 * s + 3]));
-        for (uint32_t k = 0; k < count; ++k)
-            mismatches += r.next() != got[s * count + k];
+        for (uint32_t k = 0; k < count; ++k) mismatches += r.next() != got[s * count + k];
     }
     EXPECT_EQ(mismatches, 0u);
     // rng_float is the top 24 bits scaled by 2^-24.
@@ -219,8 +216,7 @@ TEST(Rng, FloatIsUniformChiSquare) {
         ASSERT_LT(v[i], 1.0f);
         lo = std::min(lo, v[i]), hi = std::max(hi, v[i]);
         bins[size_t(v[i] * 256)] += 1;
-        if (i % 2 == 1)
-            pairs[size_t(v[i - 1] * 16) * 16 + size_t(v[i] * 16)] += 1;
+        if (i % 2 == 1) pairs[size_t(v[i - 1] * 16) * 16 + size_t(v[i] * 16)] += 1;
     }
     EXPECT_LT(lo, 1e-5f);
     EXPECT_GT(hi, 1.0f - 1e-5f);
@@ -238,8 +234,7 @@ TEST(Rng, FirstDrawsAcrossWorkItemsAreUniformAndIndependent) {
     const size_t n = 200000;
     std::vector<float> v = d.index_streams(1, 1, 0, 1, n, 2);
     std::vector<double> first(n), second(n), bins(256, 0);
-    for (size_t i = 0; i < n; ++i)
-        first[i] = v[2 * i], second[i] = v[2 * i + 1], bins[size_t(first[i] * 256)] += 1;
+    for (size_t i = 0; i < n; ++i) first[i] = v[2 * i], second[i] = v[2 * i + 1], bins[size_t(first[i] * 256)] += 1;
     Chi2Result c = chi2_test(bins, std::vector<double>(256, n / 256.0));
     EXPECT_GT(c.p_value, 1e-4) << "chi2 " << c.chi2 << " dof " << c.dof;
     // Under independence r ~ N(0, 1/n): 5 sigma is 5/sqrt(n) = 0.011.
@@ -258,8 +253,7 @@ TEST(Rng, StreamsDifferingInOneFieldAreUncorrelated) {
     const char* names[4] = {"seed", "pass", "index", "purpose"};
     for (int field = 0; field < 4; ++field)
         for (uint64_t delta : {uint64_t(1), uint64_t(1) << 32}) {
-            if (field == 3 && delta != 1)
-                continue; // purpose is 32 bits
+            if (field == 3 && delta != 1) continue; // purpose is 32 bits
             std::vector<cl_ulong> params;
             for (uint32_t p = 0; p < pairs; ++p) {
                 uint64_t base[4] = {1 + p * 3ull, p * 7ull, p * 1000ull, p % 4};
@@ -288,14 +282,10 @@ TEST(Rng, HundredThousandStreamsStartDifferently) {
     const Device& d = device();
     const uint64_t n = 100000;
     std::vector<cl_ulong> params;
-    for (uint64_t i = 0; i < n; ++i)
-        params.insert(params.end(), {1, 1, i, 1}); // work items
-    for (uint64_t i = 0; i < n; ++i)
-        params.insert(params.end(), {1, i + 2, 0, 1}); // passes
-    for (uint64_t i = 0; i < n; ++i)
-        params.insert(params.end(), {i + 2, 1, 0, 1}); // seeds
-    for (uint64_t i = 0; i < n; ++i)
-        params.insert(params.end(), {1, i / 4 + 2, 5, uint32_t(i % 4 + 1)}); // purposes
+    for (uint64_t i = 0; i < n; ++i) params.insert(params.end(), {1, 1, i, 1});                           // work items
+    for (uint64_t i = 0; i < n; ++i) params.insert(params.end(), {1, i + 2, 0, 1});                       // passes
+    for (uint64_t i = 0; i < n; ++i) params.insert(params.end(), {i + 2, 1, 0, 1});                       // seeds
+    for (uint64_t i = 0; i < n; ++i) params.insert(params.end(), {1, i / 4 + 2, 5, uint32_t(i % 4 + 1)}); // purposes
     std::vector<cl_uint> raw = d.streams<cl_uint>("streams_raw", params, 2);
     std::unordered_set<uint64_t> seen;
     seen.reserve(raw.size());

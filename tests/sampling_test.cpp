@@ -69,8 +69,7 @@ const Device& device() {
 std::vector<float> uniforms(size_t n, uint64_t seed) {
     std::mt19937_64 g(seed);
     std::vector<float> u(n);
-    for (float& x : u)
-        x = float(g() >> 40) * (1.0f / 16777216.0f);
+    for (float& x : u) x = float(g() >> 40) * (1.0f / 16777216.0f);
     return u;
 }
 
@@ -87,15 +86,11 @@ std::vector<double> histogram(const std::vector<float>& dirs, D3 n, const Sphere
     for (size_t i = 0; i < dirs.size() / 3; ++i) {
         D3 d{dirs[3 * i], dirs[3 * i + 1], dirs[3 * i + 2]};
         double c = dot(d, n);
-        if (c > 1 && c < 1 + 1e-6)
-            c = 1;
-        if (c < rim + 1e-9 && c > rim - 1e-6)
-            c = rim + 1e-9; // + 1e-9: clear of the bin edge's rounding
+        if (c > 1 && c < 1 + 1e-6) c = 1;
+        if (c < rim + 1e-9 && c > rim - 1e-6) c = rim + 1e-9; // + 1e-9: clear of the bin edge's rounding
         int k = bins.index(c, std::atan2(dot(d, b), dot(d, t)));
-        if (k < 0)
-            ++*outside;
-        else
-            h[k] += 1;
+        if (k < 0) ++*outside;
+        else h[k] += 1;
     }
     return h;
 }
@@ -128,8 +123,7 @@ TEST(Sampling, CosineHemisphereMatchesPdfChiSquare) {
     auto pdf = [](double c, double) { return c > 0 ? c / M_PI : 0.0; };
     std::vector<double> expected = bins.expected(pdf, n);
     double total = 0;
-    for (double e : expected)
-        total += e;
+    for (double e : expected) total += e;
     EXPECT_NEAR(total / n, 1.0, 1e-9) << "the reference pdf integrates to 1 over the sphere";
     for (D3 axis : kAxes) {
         cl::Kernel k(d.program, "cosine_dirs");
@@ -166,8 +160,7 @@ TEST(Sampling, ConeMatchesPdfChiSquare) {
             const int inside = 12;
             const double w = (1 - double(cm)) / inside;
             SphereBins bins{inside, 12, double(cm), 1};
-            if (double(cm) - 2 * w >= -1)
-                bins = SphereBins{inside + 2, 12, double(cm) - 2 * w, 1};
+            if (double(cm) - 2 * w >= -1) bins = SphereBins{inside + 2, 12, double(cm) - 2 * w, 1};
             auto pdf = [cm](double c, double) { return c >= double(cm) ? 1.0 / (2 * M_PI * (1 - double(cm))) : 0.0; };
             cl::Kernel k(d.program, "cone_dirs");
             k.setArg(0, float(axis.x)), k.setArg(1, float(axis.y)), k.setArg(2, float(axis.z)), k.setArg(3, cm);
@@ -184,8 +177,7 @@ TEST(Sampling, ConeMatchesPdfChiSquare) {
             EXPECT_EQ(outside, 0u) << "cos_max " << cos_max;
             std::vector<double> expected = bins.expected(pdf, n);
             double total = 0;
-            for (double e : expected)
-                total += e;
+            for (double e : expected) total += e;
             EXPECT_NEAR(total / n, 1.0, 1e-9) << "cos_max " << cos_max << ": the reference pdf integrates to 1";
             Chi2Result c = chi2_test(h, expected);
             EXPECT_TRUE(c.error.empty()) << "cos_max " << cos_max << " axis " << describe(axis) << ": " << c.error;
@@ -201,8 +193,7 @@ TEST(Sampling, ConeAndHemisphereAtExtremeInputsAreFiniteUnitAndInside) {
     const float top = 1.0f - 1.0f / 16777216.0f;
     std::vector<float> u;
     for (float a : {0.0f, 1e-7f, 0.5f, top})
-        for (float b : {0.0f, 0.25f, top})
-            u.push_back(a), u.push_back(b);
+        for (float b : {0.0f, 0.25f, top}) u.push_back(a), u.push_back(b);
     const size_t n = u.size() / 2;
     cl::Buffer ub = d.input(u), ob(d.dc.context, CL_MEM_WRITE_ONLY, 3 * n * sizeof(float));
     for (D3 axis : kAxes) {
@@ -272,8 +263,7 @@ TEST(Sampling, TriangleIsUniformByAreaChiSquare) {
     d.run(k, 3);
     std::vector<float> cv = d.read<float>(cob, 6);
     const double want[6] = {0, 1, 0, 0, 1, 0};
-    for (int i = 0; i < 6; ++i)
-        EXPECT_NEAR(cv[i], want[i], 3e-7) << "corner value " << i; // a few ulps of 1
+    for (int i = 0; i < 6; ++i) EXPECT_NEAR(cv[i], want[i], 3e-7) << "corner value " << i; // a few ulps of 1
 }
 
 // oct_decode(oct_encode(n)) over 1M uniform directions and the special ones (poles, +-axes, the
@@ -293,8 +283,7 @@ TEST(Sampling, OctahedralRoundTripErrorIsBounded) {
         for (double e : {1e-3, 1e-5, 1e-7, 1e-20})
             push({e, -e, s}), push({s, e, e}), push({e, s, -e}), push({1, s, e}), push({1, s, -e});
         for (double a : {1.0, -1.0})
-            for (double b : {1.0, -1.0})
-                push({a, b, s}), push({a, b, 0}), push({a * 0.25, b * 0.75, s * 1e-4});
+            for (double b : {1.0, -1.0}) push({a, b, s}), push({a, b, 0}), push({a * 0.25, b * 0.75, s * 1e-4});
     }
     // Signed zeros (normalized() would keep them, push them directly).
     for (std::array<float, 3> v :
@@ -303,8 +292,7 @@ TEST(Sampling, OctahedralRoundTripErrorIsBounded) {
     const size_t special = dirs.size() / 3;
     std::mt19937_64 g(14);
     std::normal_distribution<double> gauss;
-    for (int i = 0; i < 1000000; ++i)
-        push({gauss(g), gauss(g), gauss(g)});
+    for (int i = 0; i < 1000000; ++i) push({gauss(g), gauss(g), gauss(g)});
     const size_t n = dirs.size() / 3;
     cl::Buffer db = d.input(dirs), cb(d.dc.context, CL_MEM_WRITE_ONLY, n * sizeof(cl_uint)),
                ob(d.dc.context, CL_MEM_WRITE_ONLY, 3 * n * sizeof(float));
@@ -320,14 +308,11 @@ TEST(Sampling, OctahedralRoundTripErrorIsBounded) {
         double la = std::sqrt(dot(a, a)), lb = std::sqrt(dot(b, b));
         worst_len = std::max(worst_len, std::fabs(lb - 1));
         double angle = std::atan2(std::sqrt(dot(cross(a, b), cross(a, b))), dot(a, b) / la);
-        if (angle > worst)
-            worst = angle, worst_i = i;
-        if (i < special)
-            worst_special = std::max(worst_special, angle);
+        if (angle > worst) worst = angle, worst_i = i;
+        if (i < special) worst_special = std::max(worst_special, angle);
         // A normal must stay on its side of the surface: z keeps its sign whenever |z| exceeds
         // the error bound.
-        if (std::fabs(a.z) > 7e-5 && (a.z > 0) != (b.z > 0))
-            ++flipped;
+        if (std::fabs(a.z) > 7e-5 && (a.z > 0) != (b.z > 0)) ++flipped;
     }
     EXPECT_LT(worst, 7e-5) << "direction " << worst_i << " "
                            << describe({dirs[3 * worst_i], dirs[3 * worst_i + 1], dirs[3 * worst_i + 2]});
@@ -346,8 +331,7 @@ TEST(Sampling, OctahedralDecodeOfAnyCodeIsUnitAndStable) {
         for (uint32_t b : {0u, 1u, 32767u, 32768u, 65534u, 65535u})
             codes.push_back(a | (b << 16)), codes.push_back(b | (a << 16));
     std::mt19937 g(15);
-    for (int i = 0; i < 200000; ++i)
-        codes.push_back(g());
+    for (int i = 0; i < 200000; ++i) codes.push_back(g());
     const size_t n = codes.size();
     cl::Buffer cb = d.input(codes), ob(d.dc.context, CL_MEM_WRITE_ONLY, 3 * n * sizeof(float));
     cl::Kernel k(d.program, "oct_decode_codes");
@@ -386,24 +370,20 @@ TEST(Sampling, MakeFrameIsOrthonormalEverywhere) {
     };
     for (double s : {1.0, -1.0}) {
         push({0, 0, s}), push({s, 0, 0}), push({0, s, 0});
-        for (double e : {1e-2, 1e-4, 1e-6, 1e-8, 1e-12, 1e-30})
-            push({e, e, s}), push({-e, 2 * e, s}), push({e, 0, s});
+        for (double e : {1e-2, 1e-4, 1e-6, 1e-8, 1e-12, 1e-30}) push({e, e, s}), push({-e, 2 * e, s}), push({e, 0, s});
         push({1, 1, s * 1e-7});
     }
     for (std::array<float, 3> v : {std::array<float, 3>{0.0f, 0.0f, -0.0f} /* invalid, skipped below */,
                                    {1.0f, 0.0f, -0.0f},
                                    {-0.0f, -0.0f, -1.0f},
                                    {-0.0f, 0.0f, 1.0f}})
-        if (v[0] != 0 || v[1] != 0 || v[2] != 0)
-            normals.insert(normals.end(), v.begin(), v.end());
+        if (v[0] != 0 || v[1] != 0 || v[2] != 0) normals.insert(normals.end(), v.begin(), v.end());
     std::mt19937_64 g(16);
     std::normal_distribution<double> gauss;
-    for (int i = 0; i < 200000; ++i)
-        push({gauss(g), gauss(g), gauss(g)});
+    for (int i = 0; i < 200000; ++i) push({gauss(g), gauss(g), gauss(g)});
     // Normals within 1e-3 of -z, where sign(n.z) + n.z is small.
     std::uniform_real_distribution<double> tiny(-1e-3, 1e-3);
-    for (int i = 0; i < 20000; ++i)
-        push({tiny(g), tiny(g), -1});
+    for (int i = 0; i < 20000; ++i) push({tiny(g), tiny(g), -1});
     const size_t n = normals.size() / 3;
     cl::Buffer nb = d.input(normals), ob(d.dc.context, CL_MEM_WRITE_ONLY, 6 * n * sizeof(float));
     cl::Kernel k(d.program, "frames");
@@ -418,8 +398,7 @@ TEST(Sampling, MakeFrameIsOrthonormalEverywhere) {
         D3 c = cross(t, b);
         double err = std::max({std::fabs(dot(t, t) - 1), std::fabs(dot(b, b) - 1), std::fabs(dot(t, b)),
                                std::fabs(dot(t, nn)), std::fabs(dot(b, nn)), std::fabs(dot(c, nn) - 1)});
-        if (!(err <= worst))
-            worst = err, worst_i = i; // NaN counts as worst
+        if (!(err <= worst)) worst = err, worst_i = i; // NaN counts as worst
     }
     EXPECT_LT(worst, 2e-6) << "normal "
                            << describe({normals[3 * worst_i], normals[3 * worst_i + 1], normals[3 * worst_i + 2]});

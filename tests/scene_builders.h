@@ -159,12 +159,12 @@ inline Scene diffuse_box(bool with_blocks = true) {
     s.source = "<diffuse box>";
     uint32_t white = add_material(s, 0.7f, 0.7f, 0.7f), red = add_material(s, 0.7f, 0.1f, 0.1f),
              green = add_material(s, 0.1f, 0.7f, 0.1f), light = add_material(s, 0.f, 0.f, 0.f, 12.f);
-    add_quad(s, {-1, -1, -1}, {-1, -1, 1}, {1, -1, 1}, {1, -1, -1}, white);  // floor, up
-    add_quad(s, {-1, 1, -1}, {1, 1, -1}, {1, 1, 1}, {-1, 1, 1}, white);      // ceiling, down
-    add_quad(s, {-1, -1, -1}, {1, -1, -1}, {1, 1, -1}, {-1, 1, -1}, white);  // back, +z
-    add_quad(s, {-1, -1, 1}, {-1, 1, 1}, {1, 1, 1}, {1, -1, 1}, white);      // front, -z
-    add_quad(s, {-1, -1, -1}, {-1, 1, -1}, {-1, 1, 1}, {-1, -1, 1}, red);    // left, +x
-    add_quad(s, {1, -1, -1}, {1, -1, 1}, {1, 1, 1}, {1, 1, -1}, green);      // right, -x
+    add_quad(s, {-1, -1, -1}, {-1, -1, 1}, {1, -1, 1}, {1, -1, -1}, white); // floor, up
+    add_quad(s, {-1, 1, -1}, {1, 1, -1}, {1, 1, 1}, {-1, 1, 1}, white);     // ceiling, down
+    add_quad(s, {-1, -1, -1}, {1, -1, -1}, {1, 1, -1}, {-1, 1, -1}, white); // back, +z
+    add_quad(s, {-1, -1, 1}, {-1, 1, 1}, {1, 1, 1}, {1, -1, 1}, white);     // front, -z
+    add_quad(s, {-1, -1, -1}, {-1, 1, -1}, {-1, 1, 1}, {-1, -1, 1}, red);   // left, +x
+    add_quad(s, {1, -1, -1}, {1, -1, 1}, {1, 1, 1}, {1, 1, -1}, green);     // right, -x
     add_quad(s, {-0.3f, 0.99f, -0.3f}, {0.3f, 0.99f, -0.3f}, {0.3f, 0.99f, 0.3f}, {-0.3f, 0.99f, 0.3f}, light);
     if (with_blocks) {
         // A box standing on the floor (top and four sides).

@@ -15,6 +15,8 @@ using namespace clppm::dev;
 
 namespace {
 
+// One struct per line, as written:
+// clang-format off
 #define LAYOUT_FIELDS(X)                                                                            \
     X(sizeof(TriShading)) X(offsetof(TriShading, uv0)) X(offsetof(TriShading, material))            \
     X(sizeof(BvhNode)) X(offsetof(BvhNode, bmax_x)) X(offsetof(BvhNode, child)) X(offsetof(BvhNode, count)) \
@@ -32,6 +34,7 @@ namespace {
     X(sizeof(HitStats)) X(offsetof(HitStats, n)) X(offsetof(HitStats, tau)) X(offsetof(HitStats, direct)) \
     X(sizeof(Photon)) X(offsetof(Photon, flux)) X(offsetof(Photon, wi_oct))                           \
     X(sizeof(GridInfo)) X(offsetof(GridInfo, inv_cell)) X(offsetof(GridInfo, num_photons))
+// clang-format on
 
 #define STR(x) #x ","
 #define VAL(x) static_cast<unsigned>(x),

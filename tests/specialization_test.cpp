@@ -2,8 +2,8 @@
 // bit with the same seed, on every shipped scene; and the specialisation really removes features.
 #include <gtest/gtest.h>
 
-#include "scene/gltf/gltf_load.h"
 #include "io/image_io.h"
+#include "scene/gltf/gltf_load.h"
 #include "scene/scene_features.h"
 #include "test_util.h"
 

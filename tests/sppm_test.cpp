@@ -4,8 +4,8 @@
 
 #include <cmath>
 
-#include "scene_builders.h"
 #include "integrators/sppm_integrator.h"
+#include "scene_builders.h"
 #include "test_util.h"
 
 using namespace clppm;

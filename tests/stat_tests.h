@@ -19,8 +19,7 @@ inline double gamma_p_series(double a, double x) {
         ap += 1.0;
         del *= x / ap;
         sum += del;
-        if (std::fabs(del) < std::fabs(sum) * 1e-16)
-            break;
+        if (std::fabs(del) < std::fabs(sum) * 1e-16) break;
     }
     return sum * std::exp(-x + a * std::log(x) - std::lgamma(a));
 }
@@ -33,26 +32,21 @@ inline double gamma_q_fraction(double a, double x) {
         double an = -i * (i - a);
         b += 2.0;
         d = an * d + b;
-        if (std::fabs(d) < tiny)
-            d = tiny;
+        if (std::fabs(d) < tiny) d = tiny;
         c = b + an / c;
-        if (std::fabs(c) < tiny)
-            c = tiny;
+        if (std::fabs(c) < tiny) c = tiny;
         d = 1.0 / d;
         double del = d * c;
         h *= del;
-        if (std::fabs(del - 1.0) < 1e-16)
-            break;
+        if (std::fabs(del - 1.0) < 1e-16) break;
     }
     return std::exp(-x + a * std::log(x) - std::lgamma(a)) * h;
 }
 
 // The regularized upper incomplete gamma function Q(a, x) = 1 - P(a, x).
 inline double gamma_q(double a, double x) {
-    if (x <= 0.0)
-        return 1.0;
-    if (x < a + 1.0)
-        return 1.0 - gamma_p_series(a, x);
+    if (x <= 0.0) return 1.0;
+    if (x < a + 1.0) return 1.0 - gamma_p_series(a, x);
     return gamma_q_fraction(a, x);
 }
 
@@ -138,8 +132,7 @@ struct SphereBins {
     double cos_lo = -1, cos_hi = 1; // the cos theta range binned; outside it: no bin (-1)
     int size() const { return n_cos * n_phi; }
     int index(double cos_t, double phi) const {
-        if (!(cos_t >= cos_lo && cos_t <= cos_hi))
-            return -1;
+        if (!(cos_t >= cos_lo && cos_t <= cos_hi)) return -1;
         int i = std::min(n_cos - 1, int((cos_t - cos_lo) / (cos_hi - cos_lo) * n_cos));
         double u = phi / (2 * M_PI);
         u -= std::floor(u);
@@ -163,8 +156,7 @@ struct SphereBins {
 inline double correlation(const std::vector<double>& a, const std::vector<double>& b) {
     const size_t n = a.size();
     double ma = 0, mb = 0;
-    for (size_t i = 0; i < n; ++i)
-        ma += a[i], mb += b[i];
+    for (size_t i = 0; i < n; ++i) ma += a[i], mb += b[i];
     ma /= n, mb /= n;
     double sab = 0, saa = 0, sbb = 0;
     for (size_t i = 0; i < n; ++i) {
@@ -182,12 +174,10 @@ struct MeanSe {
 inline MeanSe mean_se(const std::vector<double>& v) {
     MeanSe m;
     const double n = double(v.size());
-    for (double x : v)
-        m.mean += x;
+    for (double x : v) m.mean += x;
     m.mean /= n;
     double var = 0;
-    for (double x : v)
-        var += (x - m.mean) * (x - m.mean);
+    for (double x : v) var += (x - m.mean) * (x - m.mean);
     m.se = std::sqrt(var / (n - 1) / n);
     return m;
 }

@@ -29,9 +29,9 @@ int run_clppm(const std::string& args, std::string* output);
 #include <vector>
 
 #include "device/cl.h"
-#include "io/image_io.h"
 #include "integrators/integrator.h"
 #include "integrators/render_settings.h"
+#include "io/image_io.h"
 #include "scene/scene.h"
 
 namespace clppm::test {
@@ -75,8 +75,8 @@ struct KernelHarness {
     explicit KernelHarness(const std::string& source);
     template <class T>
     cl::Buffer input(const std::vector<T>& v) const {
-        return cl::Buffer(dc.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, std::max<size_t>(1, v.size()) * sizeof(T),
-                          const_cast<T*>(v.data()));
+        return cl::Buffer(dc.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR,
+                          std::max<size_t>(1, v.size()) * sizeof(T), const_cast<T*>(v.data()));
     }
     cl::Buffer output(size_t bytes) const { return cl::Buffer(dc.context, CL_MEM_WRITE_ONLY, bytes); }
     template <class T>

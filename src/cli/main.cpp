@@ -3,11 +3,11 @@
 #include <cstdio>
 #include <string>
 
-#include "device/device.h"
-#include "util/error.h"
-#include "io/image_compare.h"
 #include "cli/options.h"
 #include "cli/render_session.h"
+#include "device/device.h"
+#include "io/image_compare.h"
+#include "util/error.h"
 #include "util/version.h"
 
 using namespace clppm;

@@ -34,7 +34,7 @@ struct OptionSpec {
     const char* short_name; // "-o", or nullptr
     const char* metavar;    // "A"; nullptr for a flag
     const char* help;
-    const char* range;      // nullptr when any value goes
+    const char* range; // nullptr when any value goes
     const char* default_text;
     void (*apply)(ParseState&, const Arg&);
 };
@@ -98,20 +98,17 @@ void set_scene(ParseState& st, const std::string& path) {
 }
 
 const OptionSpec kOptions[] = {
-    {"--output", "-o", "FILE", "Output image (a PNG preview is written beside it)",
-     "a file name ending in .exr", "clppm.exr",
+    {"--output", "-o", "FILE", "Output image (a PNG preview is written beside it)", "a file name ending in .exr",
+     "clppm.exr",
      [](ParseState& st, const Arg& a) {
          if (!ends_with_ci(a.value, ".exr") || a.value.size() <= 4) bad_value(a);
          st.options.output = a.value;
      }},
-    {"--no-png", nullptr, nullptr, "Do not write the PNG preview",
-     nullptr, nullptr,
+    {"--no-png", nullptr, nullptr, "Do not write the PNG preview", nullptr, nullptr,
      [](ParseState& st, const Arg&) { st.options.write_png = false; }},
-    {"--width", nullptr, "N", "Image width in pixels",
-     "an integer in 0..16384 (0 = from the camera)", "0",
+    {"--width", nullptr, "N", "Image width in pixels", "an integer in 0..16384 (0 = from the camera)", "0",
      [](ParseState& st, const Arg& a) { st.options.width = static_cast<int>(parse_int(a, 0, 16384)); }},
-    {"--height", nullptr, "N", "Image height in pixels",
-     "an integer in 0..16384 (0 = from the camera)", "0",
+    {"--height", nullptr, "N", "Image height in pixels", "an integer in 0..16384 (0 = from the camera)", "0",
      [](ParseState& st, const Arg& a) { st.options.height = static_cast<int>(parse_int(a, 0, 16384)); }},
     {"--passes", nullptr, "N", "Stop after N passes (with --time: whichever comes first)",
      "an integer >= 1 (0 = unlimited, with --time)", "64, or unlimited with --time",
@@ -119,40 +116,29 @@ const OptionSpec kOptions[] = {
          st.options.passes = static_cast<uint64_t>(parse_int(a, 0, INT64_MAX));
          st.passes_given = true;
      }},
-    {"--time", nullptr, "SECONDS", "Stop after this much render time",
-     "a number of seconds > 0", "none",
+    {"--time", nullptr, "SECONDS", "Stop after this much render time", "a number of seconds > 0", "none",
      [](ParseState& st, const Arg& a) { st.options.time_limit = parse_real(a, [](double x) { return x > 0; }); }},
-    {"--photons", nullptr, "N", "Photons traced per pass",
-     "an integer in 1..2147483647", "200000",
+    {"--photons", nullptr, "N", "Photons traced per pass", "an integer in 1..2147483647", "200000",
      [](ParseState& st, const Arg& a) {
          st.options.photons_per_pass = static_cast<uint32_t>(parse_int(a, 1, INT32_MAX));
      }},
     // alpha of Hachisuka et al. 2008 (radius reduction): R^2 <- R^2 (N + alpha M) / (N + M).
-    {"--alpha", nullptr, "A", "Fraction of new photons kept per pass (radius reduction)",
-     "in (0, 1]", "0.7",
-     [](ParseState& st, const Arg& a) {
-         st.options.alpha = parse_real(a, [](double x) { return x > 0 && x <= 1; });
-     }},
-    {"--radius", nullptr, "R", "Initial gather radius R0 in scene units",
-     "a finite number >= 0 (0 = heuristic)", "0",
+    {"--alpha", nullptr, "A", "Fraction of new photons kept per pass (radius reduction)", "in (0, 1]", "0.7",
+     [](ParseState& st, const Arg& a) { st.options.alpha = parse_real(a, [](double x) { return x > 0 && x <= 1; }); }},
+    {"--radius", nullptr, "R", "Initial gather radius R0 in scene units", "a finite number >= 0 (0 = heuristic)", "0",
      [](ParseState& st, const Arg& a) { st.options.radius = parse_real(a, [](double x) { return x >= 0; }); }},
-    {"--seed", nullptr, "S", "Random seed",
-     "an integer in 0..18446744073709551615", "1",
+    {"--seed", nullptr, "S", "Random seed", "an integer in 0..18446744073709551615", "1",
      [](ParseState& st, const Arg& a) { st.options.seed = parse_u64(a); }},
-    {"--list-devices", nullptr, nullptr, "List the OpenCL devices and exit",
-     nullptr, nullptr,
+    {"--list-devices", nullptr, nullptr, "List the OpenCL devices and exit", nullptr, nullptr,
      [](ParseState& st, const Arg&) { st.options.list_devices = true; }},
     {"--device", nullptr, "SPEC", "Device to render on; repeatable (see --list-devices)",
      "a device index, cpu, gpu or part of a device name", "automatic",
      [](ParseState& st, const Arg& a) { st.options.devices.push_back(non_empty(a)); }},
-    {"--camera", nullptr, "N", "Index of the glTF camera to render through",
-     "an integer >= 0", "0",
+    {"--camera", nullptr, "N", "Index of the glTF camera to render through", "an integer >= 0", "0",
      [](ParseState& st, const Arg& a) { st.options.camera = static_cast<int>(parse_int(a, 0, INT_MAX)); }},
-    {"--quiet", nullptr, nullptr, "No progress output",
-     nullptr, nullptr,
+    {"--quiet", nullptr, nullptr, "No progress output", nullptr, nullptr,
      [](ParseState& st, const Arg&) { st.options.quiet = true; }},
-    {"--stats-json", nullptr, "FILE", "Write render statistics as JSON",
-     "a file name", "none",
+    {"--stats-json", nullptr, "FILE", "Write render statistics as JSON", "a file name", "none",
      [](ParseState& st, const Arg& a) { st.options.stats_json = non_empty(a); }},
     {"--integrator", nullptr, "NAME",
      "Integrator: ppm = progressive photon mapping, sppm = stochastic PPM, pppm = probabilistic PPM "
@@ -172,8 +158,7 @@ const OptionSpec kOptions[] = {
          else if (a.value == "sample") st.options.direct = DirectLighting::Sample;
          else bad_value(a);
      }},
-    {"--spp", nullptr, "N", "Hit points (samples) per pixel per pass",
-     "an integer in 1..256", "1",
+    {"--spp", nullptr, "N", "Hit points (samples) per pixel per pass", "an integer in 1..256", "1",
      [](ParseState& st, const Arg& a) { st.options.spp = static_cast<int>(parse_int(a, 1, 256)); }},
     {"--filter", nullptr, "NAME",
      "Pixel filter, importance-sampled: box = the pixel's square, tent = separable tent of radius 1 pixel",
@@ -186,25 +171,19 @@ const OptionSpec kOptions[] = {
     {"--aperture", nullptr, "R", "Thin-lens aperture radius in scene units (depth of field)",
      "a finite number >= 0 (0 = pinhole)", "the camera's, else 0",
      [](ParseState& st, const Arg& a) { st.options.aperture = parse_real(a, [](double x) { return x >= 0; }); }},
-    {"--focus-distance", nullptr, "D", "Distance to the plane in focus, in scene units",
-     "a finite number > 0", "the camera's, else the scene centre's distance",
-     [](ParseState& st, const Arg& a) {
-         st.options.focus_distance = parse_real(a, [](double x) { return x > 0; });
-     }},
-    {"--max-bounces", nullptr, "N", "Longest eye or photon path",
-     "an integer in 1..1024", "16",
+    {"--focus-distance", nullptr, "D", "Distance to the plane in focus, in scene units", "a finite number > 0",
+     "the camera's, else the scene centre's distance",
+     [](ParseState& st, const Arg& a) { st.options.focus_distance = parse_real(a, [](double x) { return x > 0; }); }},
+    {"--max-bounces", nullptr, "N", "Longest eye or photon path", "an integer in 1..1024", "16",
      [](ParseState& st, const Arg& a) { st.options.max_bounces = static_cast<int>(parse_int(a, 1, 1024)); }},
-    {"--progressive-output", nullptr, "K", "Also save the images every K passes",
-     "an integer >= 0 (0 = off)", "0",
+    {"--progressive-output", nullptr, "K", "Also save the images every K passes", "an integer >= 0 (0 = off)", "0",
      [](ParseState& st, const Arg& a) {
          st.options.progressive_output = static_cast<uint64_t>(parse_int(a, 0, INT64_MAX));
      }},
     {"--checkpoint", nullptr, "FILE",
-     "Save the complete progressive state to FILE (atomically) periodically, on Ctrl-C and at the end",
-     "a file name", "none",
-     [](ParseState& st, const Arg& a) { st.options.checkpoint = non_empty(a); }},
-    {"--checkpoint-every", nullptr, "K", "Save the checkpoint every K passes",
-     "an integer >= 0 (0 = off)", "0",
+     "Save the complete progressive state to FILE (atomically) periodically, on Ctrl-C and at the end", "a file name",
+     "none", [](ParseState& st, const Arg& a) { st.options.checkpoint = non_empty(a); }},
+    {"--checkpoint-every", nullptr, "K", "Save the checkpoint every K passes", "an integer >= 0 (0 = off)", "0",
      [](ParseState& st, const Arg& a) {
          st.options.checkpoint_every = static_cast<uint64_t>(parse_int(a, 0, INT64_MAX));
      }},
@@ -216,26 +195,20 @@ const OptionSpec kOptions[] = {
     {"--resume", nullptr, "FILE",
      "Continue the render saved in checkpoint FILE (same scene and image-shaping options; --passes "
      "counts from the start of the original render, --time this run only)",
-     "a checkpoint file", "none",
-     [](ParseState& st, const Arg& a) { st.options.resume = non_empty(a); }},
+     "a checkpoint file", "none", [](ParseState& st, const Arg& a) { st.options.resume = non_empty(a); }},
     {"--generic-kernels", nullptr, nullptr,
-     "Build the generic kernels instead of ones specialised for the scene's materials, lights and camera",
-     nullptr, nullptr,
-     [](ParseState& st, const Arg&) { st.options.generic_kernels = true; }},
-    {"--kernel-dir", nullptr, "DIR", "Load kernels from DIR instead of the embedded copies",
-     "a directory", "embedded",
+     "Build the generic kernels instead of ones specialised for the scene's materials, lights and camera", nullptr,
+     nullptr, [](ParseState& st, const Arg&) { st.options.generic_kernels = true; }},
+    {"--kernel-dir", nullptr, "DIR", "Load kernels from DIR instead of the embedded copies", "a directory", "embedded",
      [](ParseState& st, const Arg& a) { st.options.kernel_dir = non_empty(a); }},
     {"--dump-kernel-source", nullptr, "FILE", "Write the assembled kernel source and build options to FILE",
-     "a file name", "none",
-     [](ParseState& st, const Arg& a) { st.options.dump_kernel_source = non_empty(a); }},
+     "a file name", "none", [](ParseState& st, const Arg& a) { st.options.dump_kernel_source = non_empty(a); }},
     // Hachisuka, Jarosz and Jensen 2010: a per-pixel bound on |L_i - L| (bias + noise bound).
     {"--target-error", nullptr, "E",
      "Stop once the estimated relative error (90th percentile of the per-pixel bounds at --confidence) "
      "is at most E; --passes and --time still bound the render (sppm, pppm)",
      "a number > 0", "none",
-     [](ParseState& st, const Arg& a) {
-         st.options.target_error = parse_real(a, [](double x) { return x > 0; });
-     }},
+     [](ParseState& st, const Arg& a) { st.options.target_error = parse_real(a, [](double x) { return x > 0; }); }},
     {"--confidence", nullptr, "P", "Confidence of the per-pixel error bounds (with --target-error or --error-output)",
      "in (0, 1)", "0.95",
      [](ParseState& st, const Arg& a) {
@@ -250,11 +223,9 @@ const OptionSpec kOptions[] = {
          if (!ends_with_ci(a.value, ".exr") || a.value.size() <= 4) bad_value(a);
          st.options.error_output = a.value;
      }},
-    {"--help", "-h", nullptr, "Print this help and exit",
-     nullptr, nullptr,
+    {"--help", "-h", nullptr, "Print this help and exit", nullptr, nullptr,
      [](ParseState& st, const Arg&) { st.options.help = true; }},
-    {"--version", nullptr, nullptr, "Print the version and exit",
-     nullptr, nullptr,
+    {"--version", nullptr, nullptr, "Print the version and exit", nullptr, nullptr,
      [](ParseState& st, const Arg&) { st.options.version = true; }},
 };
 
@@ -267,8 +238,7 @@ const OptionSpec* find_option(const std::string& name) {
 // "--passes" defaults to 64 only when no --time bounds the render; 0 passes needs a time limit.
 void resolve_limits(ParseState& st) {
     Options& o = st.options;
-    if (st.passes_given && o.passes == 0 && o.time_limit <= 0)
-        throw Error("--passes 0: unlimited passes need --time");
+    if (st.passes_given && o.passes == 0 && o.time_limit <= 0) throw Error("--passes 0: unlimited passes need --time");
     if (!st.passes_given) o.passes = o.time_limit > 0 ? 0 : 64;
 }
 
@@ -363,10 +333,9 @@ Options parse_options(int argc, char** argv) {
 
 std::string usage() {
     const size_t indent = 30, width = 100;
-    std::string out =
-        "Usage: clppm [options] [SCENE.gltf|SCENE.glb]\n"
-        "Renders SCENE (default: the built-in Cornell box) with progressive photon mapping in OpenCL.\n"
-        "Values may be given as --opt VALUE or --opt=VALUE.\n\nOptions:\n";
+    std::string out = "Usage: clppm [options] [SCENE.gltf|SCENE.glb]\n"
+                      "Renders SCENE (default: the built-in Cornell box) with progressive photon mapping in OpenCL.\n"
+                      "Values may be given as --opt VALUE or --opt=VALUE.\n\nOptions:\n";
     for (const OptionSpec& spec : kOptions) {
         std::string col = option_column(spec);
         out += col;

@@ -22,13 +22,13 @@ struct Options {
     double radius = 0.0;                // initial radius R0; 0 = heuristic
     uint64_t seed = 1;
     bool list_devices = false;
-    std::vector<std::string> devices;   // --device, repeatable, in the order given
-    int camera = 0;                     // glTF camera index
+    std::vector<std::string> devices; // --device, repeatable, in the order given
+    int camera = 0;                   // glTF camera index
     bool quiet = false;
-    std::string stats_json;             // --stats-json FILE; empty = none
+    std::string stats_json; // --stats-json FILE; empty = none
     Integrator integrator = Integrator::PPM;
     DirectLighting direct = DirectLighting::Sample;
-    int spp = 1;                        // PPM hit points (samples) per pixel, 1..256
+    int spp = 1; // PPM hit points (samples) per pixel, 1..256
     PixelFilter filter = PixelFilter::Box;
     double aperture = -1.0;             // thin-lens aperture radius; < 0 = the camera's (0 = pinhole)
     double focus_distance = 0.0;        // thin-lens focus distance; 0 = the camera's

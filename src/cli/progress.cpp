@@ -19,9 +19,7 @@ std::string printf_string(const char* format, double value) {
 }
 
 // Three significant digits, so the width stays steady while the numbers grow.
-std::string three_digits(double v) {
-    return printf_string(v < 10 ? "%.2f" : v < 100 ? "%.1f" : "%.0f", v);
-}
+std::string three_digits(double v) { return printf_string(v < 10 ? "%.2f" : v < 100 ? "%.1f" : "%.0f", v); }
 
 std::string bar(double fraction) {
     int filled = static_cast<int>(fraction * kBarWidth);
@@ -99,12 +97,9 @@ std::string format_count(uint64_t n) {
 std::string format_duration(double seconds) {
     long long t = std::llround(std::max(0.0, seconds));
     char buf[48];
-    if (t < 60)
-        std::snprintf(buf, sizeof buf, "%llds", t);
-    else if (t < 3600)
-        std::snprintf(buf, sizeof buf, "%lldm%02llds", t / 60, t % 60);
-    else
-        std::snprintf(buf, sizeof buf, "%lldh%02lldm", t / 3600, (t % 3600) / 60);
+    if (t < 60) std::snprintf(buf, sizeof buf, "%llds", t);
+    else if (t < 3600) std::snprintf(buf, sizeof buf, "%lldm%02llds", t / 60, t % 60);
+    else std::snprintf(buf, sizeof buf, "%lldh%02lldm", t / 3600, (t % 3600) / 60);
     return buf;
 }
 

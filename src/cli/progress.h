@@ -9,14 +9,14 @@
 namespace clppm {
 
 struct ProgressInfo {
-    uint64_t pass = 0;        // passes completed
-    uint64_t pass_limit = 0;  // 0 = none
-    double time_limit = 0.0;  // seconds; 0 = none
-    uint64_t photons = 0;     // photons traced so far
-    double radius = 0.0;      // current gather radius (whatever the caller reports)
+    uint64_t pass = 0;       // passes completed
+    uint64_t pass_limit = 0; // 0 = none
+    double time_limit = 0.0; // seconds; 0 = none
+    uint64_t photons = 0;    // photons traced so far
+    double radius = 0.0;     // current gather radius (whatever the caller reports)
     double elapsed_s = 0.0;
-    bool finished = false;    // the final line: "done" instead of an ETA
-    double error = -1.0;      // estimated relative error (--target-error, --error-output); < 0 = none
+    bool finished = false;     // the final line: "done" instead of an ETA
+    double error = -1.0;       // estimated relative error (--target-error, --error-output); < 0 = none
     double target_error = 0.0; // 0 = none
     double error_eta_s = -1.0; // seconds until error <= target_error; < 0 = unknown
 };
@@ -68,10 +68,10 @@ private:
     uint64_t pass_limit_;
     double time_limit_;
     double error_ = -1.0, target_error_ = 0.0, error_eta_s_ = -1.0;
-    bool drawn_ = false;      // a line has been drawn
+    bool drawn_ = false; // a line has been drawn
     double last_draw_s_ = 0.0;
-    size_t last_length_ = 0;  // of the terminal line, to blank out leftovers of a longer one
-    bool line_open_ = false;  // a terminal line without its newline yet
+    size_t last_length_ = 0; // of the terminal line, to blank out leftovers of a longer one
+    bool line_open_ = false; // a terminal line without its newline yet
 };
 
 } // namespace clppm

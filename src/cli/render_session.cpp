@@ -4,22 +4,22 @@
 #include <cstdio>
 #include <memory>
 
-#include "io/checkpoint.h"
-#include "scene/scene_fingerprint.h"
+#include "cli/interrupt.h"
+#include "cli/progress.h"
 #include "device/device.h"
-#include "util/error.h"
+#include "device/kernel_program.h"
 #include "integrators/error_estimate.h"
-#include "scene/gltf/gltf_load.h"
-#include "io/image_io.h"
 #include "integrators/integrator.h"
 #include "integrators/integrator_factory.h"
-#include "cli/interrupt.h"
-#include "device/kernel_program.h"
 #include "integrators/memory_estimate.h"
-#include "cli/progress.h"
-#include "scene/device_scene.h"
-#include "scene/scene_features.h"
+#include "io/checkpoint.h"
+#include "io/image_io.h"
 #include "io/stats_json.h"
+#include "scene/device_scene.h"
+#include "scene/gltf/gltf_load.h"
+#include "scene/scene_features.h"
+#include "scene/scene_fingerprint.h"
+#include "util/error.h"
 #include "util/hash.h"
 #include "util/version.h"
 
@@ -68,7 +68,8 @@ std::vector<DeviceInfo> choose_devices(const Options& opt, const std::vector<Dev
         const DeviceInfo& d = select_device(devices, spec);
         for (const DeviceInfo& c : chosen)
             if (c.index == d.index)
-                throw Error("--device " + spec + ": device [" + std::to_string(d.index) + "] " + d.name + " is given twice");
+                throw Error("--device " + spec + ": device [" + std::to_string(d.index) + "] " + d.name +
+                            " is given twice");
         chosen.push_back(d);
     }
     if (!chosen.empty()) return chosen;
@@ -101,13 +102,16 @@ struct ErrorTracking {
         trend.add(pass, seconds, last.image_error);
         progress.set_error(last.image_error, opt.target_error, trend.eta_seconds(opt.target_error));
     }
-    bool reached(const Options& opt) const { return integ && opt.target_error > 0 && last.image_error <= opt.target_error; }
+    bool reached(const Options& opt) const {
+        return integ && opt.target_error > 0 && last.image_error <= opt.target_error;
+    }
 };
 
 // The main images, with the per-pixel relative error bound as an "error" layer when estimating.
 void save_images(const Options& opt, const Image& img, const ErrorTracking& errors) {
     std::vector<ExrLayer> layers;
-    if (errors.integ && errors.last.relative.size() == img.rgb.size() / 3) layers.push_back({"error", &errors.last.relative});
+    if (errors.integ && errors.last.relative.size() == img.rgb.size() / 3)
+        layers.push_back({"error", &errors.last.relative});
     write_exr(opt.output, img, layers);
     if (opt.write_png) write_png(png_path_for(opt.output), img);
 }
@@ -160,8 +164,11 @@ Json make_stats(const Options& opt, const DeviceContext& dc, const DeviceScene& 
     j["scene"] = scene.source;
     j["integrator"] = integ.name();
     j["direct"] = to_string(opt.direct);
-    j["device"] = {{"index", dc.info.index}, {"name", dc.info.name}, {"platform", dc.info.platform_name},
-                   {"type", dc.info.type_name()}, {"driver", dc.info.driver_version}};
+    j["device"] = {{"index", dc.info.index},
+                   {"name", dc.info.name},
+                   {"platform", dc.info.platform_name},
+                   {"type", dc.info.type_name()},
+                   {"driver", dc.info.driver_version}};
     j["width"] = ds.camera.width;
     j["height"] = ds.camera.height;
     j["passes"] = st.passes;
@@ -200,7 +207,8 @@ Scene load_scene(const Options& opt) {
     Scene scene = opt.scene.empty() ? load_default_scene() : load_gltf(opt.scene);
     for (const std::string& w : scene.warnings) note(opt, "warning: " + scene.source + ": " + w);
     if (scene.degenerate_triangles_skipped)
-        note(opt, scene.source + ": skipped " + std::to_string(scene.degenerate_triangles_skipped) + " degenerate triangle(s)");
+        note(opt, scene.source + ": skipped " + std::to_string(scene.degenerate_triangles_skipped) +
+                      " degenerate triangle(s)");
     if (scene.meshes_without_normals)
         note(opt, scene.source + ": computed normals for " + std::to_string(scene.meshes_without_normals) +
                       " primitive(s) without normals");
@@ -259,13 +267,15 @@ int render_session(const Options& opt) {
 
     ProgramBuildStats build;
     cl::Program program = build_program(dc, program_file, build_options, &build);
-    note(opt, "device [" + std::to_string(dc.info.index) + "] " + dc.info.name + ", " + std::to_string(ds.camera.width) +
-                  "x" + std::to_string(ds.camera.height) + ", " + std::to_string(ds.num_triangles) + " triangles, " +
-                  std::to_string(ds.lights.size()) + " lights, kernels " +
+    note(opt, "device [" + std::to_string(dc.info.index) + "] " + dc.info.name + ", " +
+                  std::to_string(ds.camera.width) + "x" + std::to_string(ds.camera.height) + ", " +
+                  std::to_string(ds.num_triangles) + " triangles, " + std::to_string(ds.lights.size()) +
+                  " lights, kernels " +
                   (opt.generic_kernels ? std::string("generic") : "for " + describe_features(features)) + " " +
                   (build.from_cache ? "cached" : "built") + " in " + std::to_string(build.seconds).substr(0, 5) + " s");
 
-    SecondaryDevices secondaries{std::vector<DeviceInfo>(chosen.begin() + 1, chosen.end()), program_file, build_options};
+    SecondaryDevices secondaries{std::vector<DeviceInfo>(chosen.begin() + 1, chosen.end()), program_file,
+                                 build_options};
     if (!secondaries.devices.empty() && settings.integrator == Integrator::PT) {
         note(opt, "warning: the path tracer runs on the first device only");
         secondaries.devices.clear();
@@ -290,7 +300,8 @@ int render_session(const Options& opt) {
     if (!opt.resume.empty()) {
         if (resume_from.header.value("device", std::string()) != dc.info.name + " / " + dc.info.driver_version)
             note(opt, "warning: resuming on another device than the checkpoint's (" +
-                          resume_from.header.value("device", std::string("unknown")) + "): the image will not be bit-identical");
+                          resume_from.header.value("device", std::string("unknown")) +
+                          "): the image will not be bit-identical");
         integ->restore(resume_from);
         note(opt, "resumed " + opt.resume + " at pass " + std::to_string(integ->stats().passes));
     }
@@ -311,10 +322,10 @@ int render_session(const Options& opt) {
         const IntegratorStats& st = integ->stats();
         errors.update(opt, progress, st.passes, render_clock.seconds());
         progress.update(st.passes, st.photons_emitted, st.mean_radius, render_clock.seconds());
-        if (opt.progressive_output > 0 && st.passes % opt.progressive_output == 0) save_images(opt, integ->image(), errors);
-        if (!opt.checkpoint.empty() &&
-            ((opt.checkpoint_every > 0 && st.passes % opt.checkpoint_every == 0) ||
-             render_clock.seconds() - last_checkpoint >= opt.checkpoint_interval)) {
+        if (opt.progressive_output > 0 && st.passes % opt.progressive_output == 0)
+            save_images(opt, integ->image(), errors);
+        if (!opt.checkpoint.empty() && ((opt.checkpoint_every > 0 && st.passes % opt.checkpoint_every == 0) ||
+                                        render_clock.seconds() - last_checkpoint >= opt.checkpoint_interval)) {
             save_checkpoint(opt, *integ, fingerprint, dc);
             last_checkpoint = render_clock.seconds();
         }
@@ -328,8 +339,8 @@ int render_session(const Options& opt) {
     if (!opt.error_output.empty() && !errors.last.relative.empty()) save_error_images(opt, errors.last);
     if (errors.integ) {
         char line[160];
-        std::snprintf(line, sizeof line, "estimated error %.4g (90th percentile, confidence %g)%s", errors.last.image_error,
-                      opt.confidence, errors.reached(opt) ? ": reached the target" : "");
+        std::snprintf(line, sizeof line, "estimated error %.4g (90th percentile, confidence %g)%s",
+                      errors.last.image_error, opt.confidence, errors.reached(opt) ? ": reached the target" : "");
         note(opt, line);
     }
     if (!opt.checkpoint.empty()) save_checkpoint(opt, *integ, fingerprint, dc);
@@ -338,8 +349,8 @@ int render_session(const Options& opt) {
         Json j = make_stats(opt, dc, ds, scene, *integ, build, render_s, total.seconds(), img, signal);
         if (errors.integ)
             j["error"] = {{"estimated", errors.last.image_error}, {"target", opt.target_error},
-                          {"reached", errors.reached(opt)}, {"confidence", opt.confidence},
-                          {"percentile", kErrorPercentile}, {"passes", errors.last.passes}};
+                          {"reached", errors.reached(opt)},       {"confidence", opt.confidence},
+                          {"percentile", kErrorPercentile},       {"passes", errors.last.passes}};
         write_stats_json(opt.stats_json, j);
     }
     note(opt, "wrote " + opt.output + (opt.write_png ? " and " + png_path_for(opt.output) : std::string()) +

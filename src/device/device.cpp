@@ -79,10 +79,9 @@ std::string describe_devices(const std::vector<DeviceInfo>& devices) {
         os << "[" << d.index << "] " << d.name << "\n"
            << "    platform: " << d.platform_name << "\n"
            << "    type: " << d.type_name() << ", compute units: " << d.compute_units
-           << ", memory: " << (d.global_mem >> 20) << " MiB (max allocation " << (d.max_alloc >> 20)
-           << " MiB)\n"
-           << "    " << d.opencl_c_version << ", driver " << d.driver_version
-           << ", fp64: " << (d.fp64 ? "yes" : "no") << "\n";
+           << ", memory: " << (d.global_mem >> 20) << " MiB (max allocation " << (d.max_alloc >> 20) << " MiB)\n"
+           << "    " << d.opencl_c_version << ", driver " << d.driver_version << ", fp64: " << (d.fp64 ? "yes" : "no")
+           << "\n";
     }
     return os.str();
 }
@@ -112,8 +111,7 @@ const DeviceInfo& select_device(const std::vector<DeviceInfo>& devices, const st
         return fail("no " + s + " device");
     }
     for (const DeviceInfo& d : devices)
-        if (lower(d.name).find(s) != std::string::npos || lower(d.platform_name).find(s) != std::string::npos)
-            return d;
+        if (lower(d.name).find(s) != std::string::npos || lower(d.platform_name).find(s) != std::string::npos) return d;
     return fail("no device name matches");
 }
 

@@ -147,8 +147,8 @@ cl::Program build_program(const DeviceContext& dc, const std::string& entry_file
         program.build({device}, full_options.c_str());
     } catch (const cl::Error& e) {
         std::string log = build_log(program, device);
-        throw Error("kernel build failed for " + entry_file + " on " + dc.info.name + " (" + full_options +
-                    "):\n" + log);
+        throw Error("kernel build failed for " + entry_file + " on " + dc.info.name + " (" + full_options + "):\n" +
+                    log);
     }
     if (std::getenv("CLPPM_BUILD_LOG")) std::fprintf(stderr, "%s\n", build_log(program, device).c_str());
     if (!cache_file.empty()) {

@@ -9,9 +9,9 @@
 
 #include "device/cl.h"
 #include "device/device.h"
-#include "io/image_io.h"
 #include "integrators/error_image.h"
 #include "integrators/integrator_stats.h"
+#include "io/image_io.h"
 #include "shared_types.h"
 
 namespace clppm {

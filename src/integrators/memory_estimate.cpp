@@ -2,10 +2,10 @@
 
 #include <algorithm>
 
-#include "util/error.h"
 #include "integrators/integrator_factory.h"
 #include "integrators/photon_map.h"
 #include "shared_types.h"
+#include "util/error.h"
 
 namespace clppm {
 
@@ -40,11 +40,12 @@ MemoryEstimate estimate_memory(const Scene& scene, const RenderSettings& setting
 }
 
 void check_memory_fits(const MemoryEstimate& m, const DeviceInfo& device) {
-    const std::string breakdown = " (scene " + mib(m.scene) + ", hit points and film " + mib(m.integrator) +
-                                  ", photons " + mib(m.photons) + ")";
+    const std::string breakdown =
+        " (scene " + mib(m.scene) + ", hit points and film " + mib(m.integrator) + ", photons " + mib(m.photons) + ")";
     if (m.total() > device.global_mem * 9 / 10)
-        throw Error("the render needs about " + mib(m.total()) + " of device memory" + breakdown + " but " + device.name +
-                    " has " + mib(device.global_mem) + "; lower --width/--height or --spp (photons are batched to fit)");
+        throw Error("the render needs about " + mib(m.total()) + " of device memory" + breakdown + " but " +
+                    device.name + " has " + mib(device.global_mem) +
+                    "; lower --width/--height or --spp (photons are batched to fit)");
     if (m.largest_buffer > device.max_alloc)
         throw Error("the render needs a " + mib(m.largest_buffer) + " buffer but " + device.name +
                     " allocates at most " + mib(device.max_alloc) + " at once; lower --width/--height or --spp");

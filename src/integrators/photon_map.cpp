@@ -39,7 +39,8 @@ PhotonMap::PhotonMap(const DeviceContext& dc, const DeviceScene& scene, const Re
     max_capacity_ = photon_capacity_budget(dc.info);
     uint64_t batch = settings.photons;
     if (max_batch_photons > 0) batch = std::min(batch, max_batch_photons);
-    if (const char* e = std::getenv("CLPPM_PHOTON_BATCH"); e && *e) batch = std::min<uint64_t>(batch, std::strtoull(e, nullptr, 10));
+    if (const char* e = std::getenv("CLPPM_PHOTON_BATCH"); e && *e)
+        batch = std::min<uint64_t>(batch, std::strtoull(e, nullptr, 10));
     batch = std::min<uint64_t>(batch, std::max<uint64_t>(1, max_capacity_ / kStoredPerEmitted));
     batch_ = uint32_t(std::max<uint64_t>(1, batch));
 }
@@ -72,7 +73,8 @@ void PhotonMap::run_pass(uint64_t pass, uint32_t first_photon, uint32_t count_ph
     }
     const uint32_t end = first_photon + count_photons;
     if (capacity_ == 0)
-        allocate(uint32_t(std::clamp<uint64_t>(uint64_t(batch_) * kStoredPerEmitted, 1024, std::max<uint64_t>(1024, max_capacity_))));
+        allocate(uint32_t(
+            std::clamp<uint64_t>(uint64_t(batch_) * kStoredPerEmitted, 1024, std::max<uint64_t>(1024, max_capacity_))));
     batches_ = 0;
     for (uint32_t first = first_photon; first < end;) {
         const uint32_t count = std::min(batch_, end - first);
@@ -131,8 +133,8 @@ void PhotonMap::build_grid(double typical_radius, double max_radius) {
     set_args(k_count_, 0, grid_info_, photons_, counts_);
     enqueue_1d(dc_.queue, k_count_, n, &e1);
     set_args(k_scan_, 0, counts_, starts_, cl_uint(table_size_));
-    dc_.queue.enqueueNDRangeKernel(k_scan_, cl::NullRange, cl::NDRange(GRID_SCAN_WG), cl::NDRange(GRID_SCAN_WG), nullptr,
-                                   &e2);
+    dc_.queue.enqueueNDRangeKernel(k_scan_, cl::NullRange, cl::NDRange(GRID_SCAN_WG), cl::NDRange(GRID_SCAN_WG),
+                                   nullptr, &e2);
     set_args(k_scatter_, 0, grid_info_, photons_, starts_, counts_, sorted_);
     enqueue_1d(dc_.queue, k_scatter_, n, &e3);
     add_event_time(stats_, "grid_build", e1);

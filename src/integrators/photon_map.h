@@ -10,8 +10,8 @@
 #include "device/cl.h"
 #include "device/device.h"
 #include "integrators/integrator_stats.h"
-#include "scene/device_scene.h"
 #include "integrators/render_settings.h"
+#include "scene/device_scene.h"
 
 namespace clppm {
 
@@ -65,7 +65,7 @@ private:
     dev::GridInfo grid_host_{};
     uint64_t max_capacity_ = 0; // stored photons the memory budget allows
     uint32_t capacity_ = 0;
-    uint32_t batch_ = 0;        // photons emitted per batch
+    uint32_t batch_ = 0; // photons emitted per batch
     uint32_t stored_ = 0;
     uint32_t table_size_ = 0;
     uint32_t batches_ = 0;

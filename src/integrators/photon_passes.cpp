@@ -12,9 +12,7 @@ namespace clppm {
 
 namespace {
 
-double now_s() {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
+double now_s() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
 
 } // namespace
 
@@ -107,7 +105,8 @@ void PhotonPasses::run_pass(uint64_t pass, const cl::Buffer& hitpoints, const cl
                 w.ensure(std::max<uint32_t>(1, n));
                 if (send_hitpoints) write_buffer(w.dc.queue, w.hitpoints, hp);
                 write_buffer(w.dc.queue, w.hstats, hs);
-                w.map->run_pass(pass, begin, count, w.hitpoints, w.hstats, n, global_r2, typical_radius, max_radius, w.out);
+                w.map->run_pass(pass, begin, count, w.hitpoints, w.hstats, n, global_r2, typical_radius, max_radius,
+                                w.out);
                 w.result = read_buffer<dev::PassFlux>(w.dc.queue, w.out, n);
                 collect_event_times(w.stats);
                 w.seconds = now_s() - t0;
@@ -143,7 +142,8 @@ void PhotonPasses::run_pass(uint64_t pass, const cl::Buffer& hitpoints, const cl
         return 0.5 * old_rate + 0.5 * double(photons) / seconds;
     };
     rate_[0] = blend(rate_[0], split_[0], primary_seconds);
-    for (size_t k = 0; k < workers_.size(); ++k) rate_[k + 1] = blend(rate_[k + 1], split_[k + 1], workers_[k]->seconds);
+    for (size_t k = 0; k < workers_.size(); ++k)
+        rate_[k + 1] = blend(rate_[k + 1], split_[k + 1], workers_[k]->seconds);
 }
 
 } // namespace clppm

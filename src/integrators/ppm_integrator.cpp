@@ -71,7 +71,8 @@ void PpmIntegrator::eye_pass() {
         set_args(k_eye_, first_arg, cl_uint(first), cl_uint(n), cl_uint(settings_.spp), slots, sample_emission);
         cl::Event ev;
         enqueue_1d(dc_.queue, k_eye_, n, &ev);
-        dc_.queue.enqueueReadBuffer(slots, CL_FALSE, 0, size_t(n) * PPM_EYE_SLOTS * sizeof(dev::HitPoint), host_slots.data());
+        dc_.queue.enqueueReadBuffer(slots, CL_FALSE, 0, size_t(n) * PPM_EYE_SLOTS * sizeof(dev::HitPoint),
+                                    host_slots.data());
         dc_.queue.enqueueReadBuffer(sample_emission, CL_TRUE, 0, size_t(n) * sizeof(cl_float4), host_emission.data());
         add_event_time(stats_, "eye_pass", ev);
         for (uint32_t i = 0; i < n; ++i) {
@@ -94,11 +95,13 @@ void PpmIntegrator::eye_pass() {
     std::vector<float> footprints;
     footprints.reserve(hitpoints.size());
     for (const dev::HitPoint& hp : hitpoints) footprints.push_back(hp.footprint);
-    const double r0 = settings_.radius > 0 ? settings_.radius : initial_radius_heuristic(footprints, scene_.info.radius);
+    const double r0 =
+        settings_.radius > 0 ? settings_.radius : initial_radius_heuristic(footprints, scene_.info.radius);
     stats_.initial_radius = stats_.mean_radius = r0;
     typical_radius_ = max_radius_ = r0;
 
-    std::vector<dev::HitStats> hstats(std::max<size_t>(1, hitpoints.size()), dev::HitStats{r0 * r0, 0.0, {0, 0, 0}, {0, 0, 0}});
+    std::vector<dev::HitStats> hstats(std::max<size_t>(1, hitpoints.size()),
+                                      dev::HitStats{r0 * r0, 0.0, {0, 0, 0}, {0, 0, 0}});
     if (hitpoints.empty()) hitpoints.resize(1); // buffers must not be empty; num_hitpoints_ stays 0
     auto make = [&](cl_mem_flags f, size_t bytes, const void* src) {
         stats_.device_bytes += bytes;

@@ -61,7 +61,8 @@ void SppmIntegrator::prepare() {
     std::vector<float> footprints;
     for (const dev::HitPoint& hp : hps)
         if (hp.pixel != HITPOINT_NONE) footprints.push_back(hp.footprint);
-    const double r0 = settings_.radius > 0 ? settings_.radius : initial_radius_heuristic(footprints, scene_.info.radius);
+    const double r0 =
+        settings_.radius > 0 ? settings_.radius : initial_radius_heuristic(footprints, scene_.info.radius);
     stats_.initial_radius = stats_.mean_radius = typical_radius_ = max_radius_ = r0;
     r2_ = r0 * r0;
     const dev::HitStats init{r0 * r0, 0.0, {0, 0, 0}, {0, 0, 0}};
@@ -145,8 +146,7 @@ void SppmIntegrator::restore(const Checkpoint& ck) {
     auto blob = ck.blobs.find("error_stats");
     if (blob != ck.blobs.end() && blob->second.size() == size_t(num_pixels_) * sizeof(dev::ErrorStats))
         errors_->write(ck.get<dev::ErrorStats>("error_stats", num_pixels_));
-    else
-        errors_->reset(stats_buf_);
+    else errors_->reset(stats_buf_);
 }
 
 Image SppmIntegrator::image() {

@@ -46,8 +46,8 @@ const std::vector<unsigned char>& Checkpoint::blob(const std::string& name, size
     auto it = blobs.find(name);
     if (it == blobs.end()) throw Error(path + ": checkpoint has no '" + name + "' data");
     if (it->second.size() != expected_bytes)
-        throw Error(path + ": checkpoint '" + name + "' holds " + std::to_string(it->second.size()) + " bytes, expected " +
-                    std::to_string(expected_bytes));
+        throw Error(path + ": checkpoint '" + name + "' holds " + std::to_string(it->second.size()) +
+                    " bytes, expected " + std::to_string(expected_bytes));
     return it->second;
 }
 

@@ -5,8 +5,8 @@
 #include <cstdio>
 #include <string>
 
-#include "util/error.h"
 #include "io/stats_json.h"
+#include "util/error.h"
 
 namespace clppm {
 
@@ -77,7 +77,8 @@ Image difference_image(const Image& a, const Image& b, double scale) {
         int i = std::min(3, int(t));
         double f = t - i;
         for (int c = 0; c < 3; ++c) out.rgb[3 * p + c] = float(ramp[i][c] * (1 - f) + ramp[i + 1][c] * f);
-        if (!finite_pixel(a, p) || !finite_pixel(b, p)) out.rgb[3 * p] = 1, out.rgb[3 * p + 1] = 0, out.rgb[3 * p + 2] = 1;
+        if (!finite_pixel(a, p) || !finite_pixel(b, p))
+            out.rgb[3 * p] = 1, out.rgb[3 * p + 1] = 0, out.rgb[3 * p + 2] = 1;
     }
     return out;
 }
@@ -91,12 +92,14 @@ int compare_command(int argc, char** argv) {
             if (i + 1 >= argc) throw Error("compare --diff: missing value OUT.png");
             diff_png = argv[++i];
         } else if (s.rfind("--", 0) == 0) {
-            throw Error("compare: unknown option " + s + " (usage: clppm compare A.exr REFERENCE.exr [--diff OUT.png])");
+            throw Error("compare: unknown option " + s +
+                        " (usage: clppm compare A.exr REFERENCE.exr [--diff OUT.png])");
         } else {
             files.push_back(s);
         }
     }
-    if (files.size() != 2) throw Error("compare: expected two EXR files (usage: clppm compare A.exr REFERENCE.exr [--diff OUT.png])");
+    if (files.size() != 2)
+        throw Error("compare: expected two EXR files (usage: clppm compare A.exr REFERENCE.exr [--diff OUT.png])");
     Image a = read_exr(files[0]), b = read_exr(files[1]);
     ImageDifference d = compare_images(a, b);
     if (!diff_png.empty()) write_png(diff_png, difference_image(a, b));

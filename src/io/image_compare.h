@@ -11,11 +11,11 @@ namespace clppm {
 struct ImageDifference {
     size_t pixels = 0;
     size_t nonfinite_a = 0, nonfinite_b = 0;
-    double mean_a = 0, mean_b = 0;  // mean radiance
-    double rel_mse = 0;             // mean over pixels and channels of (a-b)^2 / (b^2 + 1e-2)
-    double rmse = 0;                // of the radiance
-    double rel_rmse = 0;            // rmse / mean_b
-    double rmse_srgb = 0;           // of the 8-bit-style tonemapped images, in [0, 1]
+    double mean_a = 0, mean_b = 0; // mean radiance
+    double rel_mse = 0;            // mean over pixels and channels of (a-b)^2 / (b^2 + 1e-2)
+    double rmse = 0;               // of the radiance
+    double rel_rmse = 0;           // rmse / mean_b
+    double rmse_srgb = 0;          // of the 8-bit-style tonemapped images, in [0, 1]
 };
 
 // Compares a with the reference b (same size, or Error naming both sizes). Non-finite pixels are

@@ -52,8 +52,8 @@ void check_image(const std::string& path, const Image& img) {
                     std::to_string(img.height) + ")");
     size_t expected = static_cast<size_t>(img.width) * static_cast<size_t>(img.height) * 3;
     if (img.rgb.size() != expected)
-        throw Error("cannot write " + path + ": image has " + std::to_string(img.rgb.size()) +
-                    " values, expected " + std::to_string(expected));
+        throw Error("cannot write " + path + ": image has " + std::to_string(img.rgb.size()) + " values, expected " +
+                    std::to_string(expected));
 }
 
 void check_layer(const std::string& path, const Image& img, const ExrLayer& layer) {
@@ -90,9 +90,7 @@ std::string encode_exr(const std::string& path, const Image& img, const std::vec
     return std::move(stream.bytes);
 }
 
-bool is_finite_pixel(const float* p) {
-    return std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]);
-}
+bool is_finite_pixel(const float* p) { return std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]); }
 
 std::vector<unsigned char> to_srgb8(const Image& img, float exposure) {
     static const unsigned char kMagenta[3] = {255, 0, 255};

@@ -10,8 +10,6 @@ std::string to_json_text(const Json& stats) {
     return stats.dump(2, ' ', false, nlohmann::json::error_handler_t::replace) + "\n";
 }
 
-void write_stats_json(const std::string& path, const Json& stats) {
-    write_file_atomic(path, to_json_text(stats));
-}
+void write_stats_json(const std::string& path, const Json& stats) { write_file_atomic(path, to_json_text(stats)); }
 
 } // namespace clppm

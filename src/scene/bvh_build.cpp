@@ -332,8 +332,8 @@ std::vector<std::array<float, 4>> bvh_triangle_data(const std::vector<Vec3>& p) 
         for (int k = 1; k <= 2; ++k) {
             const Vec3& v = p[t + k];
             const auto& e = out[t + k];
-            delta = std::max({delta, std::fabs(v.x - (a.x + e[0])), std::fabs(v.y - (a.y + e[1])),
-                              std::fabs(v.z - (a.z + e[2]))});
+            delta = std::max(
+                {delta, std::fabs(v.x - (a.x + e[0])), std::fabs(v.y - (a.y + e[1])), std::fabs(v.z - (a.z + e[2]))});
         }
         out[t] = {a.x, a.y, a.z, delta};
     }

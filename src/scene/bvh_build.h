@@ -12,18 +12,18 @@
 namespace clppm {
 
 struct BvhBuildResult {
-    std::vector<dev::BvhNode> nodes;  // nodes[0] is the root; always at least one node
-    std::vector<uint32_t> tri_order;  // new triangle i = input triangle tri_order[i]
+    std::vector<dev::BvhNode> nodes; // nodes[0] is the root; always at least one node
+    std::vector<uint32_t> tri_order; // new triangle i = input triangle tri_order[i]
     double build_seconds = 0;
     size_t leaf_count = 0;
-    unsigned max_depth = 0;           // of the deepest leaf, root = 1; <= BVH_MAX_DEPTH
+    unsigned max_depth = 0; // of the deepest leaf, root = 1; <= BVH_MAX_DEPTH
 };
 
 // Knobs of the build; the defaults are what the renderer uses (tuned in bench/traversal_bench).
 struct BvhBuildOptions {
-    bool sah = true;          // false: object-median splits (the reference the tests compare with)
-    unsigned max_leaf = 8;    // hard cap on triangles per leaf
-    float node_cost = 1.0f;   // SAH cost of visiting one node, in triangle tests
+    bool sah = true;        // false: object-median splits (the reference the tests compare with)
+    unsigned max_leaf = 8;  // hard cap on triangles per leaf
+    float node_cost = 1.0f; // SAH cost of visiting one node, in triangle tests
 };
 
 // Builds the BVH over triangles given as 3 world-space positions each. Leaves reference

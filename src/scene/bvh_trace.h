@@ -6,8 +6,8 @@
 #include <cstdint>
 #include <vector>
 
-#include "scene/bvh_build.h"
 #include "device/device.h"
+#include "scene/bvh_build.h"
 
 namespace clppm {
 

@@ -92,7 +92,8 @@ namespace {
 // default view, may be asked for).
 const CameraDesc* chosen_camera(const Scene& scene, const SceneSettings& settings) {
     if (scene.cameras.empty()) {
-        if (settings.camera != 0) throw Error("--camera " + std::to_string(settings.camera) + ": the scene has no camera");
+        if (settings.camera != 0)
+            throw Error("--camera " + std::to_string(settings.camera) + ": the scene has no camera");
         return nullptr;
     }
     if (settings.camera >= scene.cameras.size())
@@ -172,10 +173,10 @@ cl::Buffer copy_buffer(const cl::Buffer& src, const DeviceContext& from, const D
 
 DeviceScene DeviceScene::clone_to(const DeviceContext& from, const DeviceContext& to) const {
     DeviceScene c = *this; // host-side values
-    for (cl::Buffer DeviceScene::*b : {&DeviceScene::bvh_nodes_buf, &DeviceScene::tris_buf, &DeviceScene::shading_buf,
-                                       &DeviceScene::materials_buf, &DeviceScene::textures_buf, &DeviceScene::texels_buf,
-                                       &DeviceScene::lights_buf, &DeviceScene::light_cdf_buf, &DeviceScene::info_buf,
-                                       &DeviceScene::camera_buf})
+    for (cl::Buffer DeviceScene::*b :
+         {&DeviceScene::bvh_nodes_buf, &DeviceScene::tris_buf, &DeviceScene::shading_buf, &DeviceScene::materials_buf,
+          &DeviceScene::textures_buf, &DeviceScene::texels_buf, &DeviceScene::lights_buf, &DeviceScene::light_cdf_buf,
+          &DeviceScene::info_buf, &DeviceScene::camera_buf})
         c.*b = copy_buffer(this->*b, from, to);
     return c;
 }
@@ -202,7 +203,8 @@ DeviceScene upload_scene(const DeviceContext& dc, Scene& scene, const SceneSetti
     ds.num_triangles = scene.num_triangles();
 
     // Bounds and the bounding sphere: ray offsets and grid cells are relative to them.
-    float lo[3] = {std::numeric_limits<float>::max(), std::numeric_limits<float>::max(), std::numeric_limits<float>::max()};
+    float lo[3] = {std::numeric_limits<float>::max(), std::numeric_limits<float>::max(),
+                   std::numeric_limits<float>::max()};
     float hi[3] = {-lo[0], -lo[1], -lo[2]};
     for (const Vec3& p : scene.positions) {
         const float c[3] = {p.x, p.y, p.z};
@@ -222,7 +224,8 @@ DeviceScene upload_scene(const DeviceContext& dc, Scene& scene, const SceneSetti
 
     ds.lights = collect_lights(scene, ds.info);
     if (ds.lights.empty())
-        throw Error(scene.source + ": no lights (no emissive material and no KHR_lights_punctual light): nothing to render");
+        throw Error(scene.source +
+                    ": no lights (no emissive material and no KHR_lights_punctual light): nothing to render");
     double total = 0;
     for (const dev::Light& l : ds.lights) total += l.power;
     ds.light_cdf.assign(1, 0.f);

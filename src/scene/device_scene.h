@@ -6,8 +6,8 @@
 
 #include "device/cl.h"
 #include "device/device.h"
-#include "scene/scene_settings.h"
 #include "scene/scene.h"
+#include "scene/scene_settings.h"
 #include "shared_types.h"
 
 namespace clppm {
@@ -24,8 +24,8 @@ struct DeviceScene {
     size_t device_bytes = 0;
     std::vector<std::string> notes; // things the user should be told (default camera, ...)
 
-    cl::Buffer bvh_nodes_buf, tris_buf, shading_buf, materials_buf, textures_buf, texels_buf, lights_buf,
-        light_cdf_buf, info_buf, camera_buf;
+    cl::Buffer bvh_nodes_buf, tris_buf, shading_buf, materials_buf, textures_buf, texels_buf, lights_buf, light_cdf_buf,
+        info_buf, camera_buf;
 
     // The same scene on another device (another context): every buffer copied through the host.
     DeviceScene clone_to(const DeviceContext& from, const DeviceContext& to) const;

@@ -26,7 +26,7 @@ struct CameraDesc {
 
 struct Scene {
     // Triangles: three world-space positions each (p[3*i+k]), and shading attributes.
-    std::vector<Vec3> positions;       // 3 per triangle
+    std::vector<Vec3> positions;          // 3 per triangle
     std::vector<dev::TriShading> shading; // 1 per triangle (material index inside)
     std::vector<dev::Material> materials;
     std::vector<dev::Texture> textures;

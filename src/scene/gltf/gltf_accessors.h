@@ -36,7 +36,8 @@ struct AccessorView {
     uint32_t index(size_t i) const { return uint32_t(get(i, 0)); }
 
 private:
-    template <typename T> double scalar(const unsigned char* p, int c, double max) const {
+    template <typename T>
+    double scalar(const unsigned char* p, int c, double max) const {
         T v;
         std::memcpy(&v, p + c * sizeof(T), sizeof(T));
         if (!normalized || std::is_floating_point<T>::value) return double(v);
@@ -65,14 +66,14 @@ public:
         size_t elem = size_t(comp_size) * size_t(comps);
         size_t stride = bv.byteStride ? bv.byteStride : elem;
         if (stride < elem || stride > kMaxByteStride)
-            ctx_.fail("bufferView " + std::to_string(a.bufferView) + " byteStride " +
-                      std::to_string(bv.byteStride) + " does not fit " + label);
+            ctx_.fail("bufferView " + std::to_string(a.bufferView) + " byteStride " + std::to_string(bv.byteStride) +
+                      " does not fit " + label);
         // byteOffset + (count-1)*stride + elem <= byteLength, without overflow.
         if (a.byteOffset > bv.byteLength || (a.count && (a.count - 1) * stride + elem > bv.byteLength - a.byteOffset))
             ctx_.fail(label + " reads past the end of bufferView " + std::to_string(a.bufferView));
         const auto& buffer = m_.buffers[size_t(bv.buffer)].data;
-        return AccessorView{buffer.data() + bv.byteOffset + a.byteOffset, stride, a.count,
-                            a.componentType, comps, a.normalized};
+        return AccessorView{
+            buffer.data() + bv.byteOffset + a.byteOffset, stride, a.count, a.componentType, comps, a.normalized};
     }
 
 private:

@@ -4,7 +4,6 @@
 
 namespace clppm::gltf {
 
-
 std::string one_line(const std::string& text) {
     std::string out;
     bool pending_break = false;

@@ -16,20 +16,19 @@
 namespace clppm::gltf {
 
 // Limits that turn hostile or broken input into an error instead of a huge allocation or a hang.
-constexpr uint64_t kMaxFileBytes = uint64_t(1) << 30;   // any one file read
+constexpr uint64_t kMaxFileBytes = uint64_t(1) << 30;     // any one file read
 constexpr uint64_t kMaxExternalBytes = uint64_t(1) << 31; // all external files together
 constexpr uint64_t kMaxAccessorCount = uint64_t(1) << 31;
-constexpr size_t kMaxTriangles = size_t(1) << 25;        // ~3.3 GB of host triangle data
-constexpr size_t kMaxNodeVisits = size_t(1) << 20;       // shared subtrees instanced many times
-constexpr size_t kMaxTexels = size_t(1) << 26;           // 1 GiB of float4 texels, all images
+constexpr size_t kMaxTriangles = size_t(1) << 25;  // ~3.3 GB of host triangle data
+constexpr size_t kMaxNodeVisits = size_t(1) << 20; // shared subtrees instanced many times
+constexpr size_t kMaxTexels = size_t(1) << 26;     // 1 GiB of float4 texels, all images
 constexpr int kMaxImageSide = 16384;
-constexpr int kMaxJsonDepth = 64;                        // tinygltf converts extras recursively
-constexpr size_t kMaxByteStride = 252;                   // glTF 2.0 limit
+constexpr int kMaxJsonDepth = 64;      // tinygltf converts extras recursively
+constexpr size_t kMaxByteStride = 252; // glTF 2.0 limit
 constexpr double kPi = 3.14159265358979323846;
 
-inline const std::set<std::string> kSupportedExtensions = {
-    "KHR_lights_punctual", "KHR_materials_emissive_strength", "KHR_materials_transmission",
-    "KHR_materials_ior"};
+inline const std::set<std::string> kSupportedExtensions = {"KHR_lights_punctual", "KHR_materials_emissive_strength",
+                                                           "KHR_materials_transmission", "KHR_materials_ior"};
 
 // Error messages are one line: tinygltf and nlohmann texts are joined with "; ".
 std::string one_line(const std::string& text);

@@ -55,8 +55,7 @@ bool guarded_file_exists(const std::string& path, void* user) {
 
 std::string unexpanded_path(const std::string& path, void*) { return path; }
 
-bool guarded_read_file(std::vector<unsigned char>* out, std::string* err, const std::string& path,
-                       void* user) {
+bool guarded_read_file(std::vector<unsigned char>* out, std::string* err, const std::string& path, void* user) {
     auto* guard = static_cast<FsGuard*>(user);
     std::string why = "outside the scene directory";
     if (path_inside(path, guard->base) && !resolves_inside(path, guard->base))

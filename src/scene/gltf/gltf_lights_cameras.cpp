@@ -63,8 +63,7 @@ void LightsAndCameras::set_spot_cone(const tinygltf::Light& g, const std::string
     double inner = g.spot.innerConeAngle, outer = g.spot.outerConeAngle;
     if (!std::isfinite(inner) || !std::isfinite(outer)) ctx_.fail(label + " has non-finite cone angles");
     double outer_c = std::clamp(outer, 1e-6, kPi / 2), inner_c = std::clamp(inner, 0.0, outer_c);
-    if (outer_c != outer || inner_c != inner)
-        ctx_.warn(label + " cone angles clamped to 0 <= inner <= outer <= pi/2");
+    if (outer_c != outer || inner_c != inner) ctx_.warn(label + " cone angles clamped to 0 <= inner <= outer <= pi/2");
     l->cos_inner = float(std::cos(inner_c));
     l->cos_outer = float(std::cos(outer_c));
 }
@@ -99,7 +98,8 @@ void LightsAndCameras::add_camera(const tinygltf::Node& node, const glm::dmat4& 
 }
 
 // Thin-lens parameters from the camera's extras, else its node's; 0 when absent.
-float LightsAndCameras::camera_extra(const tinygltf::Camera& cam, const tinygltf::Node& node, const char* key, const std::string& label) {
+float LightsAndCameras::camera_extra(const tinygltf::Camera& cam, const tinygltf::Node& node, const char* key,
+                                     const std::string& label) {
     for (const tinygltf::Value* extras : {&cam.extras, &node.extras}) {
         if (!extras->IsObject() || !extras->Has(key)) continue;
         const tinygltf::Value& v = extras->Get(key);

@@ -27,9 +27,9 @@ private:
 
     void set_spot_cone(const tinygltf::Light& g, const std::string& label, dev::Light* l);
 
-
     // Thin-lens parameters from the camera's extras, else its node's; 0 when absent.
-    float camera_extra(const tinygltf::Camera& cam, const tinygltf::Node& node, const char* key, const std::string& label);
+    float camera_extra(const tinygltf::Camera& cam, const tinygltf::Node& node, const char* key,
+                       const std::string& label);
 
     const tinygltf::Model& m_;
     LoadContext& ctx_;

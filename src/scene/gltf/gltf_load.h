@@ -26,8 +26,7 @@ Scene load_gltf(const std::string& path);
 
 // Loads glTF JSON text held in memory. base_dir resolves external URIs; empty base_dir allows
 // data: URIs only. display_name starts every error message and becomes Scene::source.
-Scene load_gltf_text(const std::string& json_text, const std::string& base_dir,
-                     const std::string& display_name);
+Scene load_gltf_text(const std::string& json_text, const std::string& base_dir, const std::string& display_name);
 
 // The Cornell box compiled into the binary (scenes/cornell_box.gltf).
 Scene load_default_scene();

@@ -22,8 +22,8 @@ const std::array<float, 256>& srgb_to_linear_table() {
 }
 
 // A number inside a material/texture extension object, or `fallback` when absent.
-double extension_number(const tinygltf::ExtensionMap& extensions, const char* extension,
-                        const char* key, double fallback) {
+double extension_number(const tinygltf::ExtensionMap& extensions, const char* extension, const char* key,
+                        double fallback) {
     auto it = extensions.find(extension);
     if (it == extensions.end() || !it->second.IsObject() || !it->second.Has(key)) return fallback;
     const tinygltf::Value& v = it->second.Get(key);
@@ -58,7 +58,7 @@ void MaterialConverter::convert_materials() {
 }
 
 void MaterialConverter::copy_finite(float* dst, const std::vector<double>& src, size_t n, const std::string& what,
-                 const std::string& label) {
+                                    const std::string& label) {
     if (src.size() != n) ctx_.fail(label + " " + what + " must have " + std::to_string(n) + " components");
     for (size_t c = 0; c < n; ++c) {
         dst[c] = narrow_to_float(src[c]);
@@ -80,17 +80,18 @@ dev::Material MaterialConverter::convert_material(int index) {
     copy_finite(m.base_color, pbr.baseColorFactor, 4, "baseColorFactor", label);
     for (int c = 0; c < 4; ++c) m.base_color[c] = std::clamp(m.base_color[c], 0.f, 1.f);
     copy_finite(m.emission, g.emissiveFactor, 3, "emissiveFactor", label);
-    float strength = finite_factor(
-        extension_number(g.extensions, "KHR_materials_emissive_strength", "emissiveStrength", 1.0),
-        "emissiveStrength", label);
+    float strength =
+        finite_factor(extension_number(g.extensions, "KHR_materials_emissive_strength", "emissiveStrength", 1.0),
+                      "emissiveStrength", label);
     for (int c = 0; c < 3; ++c) // each factor finite as a float, their product may not be
-        m.emission[c] = std::max(0.f, finite_factor(double(m.emission[c]) * strength,
-                                                    "emissiveFactor * emissiveStrength", label));
+        m.emission[c] =
+            std::max(0.f, finite_factor(double(m.emission[c]) * strength, "emissiveFactor * emissiveStrength", label));
     m.metallic = std::clamp(finite_factor(pbr.metallicFactor, "metallicFactor", label), 0.f, 1.f);
     m.roughness = std::clamp(finite_factor(pbr.roughnessFactor, "roughnessFactor", label), 0.f, 1.f);
-    m.transmission = std::clamp(finite_factor(
-        extension_number(g.extensions, "KHR_materials_transmission", "transmissionFactor", 0.0),
-        "transmissionFactor", label), 0.f, 1.f);
+    m.transmission = std::clamp(
+        finite_factor(extension_number(g.extensions, "KHR_materials_transmission", "transmissionFactor", 0.0),
+                      "transmissionFactor", label),
+        0.f, 1.f);
     m.ior = finite_factor(extension_number(g.extensions, "KHR_materials_ior", "ior", 1.5), "ior", label);
     if (m.ior < 1.f) {
         ctx_.warn(label + " ior " + std::to_string(m.ior) + " is below 1; using 1");
@@ -145,7 +146,8 @@ int32_t MaterialConverter::convert_texture(int index) {
         return -1;
     }
     if (s_.texels.size() + texels > kMaxTexels) ctx_.fail("textures exceed 2^26 texels in total");
-    dev::Texture tex{uint32_t(s_.texels.size()), uint32_t(img.width), uint32_t(img.height), wrap_bits(t.sampler, label)};
+    dev::Texture tex{uint32_t(s_.texels.size()), uint32_t(img.width), uint32_t(img.height),
+                     wrap_bits(t.sampler, label)};
     append_linear_texels(img);
     s_.textures.push_back(tex);
     return int32_t(s_.textures.size() - 1);

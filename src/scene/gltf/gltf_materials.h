@@ -30,7 +30,6 @@ private:
 
     dev::Material convert_material(int index);
 
-
     // -- textures --
 
     int32_t texture_for(const tinygltf::TextureInfo& info, const std::string& label);

@@ -49,11 +49,10 @@ bool decode_image(tinygltf::Image* image, const int index, std::string*, std::st
 
 } // namespace
 
-tinygltf::Model parse_model(const std::vector<unsigned char>& bytes, const std::string& base,
-                            LoadContext& ctx) {
+tinygltf::Model parse_model(const std::vector<unsigned char>& bytes, const std::string& base, LoadContext& ctx) {
     bool glb = is_glb(bytes);
-    auto [text, text_size] = glb ? glb_json_chunk(bytes, ctx)
-                                 : std::make_pair(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+    auto [text, text_size] =
+        glb ? glb_json_chunk(bytes, ctx) : std::make_pair(reinterpret_cast<const char*>(bytes.data()), bytes.size());
     prescan_json(text, text_size, base, ctx);
 
     FsGuard guard{base};

@@ -84,8 +84,7 @@ std::string url_decode(const std::string& uri) {
     return out;
 }
 
-void check_uri(const std::string& uri, const std::string& owner, const std::string& base,
-               const LoadContext& ctx) {
+void check_uri(const std::string& uri, const std::string& owner, const std::string& base, const LoadContext& ctx) {
     if (tinygltf::IsDataURI(uri)) return;
     std::string path = url_decode(uri);
     std::string bad = owner + " URI '" + uri + "'";
@@ -106,8 +105,8 @@ void check_uris(const json& root, const std::string& base, const LoadContext& ct
         for (size_t i = 0; i < items.size(); ++i) {
             auto uri = items[i].is_object() ? items[i].find("uri") : items[i].end();
             if (items[i].is_object() && uri != items[i].end() && uri->is_string())
-                check_uri(uri->get<std::string>(), std::string(section, strlen(section) - 1) + " " +
-                          std::to_string(i), base, ctx);
+                check_uri(uri->get<std::string>(), std::string(section, strlen(section) - 1) + " " + std::to_string(i),
+                          base, ctx);
         }
     }
 }
@@ -146,13 +145,11 @@ void check_image_buffer_views(const json& root, const LoadContext& ctx) {
         uint64_t offset = unsigned_member(view, "byteOffset", 0);
         uint64_t length = unsigned_member(view, "byteLength", UINT64_MAX);
         if (offset > size || length > size - offset)
-            ctx.fail("bufferView " + std::to_string(v) + " extends past the end of buffer " +
-                     std::to_string(b));
+            ctx.fail("bufferView " + std::to_string(v) + " extends past the end of buffer " + std::to_string(b));
     }
 }
 
 } // namespace
-
 
 void prescan_json(const char* text, size_t size, const std::string& base, const LoadContext& ctx) {
     json root = parse_json_guarded(text, size, ctx);
@@ -177,10 +174,8 @@ uint32_t read_u32_le(const unsigned char* p) {
 // The JSON chunk of a GLB container (header: magic, version, length; chunk: length, "JSON").
 // tinygltf 2.7.0 checks the BIN chunk's length without its 8-byte chunk header, and then copies
 // up to 8 bytes from past the end of the file: that chunk is checked here too.
-std::pair<const char*, size_t> glb_json_chunk(const std::vector<unsigned char>& bytes,
-                                              const LoadContext& ctx) {
-    if (bytes.size() < 20 || read_u32_le(&bytes[16]) != 0x4E4F534Au)
-        ctx.fail("invalid GLB: no JSON chunk");
+std::pair<const char*, size_t> glb_json_chunk(const std::vector<unsigned char>& bytes, const LoadContext& ctx) {
+    if (bytes.size() < 20 || read_u32_le(&bytes[16]) != 0x4E4F534Au) ctx.fail("invalid GLB: no JSON chunk");
     uint64_t length = read_u32_le(&bytes[12]);
     if (20 + length > bytes.size()) ctx.fail("invalid GLB: JSON chunk past the end of the file");
     uint64_t bin = 20 + length, end = std::min<uint64_t>(read_u32_le(&bytes[8]), bytes.size());

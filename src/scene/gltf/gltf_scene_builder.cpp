@@ -30,8 +30,8 @@ std::vector<int> SceneBuilder::root_nodes() {
     if (m_.scenes.empty()) return parentless_nodes();
     int scene = m_.defaultScene >= 0 ? m_.defaultScene : 0;
     if (size_t(scene) >= m_.scenes.size())
-        ctx_.fail("default scene " + std::to_string(scene) + " out of range (" +
-                  std::to_string(m_.scenes.size()) + " scenes)");
+        ctx_.fail("default scene " + std::to_string(scene) + " out of range (" + std::to_string(m_.scenes.size()) +
+                  " scenes)");
     return m_.scenes[size_t(scene)].nodes;
 }
 
@@ -78,8 +78,8 @@ void SceneBuilder::traverse(const std::vector<int>& roots) {
 // Labels are built only on the way to an error: shared subtrees make this path hot.
 void SceneBuilder::enter(int index, const glm::dmat4& parent, int parent_index, std::vector<Frame>& stack) {
     if (index < 0 || size_t(index) >= m_.nodes.size())
-        ctx_.fail((parent_index < 0 ? std::string("scene root") : node_label(parent_index) + " child") +
-                  " node " + std::to_string(index) + " out of range (" + std::to_string(m_.nodes.size()) + " nodes)");
+        ctx_.fail((parent_index < 0 ? std::string("scene root") : node_label(parent_index) + " child") + " node " +
+                  std::to_string(index) + " out of range (" + std::to_string(m_.nodes.size()) + " nodes)");
     const tinygltf::Node& node = m_.nodes[size_t(index)];
     if (on_path_[size_t(index)]) ctx_.fail("node graph cycle: " + node_label(index) + " is its own ancestor");
     if (++visits_ > kMaxNodeVisits) ctx_.fail("the node hierarchy instances more than 2^20 nodes");
@@ -87,8 +87,7 @@ void SceneBuilder::enter(int index, const glm::dmat4& parent, int parent_index, 
     if (counting_) {
         count_triangles(node.mesh);
     } else {
-        if (!transform_arrays_valid(node))
-            ctx_.fail(node_label(index) + " has a transform array of the wrong length");
+        if (!transform_arrays_valid(node)) ctx_.fail(node_label(index) + " has a transform array of the wrong length");
         glm::dmat4 local = local_matrix(node);
         world = parent * local;
         if (!finite(local) || !finite(world)) ctx_.fail(node_label(index) + " has a non-finite transform");
@@ -130,8 +129,7 @@ void SceneBuilder::count_triangles(int mesh) {
 }
 
 void SceneBuilder::add_mesh(int mesh, const glm::dmat4& world, const std::string& node_label) {
-    if (size_t(mesh) >= m_.meshes.size())
-        ctx_.fail(node_label + " mesh " + std::to_string(mesh) + " out of range");
+    if (size_t(mesh) >= m_.meshes.size()) ctx_.fail(node_label + " mesh " + std::to_string(mesh) + " out of range");
     const tinygltf::Mesh& g = m_.meshes[size_t(mesh)];
     for (size_t p = 0; p < g.primitives.size(); ++p) {
         std::string label = labelled("mesh", mesh, g.name) + " primitive " + std::to_string(p);
@@ -158,7 +156,8 @@ void SceneBuilder::require(bool ok, const std::string& what) {
     if (!ok) ctx_.fail(what);
 }
 
-WorldVertices SceneBuilder::world_vertices(const tinygltf::Primitive& prim, const glm::dmat4& world, const std::string& label) {
+WorldVertices SceneBuilder::world_vertices(const tinygltf::Primitive& prim, const glm::dmat4& world,
+                                           const std::string& label) {
     WorldVertices v;
     AccessorView pos = attribute(prim, "POSITION", label);
     require(pos.components == 3 && pos.component_type == TINYGLTF_COMPONENT_TYPE_FLOAT,
@@ -172,7 +171,8 @@ WorldVertices SceneBuilder::world_vertices(const tinygltf::Primitive& prim, cons
 }
 
 // Normals by the inverse transpose, so they stay perpendicular under non-uniform scale.
-void SceneBuilder::read_normals(const tinygltf::Primitive& prim, const glm::dmat4& world, const std::string& label, WorldVertices* v) {
+void SceneBuilder::read_normals(const tinygltf::Primitive& prim, const glm::dmat4& world, const std::string& label,
+                                WorldVertices* v) {
     AccessorView n = attribute(prim, "NORMAL", label);
     require(n.components == 3 && n.component_type == TINYGLTF_COMPONENT_TYPE_FLOAT,
             label + ": NORMAL must be a FLOAT VEC3 accessor");
@@ -201,7 +201,8 @@ void SceneBuilder::read_uvs(const tinygltf::Primitive& prim, const std::string& 
 }
 
 // Vertex indices of the primitive, three per triangle (a trailing partial triangle dropped).
-std::vector<uint32_t> SceneBuilder::triangle_indices(const tinygltf::Primitive& prim, size_t vertex_count, const std::string& label) {
+std::vector<uint32_t> SceneBuilder::triangle_indices(const tinygltf::Primitive& prim, size_t vertex_count,
+                                                     const std::string& label) {
     std::vector<uint32_t> idx;
     if (prim.indices < 0) {
         if (vertex_count % 3) ctx_.warn(label + ": vertex count is not a multiple of 3");

@@ -70,12 +70,14 @@ private:
     WorldVertices world_vertices(const tinygltf::Primitive& prim, const glm::dmat4& world, const std::string& label);
 
     // Normals by the inverse transpose, so they stay perpendicular under non-uniform scale.
-    void read_normals(const tinygltf::Primitive& prim, const glm::dmat4& world, const std::string& label, WorldVertices* v);
+    void read_normals(const tinygltf::Primitive& prim, const glm::dmat4& world, const std::string& label,
+                      WorldVertices* v);
 
     void read_uvs(const tinygltf::Primitive& prim, const std::string& label, WorldVertices* v);
 
     // Vertex indices of the primitive, three per triangle (a trailing partial triangle dropped).
-    std::vector<uint32_t> triangle_indices(const tinygltf::Primitive& prim, size_t vertex_count, const std::string& label);
+    std::vector<uint32_t> triangle_indices(const tinygltf::Primitive& prim, size_t vertex_count,
+                                           const std::string& label);
 
     void reserve_triangles(size_t count);
 
