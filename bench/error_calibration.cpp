@@ -1,4 +1,4 @@
-// error_calibration: how well the progressive error estimate (src/error_estimate.h) predicts the
+// error_calibration: how well the progressive error estimate (src/integrators/error_estimate.h) predicts the
 // actual error. For each benchmark scene it renders a reference (SPPM, another seed,
 // --ref-passes passes), then an SPPM render with error estimation, and at a few pass counts
 // compares, per pixel and on luminance, the estimated bound with the actual error against the

@@ -368,12 +368,18 @@ int run(int argc, char** argv) {
     if (surf.empty()) throw Error("no primary ray hit the scene");
     const double eps = 1e-4 * 10; // scene is ~10 units across
     const std::vector<TraceRay> diffuse = diffuse_rays(surf, nrays, eps);
-    cases.push_back({"primary closest", primary});
-    if (!quick) cases.push_back({"primary any", with_any_hit(primary, true)});
-    cases.push_back({"diffuse closest", diffuse});
+    auto add = [&](const char* name, std::vector<TraceRay> rays) {
+        Case c;
+        c.name = name;
+        c.rays = std::move(rays);
+        cases.push_back(std::move(c));
+    };
+    add("primary closest", primary);
+    if (!quick) add("primary any", with_any_hit(primary, true));
+    add("diffuse closest", diffuse);
     if (!quick) {
-        cases.push_back({"diffuse any", with_any_hit(diffuse, true)});
-        cases.push_back({"shadow any", shadow_rays(surf, nrays, eps)});
+        add("diffuse any", with_any_hit(diffuse, true));
+        add("shadow any", shadow_rays(surf, nrays, eps));
     }
     if (ab) {
         // Variant B: same scene and rays, its own BVH (triangle order differs) and kernel build.

@@ -1,7 +1,7 @@
 /* bvh_traverse.cl: closest-hit and any-hit ray queries against the wide BVH built by
- * src/bvh_build.cpp. One traversal routine serves both (any_hit is a flag, not a second copy).
+ * src/scene/bvh_build.cpp. One traversal routine serves both (any_hit is a flag, not a second copy).
  *
- * Triangles: 3 float4 each, v0, e1 = v1 - v0, e2 = v2 - v0 (src/bvh_build.cpp, bvh_triangle_data).
+ * Triangles: 3 float4 each, v0, e1 = v1 - v0, e2 = v2 - v0 (src/scene/bvh_build.cpp, bvh_triangle_data).
  * Node test: BVH_WIDTH slab tests at once on the SoA child bounds, nearest child first, the others on
  * a private stack with their entry distance so that closest-hit skips what lies beyond its hit.
  * Triangle test: the watertight test of Woop, Benthin and Wald 2013 (JCGT 2(1)). */

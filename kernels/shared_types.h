@@ -2,7 +2,7 @@
  *
  * Included by OpenCL C kernels and by C++ host code (inside namespace clppm::dev). Scalar fields
  * only: float3/float4 differ in size and alignment between host and device, so vectors are
- * spelled as float arrays. Host-side static_asserts in src/shared_types_check.cpp pin every
+ * spelled as float arrays. Host-side static_asserts in src/device/shared_types_check.cpp pin every
  * size and offset. */
 #ifndef CLPPM_SHARED_TYPES_H
 #define CLPPM_SHARED_TYPES_H
@@ -36,7 +36,7 @@ typedef struct {
     u32 material;
 } TriShading; /* 64 bytes */
 
-/* BVH node: see kernels/bvh_traverse.cl for the traversal and src/bvh_build.cpp for the build.
+/* BVH node: see kernels/bvh_traverse.cl for the traversal and src/scene/bvh_build.cpp for the build.
  * A BVH_WIDTH-wide node: child bounds stored as SoA so one node test is BVH_WIDTH slab tests in
  * one vector operation per plane. 8 (one AVX float8 per plane on PoCL's CPU device) visits a
  * third fewer nodes than 4 and traced incoherent rays 15-20% faster in bench/traversal_bench;

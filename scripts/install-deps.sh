@@ -8,6 +8,7 @@ required=(
   pocl-opencl-icd ocl-icd-opencl-dev opencl-headers opencl-clhpp-headers clinfo
   libglm-dev libopenexr-dev libtinygltf-dev nlohmann-json3-dev libstb-dev
   libgtest-dev googletest cmake g++ make pkg-config python3
+  clang-format cppcheck
 )
 # Optional, for the benchmarks only: Embree (the CPU traversal yardstick) and gnuplot (plots).
 optional=(libembree-dev gnuplot-nox)

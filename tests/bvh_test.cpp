@@ -1,4 +1,4 @@
-// The BVH (src/bvh_build.cpp) and its traversal (kernels/bvh_traverse.cl, run through
+// The BVH (src/scene/bvh_build.cpp) and its traversal (kernels/bvh_traverse.cl, run through
 // kernels/trace_rays.cl on the test device) against a brute-force double-precision reference.
 #include <gtest/gtest.h>
 
@@ -460,7 +460,8 @@ std::unique_ptr<DeviceContext> BvhTest::dc_;
 std::unique_ptr<RayTracer> BvhTest::tracer_;
 
 // Rays from inside a closed mesh towards `targets` or in random directions: all must hit.
-std::vector<TraceRay> rays_from_inside(const Tris& t, double inner_radius, int n, const std::vector<D3>& targets) {
+std::vector<TraceRay> rays_from_inside(const Tris& /*mesh*/, double inner_radius, int n,
+                                       const std::vector<D3>& targets) {
     std::vector<TraceRay> rays;
     for (int i = 0; i < n; ++i) {
         const D3 o = random_dir() * (inner_radius * uniform());

@@ -308,7 +308,7 @@ TEST(LightEmission, LightsArePickedInProportionToPower) {
 // emits: Le A pi per emitting side, 4 pi I, for a spot 2 pi I ((1 - cos_inner) + (cos_inner -
 // cos_outer) / 3) under glTF's squared falloff (the integral of clamp((c - co)/(ci - co))^2 dc),
 // E pi R^2 for the directional light's disc. Relative 1e-5: float storage of the power.
-// This test found collect_lights (src/render_scene.cpp) storing the linear ramp's integral,
+// This test found collect_lights (src/scene/device_scene.cpp) storing the linear ramp's integral,
 // 2 pi I (1 - (ci + co) / 2), for spots: images stayed unbiased (the photon flux divides by the
 // same pick probability) but light selection over-weighted spots by 18% here.
 TEST(LightEmission, LightPowerIsTheEmittedPower) {

@@ -54,7 +54,9 @@ TEST(Memory, EstimateMatchesWhatARenderAllocates) {
         } else {
             EXPECT_NEAR(ratio, 1.0, 0.02) << to_string(integ);
         }
-        if (integ != Integrator::PT) EXPECT_LE(st.photon_bytes, m.photons) << to_string(integ);
+        if (integ != Integrator::PT) {
+            EXPECT_LE(st.photon_bytes, m.photons) << to_string(integ);
+        }
     }
 }
 

@@ -155,7 +155,7 @@ TEST_P(BothForms, DistributedEffectOptions) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Options, BothForms, ::testing::Values(false, true),
-                         [](const auto& info) { return info.param ? "Equals" : "Separate"; });
+                         [](const auto& p) { return p.param ? "Equals" : "Separate"; });
 
 TEST(Options, FlagsAndShortForms) {
     Options o = parse_options(Args{"-o", "a.exr", "--no-png", "--list-devices", "--quiet", "scene.glb"});

@@ -90,7 +90,9 @@ TEST(PpmUpdate, MatchesLongDoubleReferenceForRandomPhotonCounts) {
             EXPECT_NEAR(got[i].n / double(ref.n), 1.0, 1e-12) << "alpha " << alpha;
             EXPECT_NEAR(got[i].r2 / double(ref.r2), 1.0, 1e-10) << "alpha " << alpha;
             EXPECT_NEAR(got[i].tau[0] / double(ref.tau), 1.0, 1e-10) << "alpha " << alpha;
-            if (alpha == 1.0) EXPECT_EQ(got[i].r2, 0.1 * 0.1) << "alpha 1 is photon mapping: the radius never shrinks";
+            if (alpha == 1.0) {
+                EXPECT_EQ(got[i].r2, 0.1 * 0.1) << "alpha 1 is photon mapping: the radius never shrinks";
+            }
         }
     }
 }

@@ -12,8 +12,8 @@ using namespace clppm::test;
 
 TEST(Specialization, SameImageAsGenericKernelsOnEveryShippedScene) {
     const std::string scenes = CLPPM_SCENES_DIR;
-    for (const std::string scene : {std::string(), scenes + "/caustic.gltf", scenes + "/furnace.gltf",
-                                    scenes + "/plane_point_light.gltf", scenes + "/bunny_100k.gltf"}) {
+    for (const std::string& scene : {std::string(), scenes + "/caustic.gltf", scenes + "/furnace.gltf",
+                                     scenes + "/plane_point_light.gltf", scenes + "/bunny_100k.gltf"}) {
         // SPPM shares every kernel that specialisation touches with PPM; one scene checks it too.
         for (const char* integrator : {"ppm", "sppm"}) {
             if (std::string(integrator) == "sppm" && !scene.empty()) continue;

@@ -3,7 +3,8 @@
 # repository root, ignored by git). Needs clang++ with libFuzzer (Debian: clang libclang-rt-14-dev)
 # and the libraries clppm builds with (tinygltf, nlohmann-json, glm, stb headers).
 #
-# The loader (src/gltf_load.cpp, src/embedded_files.cpp and the embedded default scene), tinygltf
+# The loader (src/scene/gltf/*.cpp, src/scene/light_power.cpp, src/util/embedded_files.cpp and the
+# embedded default scene), tinygltf
 # and stb_image are all compiled with -fsanitize=fuzzer,address,undefined; nothing links the
 # prebuilt libtinygltf, so every line that touches the input is instrumented. To replay files
 # under the sanitizers without fuzzing: build-fuzz/gltf_fuzz FILE...
@@ -32,8 +33,10 @@ compile() { # source object [extra flags]
     objs="$objs $obj"
 }
 cov=-fsanitize=fuzzer-no-link
-compile "$root/src/gltf_load.cpp" "$out/obj/gltf_load.o" $cov
-compile "$root/src/embedded_files.cpp" "$out/obj/embedded_files.o" $cov
+for src in "$root"/src/scene/gltf/*.cpp "$root/src/scene/light_power.cpp"; do
+    compile "$src" "$out/obj/$(basename "$src" .cpp).o" $cov
+done
+compile "$root/src/util/embedded_files.cpp" "$out/obj/embedded_files.o" $cov
 compile "$out/obj/embedded_files_generated.cpp" "$out/obj/embedded_files_generated.o" $cov
 compile "$here/tinygltf_impl.cpp" "$out/obj/tinygltf_impl.o" $cov -w
 compile "$here/gltf_fuzz.cpp" "$out/obj/gltf_fuzz.o" $cov

@@ -1,4 +1,4 @@
-// libFuzzer target for the glTF loader (src/gltf_load.cpp). Built by tests/fuzz/build.sh with
+// libFuzzer target for the glTF loader (src/scene/gltf/). Built by tests/fuzz/build.sh with
 // -fsanitize=fuzzer,address,undefined; run by tests/fuzz/run.sh (see tests/fuzz/README.md).
 //
 // Every input goes through the loader three ways:

@@ -1,0 +1,19 @@
+#!/usr/bin/env bash
+# The fast part of the suite in a Debug build with AddressSanitizer and UndefinedBehaviorSanitizer
+# (build-sanitize/): every unit test of host code and kernels except the long end-to-end renders
+# (ppm, sppm, extremes, cli, error estimation, specialisation, several devices), which the
+# Release suite (scripts/test.sh) runs. Any sanitizer report fails the test that caused it.
+set -euo pipefail
+cd "$(dirname "${BASH_SOURCE[0]}")/.."
+
+./scripts/install-deps.sh
+jobs=$(nproc 2>/dev/null || echo 2)
+cmake -S . -B build-sanitize -DCMAKE_BUILD_TYPE=Debug -DCLPPM_SANITIZE=ON -DCLPPM_BUILD_BENCH=OFF
+cmake --build build-sanitize -j "$jobs"
+# PoCL and LLVM are not instrumented and keep allocations for the process's lifetime: leaks are
+# reported only from our own code (suppressions in scripts/lsan.supp).
+export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:strict_string_checks=1
+export LSAN_OPTIONS="suppressions=$PWD/scripts/lsan.supp:print_suppressions=0"
+export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
+slow='^(ppm_test|sppm_test|extremes_test|cli_test|error_estimate_test|specialization_test|multi_device_test)\.'
+exec ctest --test-dir build-sanitize --output-on-failure -j "$jobs" --timeout 1800 -E "$slow"
