@@ -82,6 +82,12 @@ double region_mean(const Image& img, int x0, int y0, int x1, int y1, int c) {
     return n ? sum / double(n) : 0.0;
 }
 
+double time_scale() {
+    const char* e = std::getenv("CLPPM_TEST_TIME_SCALE");
+    const double s = e && *e ? std::strtod(e, nullptr) : 1.0;
+    return s >= 1.0 ? s : 1.0;
+}
+
 cl::Program build_test_program(const DeviceContext& dc, const std::string& source) {
     cl::Program program(dc.context, source);
     try {

@@ -39,6 +39,10 @@ namespace clppm::test {
 // Renders `scene` in this process on test_device() for `passes` passes and returns the image.
 Image render_passes(Scene scene, const RenderSettings& settings, uint64_t passes, IntegratorStats* stats = nullptr);
 
+// The factor by which a test's hang guard (a bound no healthy run comes near) is stretched:
+// $CLPPM_TEST_TIME_SCALE, default 1; scripts/test_sanitized.sh sets it for its slower build.
+double time_scale();
+
 // A double-precision 3-vector for the host references.
 struct D3 {
     double x, y, z;
