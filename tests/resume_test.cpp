@@ -85,6 +85,7 @@ TEST(Resume, InterruptWritesEverythingAndResumesExactly) {
             << out;
         Image img = read_exr(d + "/i.exr");
         EXPECT_EQ(count_nonfinite(img), 0u);
+        EXPECT_EQ(img.attributes["clppm:interrupted"], "yes") << "the EXR must say it was interrupted";
         std::string stats = slurp(d + "/s.json");
         EXPECT_NE(stats.find("\"interrupted\": true"), std::string::npos) << stats;
         size_t at = stats.find("\"passes\": ");

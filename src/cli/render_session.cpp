@@ -32,9 +32,13 @@ struct Clock {
     double seconds() const { return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); }
 };
 
+// What clppm is doing: --quiet hides it.
 void note(const Options& opt, const std::string& msg) {
     if (!opt.quiet) std::fprintf(stderr, "clppm: %s\n", msg.c_str());
 }
+
+// What the user must know about the result: always shown, --quiet or not.
+void warn(const std::string& msg) { std::fprintf(stderr, "clppm: warning: %s\n", msg.c_str()); }
 
 RenderSettings settings_from(const Options& o) {
     RenderSettings s;
@@ -106,6 +110,17 @@ struct ErrorTracking {
         return integ && opt.target_error > 0 && last.image_error <= opt.target_error;
     }
 };
+
+// The integrator's image, with the EXR header attributes that say how it came to be (as the stats
+// JSON does): version, integrator, passes, and whether the render was interrupted.
+Image current_image(IntegratorBase& integ, int signal) {
+    Image img = integ.image();
+    img.attributes["clppm:version"] = kVersion;
+    img.attributes["clppm:integrator"] = integ.name();
+    img.attributes["clppm:passes"] = std::to_string(integ.stats().passes);
+    img.attributes["clppm:interrupted"] = signal ? "yes" : "no";
+    return img;
+}
 
 // The main images, with the per-pixel relative error bound as an "error" layer when estimating.
 void save_images(const Options& opt, const Image& img, const ErrorTracking& errors) {
@@ -198,6 +213,7 @@ Json make_stats(const Options& opt, const DeviceContext& dc, const DeviceScene& 
     j["device_photons_last_pass"] = st.device_photons;
     j["degenerate_triangles_skipped"] = scene.degenerate_triangles_skipped;
     j["nonfinite_pixels"] = count_nonfinite(img);
+    j["negative_pixels"] = count_negative(img);
     j["mean_radiance"] = mean_radiance(img);
     j["interrupted"] = signal != 0;
     return j;
@@ -205,10 +221,10 @@ Json make_stats(const Options& opt, const DeviceContext& dc, const DeviceScene& 
 
 Scene load_scene(const Options& opt) {
     Scene scene = opt.scene.empty() ? load_default_scene() : load_gltf(opt.scene);
-    for (const std::string& w : scene.warnings) note(opt, "warning: " + scene.source + ": " + w);
+    for (const std::string& w : scene.warnings) warn(scene.source + ": " + w);
     if (scene.degenerate_triangles_skipped)
-        note(opt, scene.source + ": skipped " + std::to_string(scene.degenerate_triangles_skipped) +
-                      " degenerate triangle(s)");
+        warn(scene.source + ": skipped " + std::to_string(scene.degenerate_triangles_skipped) +
+             " degenerate triangle(s)");
     if (scene.meshes_without_normals)
         note(opt, scene.source + ": computed normals for " + std::to_string(scene.meshes_without_normals) +
                       " primitive(s) without normals");
@@ -277,7 +293,7 @@ int render_session(const Options& opt) {
     SecondaryDevices secondaries{std::vector<DeviceInfo>(chosen.begin() + 1, chosen.end()), program_file,
                                  build_options};
     if (!secondaries.devices.empty() && settings.integrator == Integrator::PT) {
-        note(opt, "warning: the path tracer runs on the first device only");
+        warn("the path tracer runs on the first device only");
         secondaries.devices.clear();
     }
     for (const DeviceInfo& d : secondaries.devices) {
@@ -299,9 +315,8 @@ int render_session(const Options& opt) {
     integ->prepare();
     if (!opt.resume.empty()) {
         if (resume_from.header.value("device", std::string()) != dc.info.name + " / " + dc.info.driver_version)
-            note(opt, "warning: resuming on another device than the checkpoint's (" +
-                          resume_from.header.value("device", std::string("unknown")) +
-                          "): the image will not be bit-identical");
+            warn("resuming on another device than the checkpoint's (" +
+                 resume_from.header.value("device", std::string("unknown")) + "): the image will not be bit-identical");
         integ->restore(resume_from);
         note(opt, "resumed " + opt.resume + " at pass " + std::to_string(integ->stats().passes));
     }
@@ -323,7 +338,7 @@ int render_session(const Options& opt) {
         errors.update(opt, progress, st.passes, render_clock.seconds());
         progress.update(st.passes, st.photons_emitted, st.mean_radius, render_clock.seconds());
         if (opt.progressive_output > 0 && st.passes % opt.progressive_output == 0)
-            save_images(opt, integ->image(), errors);
+            save_images(opt, current_image(*integ, 0), errors);
         if (!opt.checkpoint.empty() && ((opt.checkpoint_every > 0 && st.passes % opt.checkpoint_every == 0) ||
                                         render_clock.seconds() - last_checkpoint >= opt.checkpoint_interval)) {
             save_checkpoint(opt, *integ, fingerprint, dc);
@@ -333,8 +348,14 @@ int render_session(const Options& opt) {
     const double render_s = render_clock.seconds();
     const IntegratorStats& st = integ->stats();
     progress.finish(st.passes, st.photons_emitted, st.mean_radius, render_s);
+    if (signal && st.passes == 0) {
+        // Stopped before a single pass (during the kernel build, say): an image of zero passes
+        // must not replace whatever the outputs hold.
+        warn("interrupted before the first pass: nothing written, " + opt.output + " left as it was");
+        return interrupted_exit_status(signal);
+    }
 
-    Image img = integ->image();
+    Image img = current_image(*integ, signal);
     save_images(opt, img, errors);
     if (!opt.error_output.empty() && !errors.last.relative.empty()) save_error_images(opt, errors.last);
     if (errors.integ) {
@@ -344,7 +365,12 @@ int render_session(const Options& opt) {
         note(opt, line);
     }
     if (!opt.checkpoint.empty()) save_checkpoint(opt, *integ, fingerprint, dc);
-    if (size_t bad = count_nonfinite(img)) note(opt, "warning: " + std::to_string(bad) + " pixel(s) are NaN or Inf");
+    // Radiance is finite and never negative: a pixel that is not is a defect, said loudly (the
+    // image is kept, so nothing rendered is lost) and the exit status says the render failed.
+    const size_t nonfinite = count_nonfinite(img), negative = count_negative(img);
+    if (nonfinite || negative)
+        std::fprintf(stderr, "clppm: error: %zu pixel(s) are NaN or Inf and %zu negative in %s (a renderer defect)\n",
+                     nonfinite, negative, opt.output.c_str());
     if (!opt.stats_json.empty()) {
         Json j = make_stats(opt, dc, ds, scene, *integ, build, render_s, total.seconds(), img, signal);
         if (errors.integ)
@@ -357,11 +383,11 @@ int render_session(const Options& opt) {
                   (opt.error_output.empty() ? std::string() : " and " + opt.error_output) +
                   (opt.checkpoint.empty() ? std::string() : " and " + opt.checkpoint));
     if (signal) {
-        note(opt, "interrupted after pass " + std::to_string(st.passes) +
-                      (opt.checkpoint.empty() ? std::string() : "; continue with --resume " + opt.checkpoint));
+        warn("interrupted after pass " + std::to_string(st.passes) +
+             (opt.checkpoint.empty() ? std::string() : "; continue with --resume " + opt.checkpoint));
         return interrupted_exit_status(signal);
     }
-    return 0;
+    return nonfinite || negative ? 1 : 0;
 }
 
 } // namespace clppm

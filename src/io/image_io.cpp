@@ -12,6 +12,7 @@
 #include <ImfIO.h>
 #include <ImfInputFile.h>
 #include <ImfOutputFile.h>
+#include <ImfStringAttribute.h>
 #include <stb_image_write.h>
 
 #include "util/error.h"
@@ -70,6 +71,7 @@ void check_layer(const std::string& path, const Image& img, const ExrLayer& laye
 std::string encode_exr(const std::string& path, const Image& img, const std::vector<ExrLayer>& layers) {
     Imf::Header header(img.width, img.height);
     header.compression() = Imf::ZIP_COMPRESSION;
+    for (const auto& [name, value] : img.attributes) header.insert(name, Imf::StringAttribute(value));
     Imf::FrameBuffer frame;
     const size_t pixel = 3 * sizeof(float);
     const char* names[3] = {"R", "G", "B"};
@@ -166,6 +168,9 @@ Image read_exr(const std::string& path) {
             if (!file.header().channels().findChannel(name))
                 throw Error("cannot read " + path + ": no " + name + " channel");
         read_rgb(file, img);
+        for (auto it = file.header().begin(); it != file.header().end(); ++it)
+            if (const auto* s = dynamic_cast<const Imf::StringAttribute*>(&it.attribute()))
+                img.attributes[it.name()] = s->value();
     } catch (const Error&) {
         throw;
     } catch (const std::exception& e) {
@@ -182,6 +187,13 @@ std::string png_path_for(const std::string& exr_path) {
 size_t count_nonfinite(const Image& img) {
     size_t count = 0;
     for (size_t i = 0; i + 2 < img.rgb.size(); i += 3) count += !is_finite_pixel(&img.rgb[i]);
+    return count;
+}
+
+size_t count_negative(const Image& img) {
+    size_t count = 0;
+    for (size_t i = 0; i + 2 < img.rgb.size(); i += 3)
+        count += img.rgb[i] < 0.f || img.rgb[i + 1] < 0.f || img.rgb[i + 2] < 0.f;
     return count;
 }
 

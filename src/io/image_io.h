@@ -3,6 +3,7 @@
 // truncated file and never destroys the previous one.
 #pragma once
 #include <cstddef>
+#include <map>
 #include <string>
 #include <utility>
 #include <vector>
@@ -14,6 +15,9 @@ namespace clppm {
 struct Image {
     int width = 0, height = 0;
     std::vector<float> rgb; // 3 floats per pixel, row-major, top row first, linear radiance
+    // Written to the EXR header as string attributes ("clppm:passes", "clppm:interrupted", ...)
+    // and read back by read_exr.
+    std::map<std::string, std::string> attributes;
 };
 
 // A single-channel float layer stored beside R,G,B (e.g. "error"): width*height values.
@@ -39,6 +43,8 @@ unsigned char linear_to_srgb8(float linear);
 
 // Number of pixels with at least one NaN or Inf channel.
 size_t count_nonfinite(const Image& img);
+// Pixels with a negative channel (radiance never is: a renderer defect).
+size_t count_negative(const Image& img);
 
 // Mean over all pixels and channels, accumulated in double. Non-finite values are included on
 // purpose: a NaN in the image makes the mean NaN rather than hiding it. 0 for an empty image.

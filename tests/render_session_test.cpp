@@ -1,0 +1,67 @@
+// What a render says and leaves behind (src/cli/render_session.cpp): warnings reach stderr even
+// with --quiet, an interrupt before the first pass replaces no earlier image, and the EXR header
+// records how the image came to be.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <sstream>
+
+#include "io/image_io.h"
+#include "test_util.h"
+
+using namespace clppm;
+using namespace clppm::test;
+
+namespace {
+
+const std::string kArgs = " --width 24 --height 24 --photons 4000 --no-png";
+
+std::string slurp(const std::string& path) {
+    std::ifstream f(path, std::ios::binary);
+    std::ostringstream ss;
+    ss << f.rdbuf();
+    return ss.str();
+}
+
+} // namespace
+
+// --quiet silences the progress display, never what the user must know about the result.
+TEST(RenderSession, QuietStillShowsWarnings) {
+    std::string d = make_temp_dir("quiet"), out;
+    // lights.gltf gives its point light a range, which clppm ignores with a warning.
+    ASSERT_EQ(run_clppm(std::string(CLPPM_TEST_DATA) + "/lights.gltf" + kArgs + " --quiet --passes 1 -o " + d + "/q.exr",
+                        &out),
+              0)
+        << out;
+    EXPECT_NE(out.find("clppm: warning:"), std::string::npos) << out;
+    EXPECT_NE(out.find("range is ignored"), std::string::npos) << out;
+    EXPECT_EQ(out.find("device ["), std::string::npos) << "--quiet must hide the progress notes: " << out;
+    EXPECT_EQ(out.find("wrote "), std::string::npos) << out;
+}
+
+// Ctrl-C while the kernels build (no cache anywhere: the build takes seconds) stops the render
+// before its first pass: the image, stats and checkpoint at the output paths stay as they were.
+TEST(RenderSession, InterruptBeforeTheFirstPassReplacesNothing) {
+    std::string d = make_temp_dir("early_interrupt"), out;
+    const std::string before = "an earlier render's image";
+    for (const char* name : {"/i.exr", "/s.json"}) std::ofstream(d + name) << before;
+    const std::string run = "CLPPM_NO_CACHE=1 POCL_KERNEL_CACHE=0 " + clppm_binary() + kArgs + " --quiet --passes 5 -o " +
+                            d + "/i.exr --stats-json " + d + "/s.json --checkpoint " + d + "/c.ck";
+    const std::string script = run + " & pid=$!; sleep 0.5; kill -INT $pid; wait $pid; echo \"status=$?\"";
+    ASSERT_EQ(run_command("bash -c '" + script + "'", &out), 0) << out;
+    EXPECT_NE(out.find("status=130"), std::string::npos) << out;
+    EXPECT_NE(out.find("interrupted before the first pass: nothing written"), std::string::npos) << out;
+    EXPECT_EQ(slurp(d + "/i.exr"), before);
+    EXPECT_EQ(slurp(d + "/s.json"), before);
+    EXPECT_FALSE(std::ifstream(d + "/c.ck").good()) << "no checkpoint of zero passes";
+}
+
+TEST(RenderSession, ExrHeaderRecordsPassesIntegratorAndInterruption) {
+    std::string d = make_temp_dir("attributes"), out;
+    ASSERT_EQ(run_clppm(kArgs + " --quiet --integrator sppm --passes 3 -o " + d + "/a.exr", &out), 0) << out;
+    Image img = read_exr(d + "/a.exr");
+    EXPECT_EQ(img.attributes["clppm:passes"], "3");
+    EXPECT_EQ(img.attributes["clppm:integrator"], "sppm");
+    EXPECT_EQ(img.attributes["clppm:interrupted"], "no");
+    EXPECT_FALSE(img.attributes["clppm:version"].empty());
+}
