@@ -26,6 +26,11 @@ bool gather_accepts(__constant GridInfo* g, __global const Photon* ph, float3 x,
     return dot(n, oct_decode(ph->normal_oct)) > 0.0f;
 }
 
+/* The host sizes grid cells to at least a quarter of the largest radius (PhotonMap::build_grid), so
+ * a sphere spans at most 9 cells per axis; this bound, never reached by a valid render, keeps any
+ * gather finite in time whatever radius reaches it. */
+#define GATHER_MAX_CELLS_PER_AXIS 16
+
 /* Runs the statement(s) `...` for every photon of the grid that gather_accepts for a hit point at
  * x with normal n and squared radius r2, with `ph` (the photon), `d2` (its squared distance) and
  * `wi` (its incoming direction) in scope. OpenCL C has no lambdas: the per-photon action is the
@@ -33,7 +38,8 @@ bool gather_accepts(__constant GridInfo* g, __global const Photon* ph, float3 x,
 #define GATHER_FOR_EACH_PHOTON(g, sorted, starts, x, n, r2, ...)                                                    \
     do {                                                                                                           \
         const float gather_r_ = sqrt(r2);                                                                          \
-        const int3 gather_c0_ = grid_cell(g, (x) - gather_r_), gather_c1_ = grid_cell(g, (x) + gather_r_);         \
+        const int3 gather_c0_ = grid_cell(g, (x) - gather_r_);                                                     \
+        const int3 gather_c1_ = min(grid_cell(g, (x) + gather_r_), gather_c0_ + (GATHER_MAX_CELLS_PER_AXIS - 1));  \
         for (int cz = gather_c0_.z; cz <= gather_c1_.z; ++cz)                                                      \
             for (int cy = gather_c0_.y; cy <= gather_c1_.y; ++cy)                                                  \
                 for (int cx = gather_c0_.x; cx <= gather_c1_.x; ++cx) {                                            \

@@ -5,6 +5,9 @@
 
 #include <fstream>
 #include <sstream>
+#include <string>
+
+#include <nlohmann/json.hpp>
 
 #include "io/image_io.h"
 #include "test_util.h"
@@ -29,9 +32,10 @@ std::string slurp(const std::string& path) {
 TEST(RenderSession, QuietStillShowsWarnings) {
     std::string d = make_temp_dir("quiet"), out;
     // lights.gltf gives its point light a range, which clppm ignores with a warning.
-    ASSERT_EQ(run_clppm(std::string(CLPPM_TEST_DATA) + "/lights.gltf" + kArgs + " --quiet --passes 1 -o " + d + "/q.exr",
-                        &out),
-              0)
+    ASSERT_EQ(
+        run_clppm(std::string(CLPPM_TEST_DATA) + "/lights.gltf" + kArgs + " --quiet --passes 1 -o " + d + "/q.exr",
+                  &out),
+        0)
         << out;
     EXPECT_NE(out.find("clppm: warning:"), std::string::npos) << out;
     EXPECT_NE(out.find("range is ignored"), std::string::npos) << out;
@@ -45,8 +49,9 @@ TEST(RenderSession, InterruptBeforeTheFirstPassReplacesNothing) {
     std::string d = make_temp_dir("early_interrupt"), out;
     const std::string before = "an earlier render's image";
     for (const char* name : {"/i.exr", "/s.json"}) std::ofstream(d + name) << before;
-    const std::string run = "CLPPM_NO_CACHE=1 POCL_KERNEL_CACHE=0 " + clppm_binary() + kArgs + " --quiet --passes 5 -o " +
-                            d + "/i.exr --stats-json " + d + "/s.json --checkpoint " + d + "/c.ck";
+    const std::string run = "CLPPM_NO_CACHE=1 POCL_KERNEL_CACHE=0 " + clppm_binary() + kArgs +
+                            " --quiet --passes 5 -o " + d + "/i.exr --stats-json " + d + "/s.json --checkpoint " + d +
+                            "/c.ck";
     const std::string script = run + " & pid=$!; sleep 0.5; kill -INT $pid; wait $pid; echo \"status=$?\"";
     ASSERT_EQ(run_command("bash -c '" + script + "'", &out), 0) << out;
     EXPECT_NE(out.find("status=130"), std::string::npos) << out;
@@ -64,4 +69,39 @@ TEST(RenderSession, ExrHeaderRecordsPassesIntegratorAndInterruption) {
     EXPECT_EQ(img.attributes["clppm:integrator"], "sppm");
     EXPECT_EQ(img.attributes["clppm:interrupted"], "no");
     EXPECT_FALSE(img.attributes["clppm:version"].empty());
+}
+
+// A radius beyond the scene would gather every photon everywhere (and an infinite one used to
+// hang the gather): refused before rendering, naming the scene's size.
+TEST(RenderSession, RadiusBeyondTheSceneIsRefused) {
+    std::string d = make_temp_dir("radius"), out;
+    for (const char* r : {"1e20", "1e300", "100"}) {
+        EXPECT_EQ(run_clppm(kArgs + " --quiet --passes 1 --radius " + r + " -o " + d + "/r.exr", &out), 1) << r;
+        EXPECT_NE(out.find("larger than the scene's bounding diameter"), std::string::npos) << out;
+    }
+    EXPECT_EQ(run_clppm(kArgs + " --quiet --passes 1 --radius 0.05 -o " + d + "/r.exr", &out), 0) << out;
+}
+
+// A scene too small (or too large) for float areas renders black or overflows: refused with its
+// scale instead. The default scene under a root node scaled by 1e-19, and by 1e-7 (renders).
+TEST(RenderSession, SceneOutsideTheFloatRangeIsRefusedNamingItsScale) {
+    std::string d = make_temp_dir("scale"), out;
+    const nlohmann::json box = nlohmann::json::parse(slurp(std::string(CLPPM_SCENES_DIR) + "/cornell_box.gltf"));
+    for (const char* scale : {"1e-19", "1e-7"}) {
+        // A new root node, scaled, whose children are the scene's roots (the camera included).
+        nlohmann::json gltf = box;
+        nlohmann::json& scene = gltf["scenes"][gltf.value("scene", 0)];
+        const double k = std::stod(scale);
+        gltf["nodes"].push_back({{"scale", {k, k, k}}, {"children", scene["nodes"]}});
+        scene["nodes"] = {gltf["nodes"].size() - 1};
+        const std::string text = gltf.dump();
+        std::ofstream(d + "/s.gltf") << text;
+        const int status = run_clppm(d + "/s.gltf" + kArgs + " --quiet --passes 1 -o " + d + "/s.exr", &out);
+        if (std::string(scale) == "1e-19") {
+            EXPECT_EQ(status, 1) << out;
+            EXPECT_NE(out.find("bounding sphere has radius 1.73e-19"), std::string::npos) << out;
+        } else {
+            EXPECT_EQ(status, 0) << out;
+        }
+    }
 }

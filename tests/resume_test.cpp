@@ -3,10 +3,15 @@
 // once, and a checkpoint that does not belong to this render is refused with the reason.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <fstream>
+#include <functional>
 #include <sstream>
+#include <vector>
 
+#include "io/checkpoint.h"
 #include "io/image_io.h"
+#include "shared_types.h"
 #include "test_util.h"
 
 using namespace clppm;
@@ -113,4 +118,53 @@ TEST(Resume, SecondInterruptQuitsAtOnceWithoutCorruptingFiles) {
     Image img = read_exr(d + "/i.exr");
     EXPECT_EQ(img.width, 64);
     EXPECT_EQ(count_nonfinite(img), 0u);
+}
+
+// A checkpoint whose checksum is right but whose fields no render can produce is refused, naming
+// the field: negative radii would hang the gather, wrong counters would change the image.
+TEST(Resume, ImpossibleCheckpointFieldsAreRefusedNamingThem) {
+    for (const char* integrator : {"ppm", "sppm", "pt"}) {
+        std::string d = make_temp_dir("crafted"), out;
+        const std::string a = kArgs + " --integrator " + integrator;
+        ASSERT_EQ(run_clppm(a + " --passes 2 -o " + d + "/a.exr --checkpoint " + d + "/c.ck", &out), 0) << out;
+        const Checkpoint good = read_checkpoint(d + "/c.ck");
+        struct Craft {
+            const char* field;
+            std::function<void(Checkpoint&)> edit;
+        };
+        std::vector<Craft> crafts = {
+            {"passes", [](Checkpoint& c) { c.header["passes"] = -3; }},
+            // PT emits none; the photon integrators emit --photons per pass.
+            {"photons_emitted",
+             [pt = std::string(integrator) == "pt"](Checkpoint& c) { c.header["photons_emitted"] = pt ? 7 : 0; }},
+            {"phase_seconds", [](Checkpoint& c) { c.header["phase_seconds"]["gather"] = -1.0; }},
+        };
+        if (std::string(integrator) != "pt") {
+            crafts.push_back({"typical_radius", [](Checkpoint& c) { c.header["typical_radius"] = -0.5; }});
+            crafts.push_back({"max_radius", [](Checkpoint& c) { c.header["max_radius"] = 1e30; }});
+            crafts.push_back({"initial_radius", [](Checkpoint& c) { c.header["initial_radius"] = -1.0; }});
+            crafts.push_back({"stats[0]", [](Checkpoint& c) {
+                                  auto s =
+                                      c.get<dev::HitStats>("stats", c.blobs["stats"].size() / sizeof(dev::HitStats));
+                                  s[0].r2 = std::nan("");
+                                  c.put("stats", s);
+                              }});
+        } else {
+            crafts.push_back({"accum[", [](Checkpoint& c) {
+                                  auto v = c.get<double>("accum", c.blobs["accum"].size() / sizeof(double));
+                                  v[1] = -1;
+                                  c.put("accum", v);
+                              }});
+        }
+        for (const Craft& craft : crafts) {
+            Checkpoint bad = good;
+            craft.edit(bad);
+            write_checkpoint(d + "/bad.ck", bad);
+            EXPECT_EQ(run_clppm(a + " --passes 4 -o " + d + "/b.exr --resume " + d + "/bad.ck", &out), 1)
+                << integrator << " " << craft.field << ": " << out;
+            EXPECT_NE(out.find(std::string("checkpoint field ") + craft.field), std::string::npos)
+                << integrator << ": " << out;
+            EXPECT_EQ(out.find('\n'), out.size() - 1) << "one line: " << out;
+        }
+    }
 }

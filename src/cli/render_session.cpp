@@ -269,6 +269,14 @@ int render_session(const Options& opt) {
     DeviceContext dc(info);
     DeviceScene ds = upload_scene(dc, scene, settings);
     for (const std::string& n : ds.notes) note(opt, n);
+    // A gather radius beyond the scene gathers every photon everywhere, and an infinite one would
+    // never end: refused, naming the scene's size.
+    if (settings.radius > 2.0 * double(ds.info.radius)) {
+        char msg[200];
+        std::snprintf(msg, sizeof msg, "--radius %g: larger than the scene's bounding diameter %g (%s)",
+                      settings.radius, 2.0 * double(ds.info.radius), scene.source.c_str());
+        throw Error(msg);
+    }
 
     const std::string program_file = integrator_program_file(settings);
     const SceneFeatures features = scene_features(scene, ds);

@@ -1,5 +1,8 @@
 #include "integrators/integrator.h"
 
+#include <cmath>
+
+#include "integrators/checkpoint_checks.h"
 #include "util/error.h"
 
 namespace clppm {
@@ -19,6 +22,9 @@ void IntegratorBase::save(Checkpoint& ck) {
 
 void IntegratorBase::restore(const Checkpoint& ck) {
     const Json& h = ck.header;
+    for (const char* key : {"passes", "photons_emitted", "photons_stored", "hitpoints"})
+        require_checkpoint_field(ck, h.contains(key) && h[key].is_number_unsigned(),
+                                 std::string(key) + (h.contains(key) ? " = " + h[key].dump() : " (missing)"));
     try {
         stats_.passes = h.at("passes").get<uint64_t>();
         stats_.photons_emitted = h.at("photons_emitted").get<uint64_t>();
@@ -29,8 +35,11 @@ void IntegratorBase::restore(const Checkpoint& ck) {
             throw Error(ck.path + ": checkpoint has " + h.at("hitpoints").dump() + " hit points, this render " +
                         std::to_string(stats_.hitpoints) + " (a different device or clppm version?)");
         stats_.phase_seconds.clear();
-        for (auto it = h.at("phase_seconds").begin(); it != h.at("phase_seconds").end(); ++it)
-            stats_.phase_seconds[it.key()] = it.value().get<double>();
+        for (auto it = h.at("phase_seconds").begin(); it != h.at("phase_seconds").end(); ++it) {
+            const double s = it.value().get<double>();
+            require_checkpoint_field(ck, std::isfinite(s) && s >= 0, "phase_seconds." + it.key());
+            stats_.phase_seconds[it.key()] = s;
+        }
     } catch (const nlohmann::json::exception& e) {
         throw Error(ck.path + ": checkpoint header lacks the pass counters (" + std::string(e.what()) + ")");
     }

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "device/kernel_launch.h"
+#include "integrators/checkpoint_checks.h"
 #include "integrators/direct_light.h"
 #include "integrators/film.h"
 #include "integrators/initial_radius.h"
@@ -148,11 +149,15 @@ void PpmIntegrator::save(Checkpoint& ck) {
 
 void PpmIntegrator::restore(const Checkpoint& ck) {
     IntegratorBase::restore(ck);
+    check_photon_counters(ck, stats_, settings_.photons, scene_.info.radius);
+    const double r0 = stats_.initial_radius; // the radii only shrink from it
     const size_t n = std::max<size_t>(1, num_hitpoints_);
     write_buffer(dc_.queue, hitpoints_, ck.get<dev::HitPoint>("hitpoints", n));
-    write_buffer(dc_.queue, stats_buf_, ck.get<dev::HitStats>("stats", n));
-    typical_radius_ = ck.header.value("typical_radius", typical_radius_);
-    max_radius_ = ck.header.value("max_radius", max_radius_);
+    std::vector<dev::HitStats> hstats = ck.get<dev::HitStats>("stats", n);
+    if (num_hitpoints_ > 0) check_hit_stats(ck, hstats, r0 * r0 * (1 + 1e-9));
+    write_buffer(dc_.queue, stats_buf_, hstats);
+    typical_radius_ = checkpoint_number(ck, "typical_radius", 0, r0 * (1 + 1e-9));
+    max_radius_ = checkpoint_number(ck, "max_radius", 0, r0 * (1 + 1e-9));
 }
 
 Image PpmIntegrator::image() {

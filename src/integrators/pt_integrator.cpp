@@ -1,6 +1,7 @@
 #include "integrators/pt_integrator.h"
 
 #include "device/kernel_launch.h"
+#include "integrators/checkpoint_checks.h"
 #include "integrators/film.h"
 
 namespace clppm {
@@ -49,7 +50,10 @@ void PtIntegrator::save(Checkpoint& ck) {
 
 void PtIntegrator::restore(const Checkpoint& ck) {
     IntegratorBase::restore(ck);
-    write_buffer(dc_.queue, accum_, ck.get<cl_double>("accum", size_t(num_pixels_) * 3));
+    require_checkpoint_field(ck, stats_.photons_emitted == 0, "photons_emitted (a path tracer emits none)");
+    std::vector<cl_double> accum = ck.get<cl_double>("accum", size_t(num_pixels_) * 3);
+    check_radiance_sums(ck, accum, "accum");
+    write_buffer(dc_.queue, accum_, accum);
 }
 
 Image PtIntegrator::image() {

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "device/kernel_launch.h"
+#include "integrators/checkpoint_checks.h"
 #include "integrators/direct_light.h"
 #include "integrators/film.h"
 #include "integrators/initial_radius.h"
@@ -137,10 +138,15 @@ void SppmIntegrator::save(Checkpoint& ck) {
 
 void SppmIntegrator::restore(const Checkpoint& ck) {
     IntegratorBase::restore(ck);
-    write_buffer(dc_.queue, stats_buf_, ck.get<dev::HitStats>("stats", num_pixels_));
-    r2_ = ck.header.value("pppm_r2", r2_);
-    typical_radius_ = ck.header.value("typical_radius", typical_radius_);
-    max_radius_ = ck.header.value("max_radius", max_radius_);
+    check_photon_counters(ck, stats_, settings_.photons, scene_.info.radius);
+    const double r0 = stats_.initial_radius; // the radii only shrink from it
+    std::vector<dev::HitStats> hstats = ck.get<dev::HitStats>("stats", num_pixels_);
+    check_hit_stats(ck, hstats, r0 * r0 * (1 + 1e-9));
+    write_buffer(dc_.queue, stats_buf_, hstats);
+    r2_ = checkpoint_number(ck, "pppm_r2", 0, r0 * r0 * (1 + 1e-9));
+    require_checkpoint_field(ck, r2_ > 0, "pppm_r2");
+    typical_radius_ = checkpoint_number(ck, "typical_radius", 0, r0 * (1 + 1e-9));
+    max_radius_ = checkpoint_number(ck, "max_radius", 0, r0 * (1 + 1e-9));
     if (!errors_) return;
     // A checkpoint saved without error estimation: the estimate starts over from here.
     auto blob = ck.blobs.find("error_stats");

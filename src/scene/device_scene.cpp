@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 
 #include "scene/bvh_build.h"
@@ -14,6 +15,9 @@ namespace clppm {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
+// The scene sizes clppm renders (upload_scene): the areas of triangles a millionth of the scene
+// across stay far above the smallest normal float (1.2e-38), and the largest far below 3.4e38.
+constexpr double kMinSceneRadius = 1e-12, kMaxSceneRadius = 1e12;
 
 struct V3 {
     double x, y, z;
@@ -216,6 +220,16 @@ DeviceScene upload_scene(const DeviceContext& dc, Scene& scene, const SceneSetti
     V3 center{0.5 * (lo[0] + double(hi[0])), 0.5 * (lo[1] + double(hi[1])), 0.5 * (lo[2] + double(hi[2]))};
     double radius = 0.5 * length(V3{double(hi[0]) - lo[0], double(hi[1]) - lo[1], double(hi[2]) - lo[2]});
     if (!(radius > 0)) radius = 1;
+    // Triangle areas, light power and ray offsets are floats relative to the scene's size: far
+    // outside this range they underflow to a black image or overflow, so such a scene is refused.
+    if (radius < kMinSceneRadius || radius > kMaxSceneRadius) {
+        char msg[200];
+        std::snprintf(msg, sizeof msg,
+                      ": the scene's bounding sphere has radius %.3g; clppm renders scenes of radius %.0e to %.0e "
+                      "(float areas and ray offsets): scale the scene",
+                      radius, kMinSceneRadius, kMaxSceneRadius);
+        throw Error(scene.source + msg);
+    }
     store4(ds.info.center, center);
     ds.info.radius = float(radius);
     ds.info.ray_eps = float(radius * 1e-5);
