@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "integrators/memory_estimate.h"
+#include "integrators/photon_map.h"
 #include "scene_builders.h"
 #include "test_util.h"
 #include "util/error.h"
@@ -73,4 +74,18 @@ TEST(Memory, TooLargeForTheDeviceIsAClearError) {
         EXPECT_NE(msg.find("--width/--height or --spp"), std::string::npos) << msg;
         EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
     }
+}
+
+// Photons are traced in batches of at most kMaxBatchPhotons: a billion photons per pass needs no
+// more photon memory than four million, and the estimate says so (it used to ask for 35 GiB).
+TEST(Memory, PhotonMemoryIsBoundedByTheBatchNotThePass) {
+    RenderSettings big, batch;
+    big.photons = 1000000000;
+    batch.photons = kMaxBatchPhotons;
+    const DeviceInfo dev = fake_device(8 * GiB, 2 * GiB);
+    const MemoryEstimate a = estimate_memory(diffuse_box(), big, 256, 256, dev);
+    const MemoryEstimate b = estimate_memory(diffuse_box(), batch, 256, 256, dev);
+    EXPECT_EQ(a.photons, b.photons);
+    EXPECT_LT(a.photons, GiB);
+    EXPECT_NO_THROW(check_memory_fits(a, dev));
 }

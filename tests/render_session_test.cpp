@@ -105,3 +105,18 @@ TEST(RenderSession, SceneOutsideTheFloatRangeIsRefusedNamingItsScale) {
         }
     }
 }
+
+// Ctrl-C in the middle of a long pass (a billion photons: minutes) is answered at the next photon
+// batch, not at the end of the pass; the render keeps the last complete pass (here none, so it
+// writes nothing) and exits 130. `timeout` only guards against a hang.
+TEST(RenderSession, InterruptInALongPassStopsAtTheNextBatch) {
+    std::string d = make_temp_dir("long_pass"), out;
+    const int guard = int(60 * time_scale());
+    const std::string run = "timeout " + std::to_string(guard) + " " + clppm_binary() +
+                            " --width 16 --height 16 --quiet --no-png --photons 1000000000 --passes 2 -o " + d +
+                            "/l.exr";
+    const std::string script = run + " & pid=$!; sleep 4; kill -INT $pid; wait $pid; echo \"status=$?\"";
+    ASSERT_EQ(run_command("bash -c '" + script + "'", &out), 0) << out;
+    EXPECT_NE(out.find("status=130"), std::string::npos) << "stopped by the signal, not by the guard: " << out;
+    EXPECT_NE(out.find("interrupted before the first pass"), std::string::npos) << out;
+}

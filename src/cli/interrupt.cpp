@@ -3,6 +3,8 @@
 #include <csignal>
 #include <unistd.h>
 
+#include "util/cancellation.h"
+
 namespace clppm {
 
 namespace {
@@ -12,7 +14,9 @@ volatile std::sig_atomic_t g_signal = 0;
 extern "C" void on_signal(int sig) {
     if (g_signal != 0) _exit(128 + sig); // the second signal: leave now
     g_signal = sig;
-    static const char msg[] = "\nclppm: stopping after this pass (press Ctrl-C again to quit at once)\n";
+    request_cancel(); // the pass in progress stops at its next photon batch
+    static const char msg[] =
+        "\nclppm: stopping: the last complete pass is kept (press Ctrl-C again to quit at once)\n";
     ssize_t ignored = write(STDERR_FILENO, msg, sizeof msg - 1);
     (void)ignored;
 }

@@ -1,5 +1,5 @@
-// Ctrl-C and SIGTERM during a render: the first asks the render loop to stop after the current
-// pass and save what it has; a second one exits at once (files already written stay whole: every
+// Ctrl-C and SIGTERM during a render: the first asks the render to stop (the pass in progress is
+// abandoned at its next photon batch, util/cancellation.h) and save its last complete pass; a second one exits at once (files already written stay whole: every
 // write is a rename of a complete temporary file).
 #pragma once
 

@@ -19,6 +19,7 @@
 #include "scene/gltf/gltf_load.h"
 #include "scene/scene_features.h"
 #include "scene/scene_fingerprint.h"
+#include "util/cancellation.h"
 #include "util/error.h"
 #include "util/hash.h"
 #include "util/version.h"
@@ -341,7 +342,12 @@ int render_session(const Options& opt) {
         return (signal = interrupt_signal()) == 0;
     };
     while (more()) {
-        integ->run_pass();
+        try {
+            integ->run_pass();
+        } catch (const PassCancelled&) {
+            signal = interrupt_signal(); // the statistics are those of the last complete pass
+            break;
+        }
         const IntegratorStats& st = integ->stats();
         errors.update(opt, progress, st.passes, render_clock.seconds());
         progress.update(st.passes, st.photons_emitted, st.mean_radius, render_clock.seconds());

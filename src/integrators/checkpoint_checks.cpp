@@ -20,8 +20,7 @@ double checkpoint_number(const Checkpoint& ck, const char* key, double lo, doubl
     const Json& h = ck.header;
     require_checkpoint_field(ck, h.contains(key) && h[key].is_number(), std::string(key) + " (missing)");
     const double v = h[key].get<double>();
-    require_checkpoint_field(ck, std::isfinite(v) && v >= lo && v <= hi,
-                             std::string(key) + " = " + h[key].dump());
+    require_checkpoint_field(ck, std::isfinite(v) && v >= lo && v <= hi, std::string(key) + " = " + h[key].dump());
     return v;
 }
 
@@ -34,9 +33,9 @@ void check_photon_counters(const Checkpoint& ck, const IntegratorStats& stats, u
                                  std::to_string(stats.passes) + " passes of " + std::to_string(photons_per_pass));
     const double r0 = stats.initial_radius;
     require_checkpoint_field(ck, std::isfinite(r0) && r0 > 0 && r0 <= 2 * scene_radius, "initial_radius");
-    require_checkpoint_field(ck, std::isfinite(stats.mean_radius) && stats.mean_radius >= 0 &&
-                                     stats.mean_radius <= r0 * (1 + 1e-9),
-                             "mean_radius");
+    require_checkpoint_field(
+        ck, std::isfinite(stats.mean_radius) && stats.mean_radius >= 0 && stats.mean_radius <= r0 * (1 + 1e-9),
+        "mean_radius");
 }
 
 void check_hit_stats(const Checkpoint& ck, const std::vector<dev::HitStats>& stats, double r2_max) {

@@ -5,6 +5,7 @@
 #include <cstdlib>
 
 #include "device/kernel_launch.h"
+#include "util/cancellation.h"
 #include "util/error.h"
 
 namespace clppm {
@@ -37,7 +38,7 @@ PhotonMap::PhotonMap(const DeviceContext& dc, const DeviceScene& scene, const Re
     counter_ = cl::Buffer(dc.context, CL_MEM_READ_WRITE, sizeof(cl_uint));
     grid_info_ = cl::Buffer(dc.context, CL_MEM_READ_ONLY, sizeof(dev::GridInfo));
     max_capacity_ = photon_capacity_budget(dc.info);
-    uint64_t batch = settings.photons;
+    uint64_t batch = std::min<uint64_t>(settings.photons, kMaxBatchPhotons);
     if (max_batch_photons > 0) batch = std::min(batch, max_batch_photons);
     if (const char* e = std::getenv("CLPPM_PHOTON_BATCH"); e && *e)
         batch = std::min<uint64_t>(batch, std::strtoull(e, nullptr, 10));
@@ -47,8 +48,9 @@ PhotonMap::PhotonMap(const DeviceContext& dc, const DeviceScene& scene, const Re
 
 size_t PhotonMap::memory_needed(const RenderSettings& settings, const DeviceInfo& device) {
     // As run_pass allocates: kStoredPerEmitted per photon, at least 1024, within the budget.
-    const uint64_t capacity = std::clamp<uint64_t>(uint64_t(settings.photons) * kStoredPerEmitted, 1024,
-                                                   std::max<uint64_t>(1024, photon_capacity_budget(device)));
+    const uint64_t batch = std::min<uint64_t>(settings.photons, kMaxBatchPhotons);
+    const uint64_t capacity =
+        std::clamp<uint64_t>(batch * kStoredPerEmitted, 1024, std::max<uint64_t>(1024, photon_capacity_budget(device)));
     const uint32_t table = next_pow2(uint32_t(std::max<uint64_t>(1024, std::min<uint64_t>(capacity, 1u << 31))));
     return 2 * size_t(capacity) * sizeof(dev::Photon) + (2 * size_t(table) + 1) * sizeof(cl_uint);
 }
@@ -77,6 +79,7 @@ void PhotonMap::run_pass(uint64_t pass, uint32_t first_photon, uint32_t count_ph
             std::clamp<uint64_t>(uint64_t(batch_) * kStoredPerEmitted, 1024, std::max<uint64_t>(1024, max_capacity_))));
     batches_ = 0;
     for (uint32_t first = first_photon; first < end;) {
+        throw_if_cancelled(); // Ctrl-C: abandon the pass; the statistics still hold the last one
         const uint32_t count = std::min(batch_, end - first);
         if (!trace(pass, first, count)) {
             // More stored photons than the buffer holds: grow it within the budget, else trace

@@ -17,6 +17,10 @@ namespace clppm {
 
 // Stored photons per emitted photon a buffer starts out sized for; it grows if a scene stores more.
 constexpr uint32_t kStoredPerEmitted = 3;
+// Photons traced at once at most: memory stays bounded whatever --photons says, and Ctrl-C is
+// answered between batches (about a second each on two CPU cores). Batches do not change the
+// image (the flux sums are exact integers).
+constexpr uint64_t kMaxBatchPhotons = uint64_t(1) << 22;
 
 class PhotonMap {
 public:

@@ -116,10 +116,17 @@ void PhotonPasses::run_pass(uint64_t pass, const cl::Buffer& hitpoints, const cl
         });
     }
     const double t0 = now_s();
-    primary_.run_pass(pass, 0, split_[0], hitpoints, stats, n, global_r2, typical_radius, max_radius, out);
-    std::vector<dev::PassFlux> sum = read_buffer<dev::PassFlux>(dc_.queue, out, n);
+    std::vector<dev::PassFlux> sum;
+    std::exception_ptr primary_error;
+    try {
+        primary_.run_pass(pass, 0, split_[0], hitpoints, stats, n, global_r2, typical_radius, max_radius, out);
+        sum = read_buffer<dev::PassFlux>(dc_.queue, out, n);
+    } catch (...) {
+        primary_error = std::current_exception(); // after the workers have finished (a cancelled pass)
+    }
     const double primary_seconds = now_s() - t0;
     for (std::thread& t : threads) t.join();
+    if (primary_error) std::rethrow_exception(primary_error);
     for (const auto& w : workers_)
         if (w->error) std::rethrow_exception(w->error);
 

@@ -95,14 +95,21 @@ void SppmIntegrator::eye_pass(uint64_t pass) {
 void SppmIntegrator::run_pass() {
     const uint64_t pass = stats_.passes + 1;
     if (pass > 1) eye_pass(pass);
+    // The photons first: a pass cancelled between photon batches (Ctrl-C) leaves the statistics
+    // as the last complete pass left them. The gather reads only their radii, which the emission
+    // and direct light below do not touch, so the order changes no result.
+    if (probabilistic_) {
+        const double r = std::sqrt(r2_);
+        photons_->run_pass(pass, hitpoints_, stats_buf_, num_pixels_, float(r2_), r, r, passflux_);
+    } else {
+        photons_->run_pass(pass, hitpoints_, stats_buf_, num_pixels_, 0.f, typical_radius_, max_radius_, passflux_);
+    }
     set_args(k_emission_, 0, sample_emission_, stats_buf_, cl_uint(num_pixels_));
     enqueue_1d(dc_.queue, k_emission_, num_pixels_);
     if (settings_.direct == DirectLighting::Sample)
         enqueue_direct_light(dc_, scene_, k_direct_, settings_.seed, pass, hitpoints_, stats_buf_, num_pixels_, stats_);
 
     if (probabilistic_) {
-        const double r = std::sqrt(r2_);
-        photons_->run_pass(pass, hitpoints_, stats_buf_, num_pixels_, float(r2_), r, r, passflux_);
         if (errors_) errors_->update(passflux_, hitpoints_, stats_buf_, r2_, power_per_photon());
         set_args(k_accumulate_, 0, passflux_, hitpoints_, stats_buf_, cl_uint(num_pixels_),
                  cl_double(1.0 / (M_PI * r2_)));
@@ -113,7 +120,6 @@ void SppmIntegrator::run_pass() {
         r2_ = next_pppm_radius2(r2_, pass, settings_.alpha);
         stats_.mean_radius = std::sqrt(r2_);
     } else {
-        photons_->run_pass(pass, hitpoints_, stats_buf_, num_pixels_, 0.f, typical_radius_, max_radius_, passflux_);
         // Before the update: the statistics still hold the radius this pass gathered with.
         if (errors_) errors_->update(passflux_, hitpoints_, stats_buf_, 0.0, power_per_photon());
         auto [mean, mx] = enqueue_ppm_update(dc_, k_update_, passflux_, hitpoints_, stats_buf_, num_pixels_,
