@@ -70,10 +70,18 @@ Surface make_surface(SCENE_PARAMS, float3 dir, const Hit* h) {
     return s;
 }
 
+/* A texture coordinate reduced before it is scaled to texels, so that any value (a huge finite
+ * one, or one whose interpolation overflowed) gives texel indices in range: repeat keeps the
+ * fraction, clamp-to-edge keeps [-1, 2], beyond which every bilinear tap clamps alike. */
+float wrap_coordinate(float u, bool clamp_to_edge) {
+    if (!isfinite(u)) u = 0.0f;
+    return clamp_to_edge ? clamp(u, -1.0f, 2.0f) : u - floor(u);
+}
+
 float3 texture_lookup(SCENE_PARAMS, int index, float2 uv) {
     __global const Texture* tex = &textures[index];
     float w = (float)tex->width, hgt = (float)tex->height;
-    float x = uv.x * w - 0.5f, y = uv.y * hgt - 0.5f;
+    float x = wrap_coordinate(uv.x, tex->wrap & 1u) * w - 0.5f, y = wrap_coordinate(uv.y, tex->wrap & 2u) * hgt - 0.5f;
     float fx = floor(x), fy = floor(y);
     float ax = x - fx, ay = y - fy;
     int ix = (int)fx, iy = (int)fy;

@@ -222,7 +222,7 @@ TEST(Extremes, SceneScaledBy1eMinus4And1e4RendersTheSame) {
     }
 }
 
-// Light power times 1e-6 and 1e6 scales the image by exactly that: photon flux is carried in units
+// Light power times 1e-9 to 1e9 scales the image by exactly that: photon flux is carried in units
 // of the total power, so the same random numbers trace the same paths and only the final scale
 // changes. Per pixel within 1e-4 relative (float flux and radiance, rounded a few times) of the
 // unscaled image times the factor, plus 1e-6 of the image's mean for near-black pixels.
@@ -239,8 +239,10 @@ TEST(Extremes, LightPowerScalesTheImageLinearly) {
             Image base = render(c.scene, s, 3);
             const double mean = mean_radiance(base);
             ASSERT_GT(mean, 0.0);
-            for (double f : {1e-6, 1e6}) {
+            for (double f : {1e-9, 1e-6, 1e6, 1e9}) {
                 Image img = render(brighter(c.scene, f), s, 3);
+                EXPECT_EQ(count_nonfinite(img), 0u) << name(integ) << " factor " << f;
+                EXPECT_EQ(count_negative(img), 0u) << name(integ) << " factor " << f;
                 double worst = 0;
                 for (size_t i = 0; i < img.rgb.size(); ++i) {
                     double want = f * base.rgb[i];
@@ -364,5 +366,30 @@ TEST(Extremes, DegenerateAndNeedleTrianglesRenderFinite) {
         std::vector<double> ref = block_means(render(box, s, 4));
         std::vector<double> b = block_means(render(odd, s, 4));
         for (size_t i = 0; i < b.size(); ++i) EXPECT_NEAR(b[i] / ref[i], 1.0, 0.1) << name(integ) << " block " << i;
+    }
+}
+
+// Texture coordinates anywhere a float reaches (3e38, mixes of +-1e30 and 1e38, whose
+// interpolation overflows) look up texels in range: the image stays finite and non-negative, for
+// repeat and clamp-to-edge alike. They used to render NaN and pixels down to -5e7.
+TEST(Extremes, HugeTextureCoordinatesStayFinite) {
+    for (uint32_t wrap : {0u, 3u}) {
+        Scene scene = plane_under_point_light(0.8f, 10.f, 1.f);
+        scene.textures.push_back(dev::Texture{0, 2, 2, wrap});
+        for (float v : {0.2f, 0.9f, 0.5f, 1.0f}) scene.texels.push_back({v, v, v, 1.f});
+        for (dev::Material& m : scene.materials) m.base_color_tex = 0;
+        const float coords[][6] = {{3e38f, 3e38f, -3e38f, 3e38f, 3e38f, -3e38f},
+                                   {1e30f, -1e30f, 1e38f, 1e38f, -1e30f, 1e38f}};
+        for (size_t t = 0; t < scene.shading.size(); ++t) {
+            dev::TriShading& sh = scene.shading[t];
+            const float* c = coords[t % 2];
+            sh.uv0[0] = c[0], sh.uv0[1] = c[1], sh.uv1[0] = c[2], sh.uv1[1] = c[3], sh.uv2[0] = c[4], sh.uv2[1] = c[5];
+        }
+        for (Integrator integ : {Integrator::PPM, Integrator::SPPM}) {
+            Image img = render(scene, small(16, 5000, DirectLighting::Sample, integ), 2);
+            EXPECT_EQ(count_nonfinite(img), 0u) << name(integ) << " wrap " << wrap;
+            EXPECT_EQ(count_negative(img), 0u) << name(integ) << " wrap " << wrap;
+            EXPECT_GT(mean_radiance(img), 0.0) << name(integ) << " wrap " << wrap;
+        }
     }
 }
