@@ -5,6 +5,7 @@
 
 #include <fstream>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 
 #include <nlohmann/json.hpp>
@@ -119,4 +120,82 @@ TEST(RenderSession, InterruptInALongPassStopsAtTheNextBatch) {
     ASSERT_EQ(run_command("bash -c '" + script + "'", &out), 0) << out;
     EXPECT_NE(out.find("status=130"), std::string::npos) << "stopped by the signal, not by the guard: " << out;
     EXPECT_NE(out.find("interrupted before the first pass"), std::string::npos) << out;
+}
+
+namespace {
+
+// The default scene as JSON, for tests that change one thing in it.
+nlohmann::json default_scene() {
+    return nlohmann::json::parse(slurp(std::string(CLPPM_SCENES_DIR) + "/cornell_box.gltf"));
+}
+
+nlohmann::json& material(nlohmann::json& gltf, const std::string& name) {
+    for (nlohmann::json& m : gltf["materials"])
+        if (m.value("name", "") == name) return m;
+    throw std::runtime_error("no material " + name);
+}
+
+} // namespace
+
+// Every light that ends up emitting nothing is named with the reason, instead of a bare "no
+// lights": here a negative emission (warned at load) and a point light of zero intensity.
+TEST(RenderSession, DroppedLightsAreNamedWithTheirReason) {
+    std::string d = make_temp_dir("dropped"), out;
+    nlohmann::json gltf = default_scene();
+    material(gltf, "light")["emissiveFactor"] = {-1.0, -1.0, -1.0};
+    gltf["extensionsUsed"].push_back("KHR_lights_punctual");
+    gltf["extensions"]["KHR_lights_punctual"]["lights"] = {{{"type", "point"}, {"intensity", 0.0}}};
+    gltf["nodes"].push_back(
+        {{"translation", {0.0, 0.5, 0.0}}, {"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}});
+    gltf["scenes"][gltf.value("scene", 0)]["nodes"].push_back(gltf["nodes"].size() - 1);
+    std::ofstream(d + "/s.gltf") << gltf.dump();
+    EXPECT_EQ(run_clppm(d + "/s.gltf" + kArgs + " --quiet --passes 1 -o " + d + "/s.exr", &out), 1) << out;
+    EXPECT_NE(out.find("emissiveFactor * emissiveStrength is negative"), std::string::npos) << out;
+    EXPECT_NE(out.find("no lights"), std::string::npos) << out;
+    EXPECT_NE(out.find("dropped: point light 0 emits nothing (zero intensity or a closed cone)"), std::string::npos)
+        << out;
+}
+
+// Messages stay short and readable: a power beyond a float in %g (not 39 digits), a data URI's
+// payload as its length (not 70,000 characters of base64).
+TEST(RenderSession, MessagesAreShortWhateverTheInput) {
+    std::string d = make_temp_dir("messages"), out;
+    nlohmann::json gltf = default_scene();
+    // Each light fits a float; their total (about 4.9e38 W) does not.
+    material(gltf, "light")["extensions"]["KHR_materials_emissive_strength"]["emissiveStrength"] = 3e38;
+    gltf["extensionsUsed"].push_back("KHR_lights_punctual");
+    gltf["extensions"]["KHR_lights_punctual"]["lights"] = {{{"type", "point"}, {"intensity", 2e37}}};
+    gltf["nodes"].push_back(
+        {{"translation", {0.0, 0.5, 0.0}}, {"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}});
+    gltf["scenes"][gltf.value("scene", 0)]["nodes"].push_back(gltf["nodes"].size() - 1);
+    std::ofstream(d + "/bright.gltf") << gltf.dump();
+    EXPECT_EQ(run_clppm(d + "/bright.gltf" + kArgs + " --quiet --passes 1 -o " + d + "/s.exr", &out), 1) << out;
+    EXPECT_NE(out.find("total power (4."), std::string::npos) << out;
+    EXPECT_NE(out.find("e+38 W) does not fit a float"), std::string::npos) << out;
+    EXPECT_EQ(out.find("0000000000"), std::string::npos) << "a power printed with %f: " << out;
+
+    gltf = default_scene();
+    gltf["buffers"][0]["byteLength"] = 4000000000u;
+    std::ofstream(d + "/claim.gltf") << gltf.dump();
+    EXPECT_EQ(run_clppm(d + "/claim.gltf" + kArgs + " --quiet --passes 1 -o " + d + "/s.exr", &out), 1) << out;
+    EXPECT_NE(out.find("characters>"), std::string::npos) << out;
+    EXPECT_LT(out.size(), 400u) << out;
+}
+
+// With PoCL, a HOME where no cache directory can be made leaves the device list empty: the
+// message names that cause instead of suggesting a missing ICD.
+TEST(RenderSession, AnEmptyDeviceListNamesAnUnwritableCache) {
+    if (test_device().platform_name.find("Portable Computing Language") == std::string::npos &&
+        test_device().platform_name.find("PoCL") == std::string::npos)
+        GTEST_SKIP() << "only PoCL needs a writable cache to list its devices";
+    std::string d = make_temp_dir("home"), out;
+    std::ofstream(d + "/not_a_directory") << "x";
+    EXPECT_EQ(run_command("env -u XDG_CACHE_HOME -u POCL_CACHE_DIR HOME=" + d + "/not_a_directory " + clppm_binary() +
+                              kArgs + " --passes 1 -o " + d + "/s.exr",
+                          &out),
+              1)
+        << out;
+    EXPECT_NE(out.find("PoCL cannot create its kernel cache in " + d + "/not_a_directory/.cache/pocl"),
+              std::string::npos)
+        << out;
 }

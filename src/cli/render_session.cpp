@@ -270,6 +270,7 @@ int render_session(const Options& opt) {
     DeviceContext dc(info);
     DeviceScene ds = upload_scene(dc, scene, settings);
     for (const std::string& n : ds.notes) note(opt, n);
+    for (const std::string& w : ds.warnings) warn(scene.source + ": " + w);
     // A gather radius beyond the scene gathers every photon everywhere, and an infinite one would
     // never end: refused, naming the scene's size.
     if (settings.radius > 2.0 * double(ds.info.radius)) {

@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
 #include <sstream>
 
 #include "util/error.h"
@@ -9,6 +12,30 @@
 namespace clppm {
 
 namespace {
+
+// Why the device list is empty, as far as can be told: PoCL initialises no device when it cannot
+// create its kernel cache (POCL_CACHE_DIR, else $XDG_CACHE_HOME/pocl, else $HOME/.cache/pocl),
+// which an unwritable or odd HOME causes; otherwise, most likely, no ICD is installed.
+std::string empty_device_list_reason() {
+    std::string dir;
+    const char* pocl = std::getenv("POCL_CACHE_DIR");
+    const char* xdg = std::getenv("XDG_CACHE_HOME");
+    const char* home = std::getenv("HOME");
+    if (pocl && *pocl) dir = pocl;
+    else if (xdg && *xdg) dir = std::string(xdg) + "/pocl";
+    else if (home && *home) dir = std::string(home) + "/.cache/pocl";
+    if (!dir.empty()) {
+        std::error_code ec;
+        std::filesystem::create_directories(dir, ec);
+        const std::string probe = dir + "/.clppm_write_test";
+        const bool writable = !ec && std::filesystem::is_directory(dir, ec) && std::ofstream(probe).good();
+        std::filesystem::remove(probe, ec);
+        if (!writable)
+            return "PoCL cannot create its kernel cache in " + dir +
+                   " (not a writable directory): set POCL_CACHE_DIR or XDG_CACHE_HOME to one";
+    }
+    return "is an ICD such as pocl-opencl-icd installed?";
+}
 
 std::string trim(std::string s) {
     while (!s.empty() && (std::isspace(static_cast<unsigned char>(s.back())) || s.back() == '\0')) s.pop_back();
@@ -72,7 +99,7 @@ std::vector<DeviceInfo> list_devices() {
 std::string describe_devices(const std::vector<DeviceInfo>& devices) {
     std::ostringstream os;
     if (devices.empty()) {
-        os << "no OpenCL devices found (is an ICD such as pocl-opencl-icd installed?)\n";
+        os << "no OpenCL devices found (" << empty_device_list_reason() << ")\n";
         return os.str();
     }
     for (const DeviceInfo& d : devices) {
@@ -90,7 +117,7 @@ const DeviceInfo& select_device(const std::vector<DeviceInfo>& devices, const st
     auto fail = [&](const std::string& why) -> const DeviceInfo& {
         std::ostringstream os;
         os << "--device " << spec << ": " << why << "; available:";
-        if (devices.empty()) os << " none (no OpenCL platform found)";
+        if (devices.empty()) os << " none (" << empty_device_list_reason() << ")";
         for (const DeviceInfo& d : devices) os << " [" << d.index << "] " << d.name << " (" << d.type_name() << ");";
         std::string msg = os.str();
         if (!msg.empty() && msg.back() == ';') msg.pop_back();

@@ -48,15 +48,28 @@ double mean_rgb(const float c[3]) { return (double(c[0]) + c[1] + c[2]) / 3.0; }
 
 // Emissive triangles become area lights, punctual lights keep their parameters; power (mean over
 // RGB, watts) decides how often each light emits photons and is sampled for direct light.
-std::vector<dev::Light> collect_lights(const Scene& scene, const dev::SceneInfo& info) {
+// Watts as a short number ("3.4e+38", not 39 digits).
+std::string watts(double w) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.4g W", w);
+    return buf;
+}
+
+// Every light that emits nothing is dropped, and *dropped says which and why.
+std::vector<dev::Light> collect_lights(const Scene& scene, const dev::SceneInfo& info,
+                                       std::vector<std::string>* dropped) {
     std::vector<dev::Light> lights;
+    size_t zero_area = 0;
     for (size_t t = 0; t < scene.num_triangles(); ++t) {
         const dev::Material& m = scene.materials[scene.shading[t].material];
         double le = mean_rgb(m.emission);
         if (!(le > 0)) continue;
         V3 p0 = v3(scene.positions[3 * t]), p1 = v3(scene.positions[3 * t + 1]), p2 = v3(scene.positions[3 * t + 2]);
         double area = 0.5 * length(cross(sub(p1, p0), sub(p2, p0)));
-        if (!(area > 0)) continue;
+        if (!(area > 0)) {
+            ++zero_area;
+            continue;
+        }
         dev::Light l{};
         l.type = LIGHT_TRIANGLE;
         l.prim = uint32_t(t);
@@ -65,14 +78,23 @@ std::vector<dev::Light> collect_lights(const Scene& scene, const dev::SceneInfo&
         for (int k = 0; k < 3; ++k) l.radiance[k] = m.emission[k];
         const double power = le * area * kPi * (l.two_sided ? 2 : 1); // Phi = Le A pi per side
         if (!std::isfinite(narrow_to_float(power)))
-            throw Error(scene.source + ": an emissive triangle's power (" + std::to_string(power) +
-                        " W) does not fit a float; scale the emission or the geometry down");
+            throw Error(scene.source + ": an emissive triangle's power (" + watts(power) +
+                        ") does not fit a float; scale the emission or the geometry down");
         l.power = float(power);
         lights.push_back(l);
     }
-    for (dev::Light l : scene.punctual_lights) {
-        l.power = narrow_to_float(punctual_light_power(l, double(info.radius)));
-        if (l.power > 0 && std::isfinite(l.power)) lights.push_back(l);
+    if (zero_area) dropped->push_back(std::to_string(zero_area) + " emissive triangle(s) of zero area");
+    static const char* const kKind[] = {"area", "point", "spot", "directional"};
+    for (size_t i = 0; i < scene.punctual_lights.size(); ++i) {
+        dev::Light l = scene.punctual_lights[i];
+        const double power = punctual_light_power(l, double(info.radius));
+        l.power = narrow_to_float(power);
+        const std::string what = std::string(kKind[std::min<uint32_t>(l.type, 3)]) + " light " + std::to_string(i);
+        if (!std::isfinite(l.power))
+            throw Error(scene.source + ": " + what + "'s power (" + watts(power) +
+                        ") does not fit a float; scale its intensity down");
+        if (l.power > 0) lights.push_back(l);
+        else dropped->push_back(what + " emits nothing (zero intensity or a closed cone)");
     }
     return lights;
 }
@@ -236,10 +258,15 @@ DeviceScene upload_scene(const DeviceContext& dc, Scene& scene, const SceneSetti
     ds.info.num_tris = uint32_t(scene.num_triangles());
     ds.info.max_bounces = settings.max_bounces;
 
-    ds.lights = collect_lights(scene, ds.info);
-    if (ds.lights.empty())
+    std::vector<std::string> dropped;
+    ds.lights = collect_lights(scene, ds.info, &dropped);
+    if (ds.lights.empty()) {
+        std::string why;
+        for (const std::string& d : dropped) why += (why.empty() ? "; dropped: " : ", ") + d;
         throw Error(scene.source +
-                    ": no lights (no emissive material and no KHR_lights_punctual light): nothing to render");
+                    ": no lights (no emissive material and no KHR_lights_punctual light): nothing to render" + why);
+    }
+    for (const std::string& d : dropped) ds.warnings.push_back("light dropped: " + d);
     double total = 0;
     for (const dev::Light& l : ds.lights) total += l.power;
     ds.light_cdf.assign(1, 0.f);
@@ -250,8 +277,8 @@ DeviceScene upload_scene(const DeviceContext& dc, Scene& scene, const SceneSetti
     }
     ds.light_cdf.back() = 1.f;
     if (!std::isfinite(narrow_to_float(total)))
-        throw Error(scene.source + ": the lights' total power (" + std::to_string(total) +
-                    " W) does not fit a float; scale the lights down");
+        throw Error(scene.source + ": the lights' total power (" + watts(total) +
+                    ") does not fit a float; scale the lights down");
     ds.info.total_power = float(total);
     ds.info.num_lights = uint32_t(ds.lights.size());
     for (const dev::Light& l : ds.lights) ds.info.num_emissive_tris += l.type == LIGHT_TRIANGLE;

@@ -22,7 +22,8 @@ struct DeviceScene {
     size_t bvh_nodes = 0;
     size_t num_triangles = 0;
     size_t device_bytes = 0;
-    std::vector<std::string> notes; // things the user should be told (default camera, ...)
+    std::vector<std::string> notes;    // things the user should be told (default camera, ...)
+    std::vector<std::string> warnings; // things the user must be told, --quiet or not (dropped lights)
 
     cl::Buffer bvh_nodes_buf, tris_buf, shading_buf, materials_buf, textures_buf, texels_buf, lights_buf, light_cdf_buf,
         info_buf, camera_buf;

@@ -1,5 +1,6 @@
 #include "scene/gltf/gltf_context.h"
 
+#include <cctype>
 #include <sstream>
 
 namespace clppm::gltf {
@@ -20,7 +21,23 @@ std::string one_line(const std::string& text) {
 }
 
 std::string clipped(const std::string& text, size_t max_chars) {
-    return text.size() <= max_chars ? text : text.substr(0, max_chars) + "...";
+    // A data URI's payload is never worth reading in a message: its length says enough.
+    std::string out;
+    for (size_t i = 0; i < text.size();) {
+        const size_t at = text.find("data:", i);
+        const size_t comma = at == std::string::npos ? at : text.find(',', at);
+        if (comma == std::string::npos) {
+            out += text.substr(i);
+            break;
+        }
+        size_t end = comma + 1;
+        while (end < text.size() && (std::isalnum(static_cast<unsigned char>(text[end])) || text[end] == '+' ||
+                                     text[end] == '/' || text[end] == '='))
+            ++end;
+        out += text.substr(i, comma + 1 - i) + "<" + std::to_string(end - comma - 1) + " characters>";
+        i = end;
+    }
+    return out.size() <= max_chars ? out : out.substr(0, max_chars) + "...";
 }
 
 std::vector<std::string> split_lines(const std::string& text) {

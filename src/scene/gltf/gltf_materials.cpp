@@ -83,9 +83,13 @@ dev::Material MaterialConverter::convert_material(int index) {
     float strength =
         finite_factor(extension_number(g.extensions, "KHR_materials_emissive_strength", "emissiveStrength", 1.0),
                       "emissiveStrength", label);
-    for (int c = 0; c < 3; ++c) // each factor finite as a float, their product may not be
-        m.emission[c] =
-            std::max(0.f, finite_factor(double(m.emission[c]) * strength, "emissiveFactor * emissiveStrength", label));
+    bool negative = false;
+    for (int c = 0; c < 3; ++c) { // each factor finite as a float, their product may not be
+        const float e = finite_factor(double(m.emission[c]) * strength, "emissiveFactor * emissiveStrength", label);
+        negative = negative || e < 0.f;
+        m.emission[c] = std::max(0.f, e);
+    }
+    if (negative) ctx_.warn(label + " emissiveFactor * emissiveStrength is negative; that part emits nothing");
     m.metallic = std::clamp(finite_factor(pbr.metallicFactor, "metallicFactor", label), 0.f, 1.f);
     m.roughness = std::clamp(finite_factor(pbr.roughnessFactor, "roughnessFactor", label), 0.f, 1.f);
     m.transmission = std::clamp(
