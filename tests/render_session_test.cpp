@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "io/image_io.h"
+#include "io/output_lock.h"
 #include "test_util.h"
 
 using namespace clppm;
@@ -197,5 +198,27 @@ TEST(RenderSession, AnEmptyDeviceListNamesAnUnwritableCache) {
         << out;
     EXPECT_NE(out.find("PoCL cannot create its kernel cache in " + d + "/not_a_directory/.cache/pocl"),
               std::string::npos)
+        << out;
+}
+
+// Two renders given the same output: the second is refused at once, naming the file and the
+// first render's pid, and the first finishes undisturbed; the lock goes with the first.
+TEST(RenderSession, ASecondRenderToTheSameOutputsIsRefused) {
+    std::string d = make_temp_dir("lock"), out;
+    const std::string first = clppm_binary() + kArgs + " --quiet --passes 1000000 --progressive-output 1 -o " + d +
+                              "/same.exr --checkpoint " + d + "/c.ck";
+    const std::string second =
+        clppm_binary() + kArgs + " --quiet --passes 1 -o " + d + "/other.exr --checkpoint " + d + "/c.ck";
+    const std::string script = first + " & pid=$!; for i in $(seq 1 600); do [ -f " + d +
+                               "/same.exr ] && break; sleep 0.05; done; " + second +
+                               "; echo \"second=$?\"; kill -INT $pid; wait $pid; echo \"first=$?\"";
+    ASSERT_EQ(run_command("bash -c '" + script + "'", &out), 0) << out;
+    EXPECT_NE(out.find("second=1"), std::string::npos) << out;
+    EXPECT_NE(out.find("c.ck is being written by another clppm render (pid "), std::string::npos) << out;
+    EXPECT_NE(out.find("first=130"), std::string::npos) << out;
+    EXPECT_FALSE(std::ifstream(d + "/other.exr").good()) << "the refused render wrote nothing";
+    EXPECT_FALSE(std::ifstream(OutputLock::lock_path(d + "/same.exr")).good()) << "lock files go with the render";
+    // Once the first has gone, the same outputs are free again.
+    EXPECT_EQ(run_clppm(kArgs + " --quiet --passes 1 -o " + d + "/same.exr --checkpoint " + d + "/c.ck", &out), 0)
         << out;
 }

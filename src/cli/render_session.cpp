@@ -14,6 +14,7 @@
 #include "integrators/memory_estimate.h"
 #include "io/checkpoint.h"
 #include "io/image_io.h"
+#include "io/output_lock.h"
 #include "io/stats_json.h"
 #include "scene/device_scene.h"
 #include "scene/gltf/gltf_load.h"
@@ -260,6 +261,12 @@ int render_session(const Options& opt) {
     const std::vector<DeviceInfo> chosen = choose_devices(opt, devices);
     const DeviceInfo& info = chosen.front();
     check_outputs(opt);
+    // Two renders writing the same files would mix their outputs: the second is refused.
+    std::vector<std::string> outputs = {opt.output};
+    if (opt.write_png) outputs.push_back(png_path_for(opt.output));
+    for (const std::string* p : {&opt.stats_json, &opt.checkpoint, &opt.error_output})
+        if (!p->empty()) outputs.push_back(*p);
+    const OutputLock lock(outputs);
 
     Scene scene = load_scene(opt);
     const uint64_t scene_hash = scene_fingerprint(scene);
