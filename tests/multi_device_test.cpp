@@ -17,13 +17,6 @@ const std::string kTwo = "POCL_DEVICES='pthread pthread' ";
 
 int run_two(const std::string& args, std::string* out) { return run_command(kTwo + clppm_binary() + " " + args, out); }
 
-std::string slurp(const std::string& path) {
-    std::ifstream f(path);
-    std::ostringstream ss;
-    ss << f.rdbuf();
-    return ss.str();
-}
-
 } // namespace
 
 TEST(MultiDevice, TwoDevicesGiveTheSameImageAsOne) {

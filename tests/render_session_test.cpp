@@ -21,13 +21,6 @@ namespace {
 
 const std::string kArgs = " --width 24 --height 24 --photons 4000 --no-png";
 
-std::string slurp(const std::string& path) {
-    std::ifstream f(path, std::ios::binary);
-    std::ostringstream ss;
-    ss << f.rdbuf();
-    return ss.str();
-}
-
 } // namespace
 
 // --quiet silences the progress display, never what the user must know about the result.
@@ -136,6 +129,15 @@ nlohmann::json& material(nlohmann::json& gltf, const std::string& name) {
     throw std::runtime_error("no material " + name);
 }
 
+// A KHR_lights_punctual point light of `intensity` candela in the middle of the box.
+void add_point_light(nlohmann::json& gltf, double intensity) {
+    gltf["extensionsUsed"].push_back("KHR_lights_punctual");
+    gltf["extensions"]["KHR_lights_punctual"]["lights"] = {{{"type", "point"}, {"intensity", intensity}}};
+    gltf["nodes"].push_back(
+        {{"translation", {0.0, 0.5, 0.0}}, {"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}});
+    gltf["scenes"][gltf.value("scene", 0)]["nodes"].push_back(gltf["nodes"].size() - 1);
+}
+
 } // namespace
 
 // Every light that ends up emitting nothing is named with the reason, instead of a bare "no
@@ -144,11 +146,7 @@ TEST(RenderSession, DroppedLightsAreNamedWithTheirReason) {
     std::string d = make_temp_dir("dropped"), out;
     nlohmann::json gltf = default_scene();
     material(gltf, "light")["emissiveFactor"] = {-1.0, -1.0, -1.0};
-    gltf["extensionsUsed"].push_back("KHR_lights_punctual");
-    gltf["extensions"]["KHR_lights_punctual"]["lights"] = {{{"type", "point"}, {"intensity", 0.0}}};
-    gltf["nodes"].push_back(
-        {{"translation", {0.0, 0.5, 0.0}}, {"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}});
-    gltf["scenes"][gltf.value("scene", 0)]["nodes"].push_back(gltf["nodes"].size() - 1);
+    add_point_light(gltf, 0.0);
     std::ofstream(d + "/s.gltf") << gltf.dump();
     EXPECT_EQ(run_clppm(d + "/s.gltf" + kArgs + " --quiet --passes 1 -o " + d + "/s.exr", &out), 1) << out;
     EXPECT_NE(out.find("emissiveFactor * emissiveStrength is negative"), std::string::npos) << out;
@@ -164,11 +162,7 @@ TEST(RenderSession, MessagesAreShortWhateverTheInput) {
     nlohmann::json gltf = default_scene();
     // Each light fits a float; their total (about 4.9e38 W) does not.
     material(gltf, "light")["extensions"]["KHR_materials_emissive_strength"]["emissiveStrength"] = 3e38;
-    gltf["extensionsUsed"].push_back("KHR_lights_punctual");
-    gltf["extensions"]["KHR_lights_punctual"]["lights"] = {{{"type", "point"}, {"intensity", 2e37}}};
-    gltf["nodes"].push_back(
-        {{"translation", {0.0, 0.5, 0.0}}, {"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}});
-    gltf["scenes"][gltf.value("scene", 0)]["nodes"].push_back(gltf["nodes"].size() - 1);
+    add_point_light(gltf, 2e37);
     std::ofstream(d + "/bright.gltf") << gltf.dump();
     EXPECT_EQ(run_clppm(d + "/bright.gltf" + kArgs + " --quiet --passes 1 -o " + d + "/s.exr", &out), 1) << out;
     EXPECT_NE(out.find("total power (4."), std::string::npos) << out;

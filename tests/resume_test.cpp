@@ -21,13 +21,6 @@ namespace {
 
 const std::string kArgs = " --width 24 --height 24 --photons 4000 --quiet --no-png";
 
-std::string slurp(const std::string& path) {
-    std::ifstream f(path, std::ios::binary);
-    std::ostringstream ss;
-    ss << f.rdbuf();
-    return ss.str();
-}
-
 } // namespace
 
 TEST(Resume, StoppedAndResumedEqualsNeverStopped) {

@@ -16,6 +16,9 @@ std::string make_temp_dir(const std::string& tag);
 // Runs a shell command; returns its exit status and captures stdout+stderr into *output.
 int run_command(const std::string& cmd, std::string* output);
 
+// The whole contents of a file ("" when it cannot be read).
+std::string slurp(const std::string& path);
+
 // Path of the clppm executable under test.
 std::string clppm_binary();
 
