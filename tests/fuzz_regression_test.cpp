@@ -153,6 +153,8 @@ const std::map<std::string, const char*> kRegressionExpected = {
     {"symlink_file_escape.gltf", "link_out.bin: a symbolic link that leads outside the scene directory"},
     {"symlink_dir_escape.gltf", "outside.bin: a symbolic link that leads outside the scene directory"},
     {"triangle_instancing_bomb.gltf", "the scene has more than 2^25 triangles"},
+    // A URI with a newline made a two-line message; file text is now escaped ("\n").
+    {"uri_with_newline_in_message.gltf", "buffer 0 URI 'data:applicatio>n/oct\\n.parse_error.101]"},
 };
 
 TEST(FuzzRegressions, EveryFindingLoadsOrFailsCleanly) {

@@ -20,6 +20,23 @@ std::string one_line(const std::string& text) {
     return out;
 }
 
+std::string printable(const std::string& text) {
+    std::string out;
+    for (char c : text) {
+        const unsigned char u = static_cast<unsigned char>(c);
+        if (c == '\n') out += "\\n";
+        else if (c == '\r') out += "\\r";
+        else if (c == '\t') out += "\\t";
+        else if (u < 0x20 || u == 0x7f) {
+            static const char kHex[] = "0123456789abcdef";
+            out += "\\x";
+            out += kHex[u >> 4];
+            out += kHex[u & 15];
+        } else out += c;
+    }
+    return out;
+}
+
 std::string clipped(const std::string& text, size_t max_chars) {
     // A data URI's payload is never worth reading in a message: its length says enough.
     std::string out;

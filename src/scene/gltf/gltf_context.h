@@ -36,17 +36,21 @@ std::string one_line(const std::string& text);
 std::string clipped(const std::string& text, size_t max_chars = 300);
 // The non-empty lines of text, each made one line.
 std::vector<std::string> split_lines(const std::string& text);
+// Text from the file (a name, a URI) as it may appear in a one-line message: control characters
+// escaped ("\n", "\x01").
+std::string printable(const std::string& text);
 
 class LoadContext {
 public:
     LoadContext(std::string source, Scene* scene) : source_(std::move(source)), scene_(scene) {}
     const std::string& source() const { return source_; }
 
-    [[noreturn]] void fail(const std::string& what) const { throw Error(source_ + ": " + what); }
+    // Messages are one line whatever the file holds: control characters are escaped.
+    [[noreturn]] void fail(const std::string& what) const { throw Error(source_ + ": " + printable(what)); }
 
     // Each distinct warning once: instanced meshes would otherwise repeat theirs.
     void warn(const std::string& what) {
-        if (seen_.insert(what).second) scene_->warnings.push_back(what);
+        if (seen_.insert(what).second) scene_->warnings.push_back(printable(what));
     }
 
 private:
@@ -57,7 +61,7 @@ private:
 
 inline std::string labelled(const char* kind, int index, const std::string& name) {
     std::string s = std::string(kind) + " " + std::to_string(index);
-    return name.empty() ? s : s + " ('" + name + "')";
+    return name.empty() ? s : s + " ('" + clipped(printable(name), 80) + "')";
 }
 
 } // namespace clppm::gltf

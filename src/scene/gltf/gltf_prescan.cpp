@@ -87,7 +87,7 @@ std::string url_decode(const std::string& uri) {
 void check_uri(const std::string& uri, const std::string& owner, const std::string& base, const LoadContext& ctx) {
     if (tinygltf::IsDataURI(uri)) return;
     std::string path = url_decode(uri);
-    std::string bad = owner + " URI '" + uri + "'";
+    std::string bad = owner + " URI '" + clipped(printable(uri), 200) + "'";
     if (base.empty()) ctx.fail(bad + " names an external file, but this scene has no directory");
     if (std::any_of(path.begin(), path.end(), [](char c) { return (unsigned char)c < 0x20; }))
         ctx.fail(bad + " contains control characters");
