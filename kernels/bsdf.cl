@@ -1,15 +1,64 @@
-/* bsdf.cl: the specular events of the clppm material model (glTF mapping in README.md):
- * perfect mirror, smooth dielectric with exact Fresnel, and the choice between them. */
+/* bsdf.cl: the one scattering interface of clppm's material model, glTF 2.0's metallic-roughness
+ * BRDF (Appendix B) as a physically based renderer reads it (the glTF mapping is in README.md).
+ * The eye pass, photon tracing, the gather, direct lighting and the path tracer all call it:
+ * surface_bsdf() resolves a material at a hit into a Bsdf; bsdf_eval, bsdf_pdf and bsdf_sample
+ * evaluate, give the density of and sample it over any set of lobes; bsdf_gathered_lobes is the
+ * eye pass's rule for where hit points go. tests/bsdf_model_test.cpp holds the host reference.
+ *
+ * Lobes, with weights that sum to at most 1 (their albedos each at most 1, so no energy gain):
+ *  - LOBE_METAL, weight metallic: a GGX conductor, Schlick's Fresnel with F0 = base colour, plus
+ *    the multiple-scattering term of Kulla and Conty 2017 (Eq. "f_ms") that gives back the energy
+ *    single-scattering GGX loses at high roughness (a white metal is white at any roughness).
+ *  - the dielectric base, weight (1 - metallic)(1 - transmission):
+ *    LOBE_SPECULAR, a GGX layer with Schlick's Fresnel F = F0 + (F90 - F0)(1 - wo.h)^5, F0 from
+ *    KHR_materials_ior and KHR_materials_specular, and under it LOBE_DIFFUSE, Lambertian with the
+ *    base colour, scaled by (1 - E(cos_o))(1 - E(cos_i)) / (1 - E_avg), where E is the layer's
+ *    directional albedo (kernels/ggx_albedo.h). That scaling keeps the pair reciprocal and makes
+ *    its albedo exactly E(cos_o) + base (1 - E(cos_o)) (Kelemen and Szirmay-Kalos 2001).
+ *  - LOBE_GLASS, weight (1 - metallic) transmission: a smooth dielectric with exact Fresnel and
+ *    refraction by the ior, the transmitted light tinted by the base colour.
+ * Reflection lobes with alpha below MIRROR_ALPHA are mirrors (delta lobes): the same Fresnel at
+ * the view angle, so the model is continuous in roughness down to 0.
+ * All directions point away from the surface; wo is on the side of the shading normal. */
 #ifndef CLPPM_BSDF_CL
 #define CLPPM_BSDF_CL
 
 #include "scene.cl"
 #include "ggx.cl"
+#include "ggx_albedo.h"
 
-/* Glossy surfaces at least this rough (GGX alpha = roughness^2) get hit points and are gathered
- * with their BRDF; smoother ones are importance-sampled through like mirrors, where a density
- * estimate would blur the reflection. */
+/* Reflection lobes at least this rough (GGX alpha = roughness^2) get hit points and are gathered
+ * with the BSDF; smoother ones are sampled through by the eye pass, where a density estimate
+ * would blur the reflection. */
 #define GLOSSY_HITPOINT_ALPHA 0.04f
+/* GGX alpha below this is a mirror: the lobe is a delta (roughness below 0.01). */
+#define MIRROR_ALPHA 1e-4f
+
+#define LOBE_DIFFUSE 1u
+#define LOBE_SPECULAR 2u
+#define LOBE_GLASS 4u
+#define LOBE_METAL 8u
+#define LOBE_ALL 15u
+
+typedef struct {
+    float3 ns, ng; /* shading and geometric normal on the side of wo */
+    float3 base;   /* base colour */
+    float3 f0;     /* dielectric layer: Schlick F0 */
+    float f90;     /* and F90 */
+    float alpha;   /* GGX alpha of both reflection lobes */
+    float dielectric, glass, metal; /* lobe weights */
+    float eta;     /* LOBE_GLASS: relative index n_t / n_i for light crossing from the ns side */
+} Bsdf;
+
+typedef struct {
+    float3 wi;
+    float3 weight; /* f cos / pdf; for a delta lobe its coefficient over the probability of choosing it */
+    float pdf;     /* solid-angle density of wi over the sampled lobe set; 0 for a delta lobe */
+    bool delta;
+    bool below;    /* wi leaves through the surface (refraction) */
+} BsdfSample;
+
+/* ---- Fresnel and specular directions ---------------------------------------------------------- */
 
 /* Unpolarised Fresnel reflectance for a dielectric; cos_i > 0 on the incident side and eta the
  * relative index n_t / n_i (pbrt-v4 FrDielectric). Returns 1 under total internal reflection. */
@@ -34,56 +83,254 @@ float3 refract_dir(float3 d, float3 n, float eta) {
     return normalize(d / eta + (cos_i / eta - cos_t) * n);
 }
 
-/* Mirror reflection about the shading normal, falling back to the geometric normal when the
+/* Mirror direction of wo about the shading normal, falling back to the geometric normal when the
  * shading normal would send the ray below the surface. */
-float3 specular_reflect(const Surface* s, float3 d) {
-    float3 r = reflect_dir(d, s->ns);
-    if (dot(r, s->ng) <= 0.0f) r = reflect_dir(d, s->ng);
+float3 bsdf_mirror(const Bsdf* b, float3 wo) {
+    float3 r = reflect_dir(-wo, b->ns);
+    if (dot(r, b->ng) <= 0.0f) r = reflect_dir(-wo, b->ng);
     return r;
 }
 
-/* Relative index of refraction across this surface for a ray arriving on s->front's side. */
-float dielectric_eta(SCENE_PARAMS, const Surface* s) {
-    float ior = materials[s->material].ior;
-    return s->front ? ior : 1.0f / ior;
+float pow5(float x) { return (x * x) * (x * x) * x; }
+
+float mean3(float3 v) { return (v.x + v.y + v.z) * (1.0f / 3.0f); }
+
+/* ---- the albedo tables ------------------------------------------------------------------------ */
+
+/* Bilinear lookup in a GGX_ALBEDO_ALPHA x GGX_ALBEDO_MU table (kernels/ggx_albedo.h), whose rows
+ * go by roughness = sqrt(alpha). */
+float ggx_table(__constant float* t, float mu, float alpha) {
+    float x = clamp(mu * (float)GGX_ALBEDO_MU - 0.5f, 0.0f, (float)(GGX_ALBEDO_MU - 1));
+    float y = clamp(sqrt(alpha) * (float)(GGX_ALBEDO_ALPHA - 1), 0.0f, (float)(GGX_ALBEDO_ALPHA - 1));
+    int i = min((int)x, GGX_ALBEDO_MU - 2), j = min((int)y, GGX_ALBEDO_ALPHA - 2);
+    float fx = x - (float)i, fy = y - (float)j;
+    __constant float* r0 = t + j * GGX_ALBEDO_MU;
+    __constant float* r1 = r0 + GGX_ALBEDO_MU;
+    float a = r0[i] + (r0[i + 1] - r0[i]) * fx, c = r1[i] + (r1[i + 1] - r1[i]) * fx;
+    return a + (c - a) * fy;
 }
 
-/* One random event at a smooth dielectric for a path arriving along *dir: reflection with
- * probability F, else refraction tinted by `base` (the Fresnel weights cancel the
- * probabilities). Updates *dir, *org and *weight; false when the refracted ray would leave on
- * the wrong side of the geometric surface (a shading-normal artefact): the path ends. */
-bool sample_dielectric(SCENE_PARAMS, const Surface* sf, float u, float3 base, float3* dir, float3* org,
-                       float3* weight) {
-    float eta = dielectric_eta(SCENE_ARGS, sf);
-    float F = fresnel_dielectric(-dot(*dir, sf->ns), eta);
-    if (u < F) {
-        *dir = specular_reflect(sf, *dir);
-        *org = offset_origin(SCENE_ARGS, sf->p, sf->ng);
+float ggx_table_avg(__constant float* t, float alpha) {
+    float y = clamp(sqrt(alpha) * (float)(GGX_ALBEDO_ALPHA - 1), 0.0f, (float)(GGX_ALBEDO_ALPHA - 1));
+    int j = min((int)y, GGX_ALBEDO_ALPHA - 2);
+    float fy = y - (float)j;
+    return t[j] + (t[j + 1] - t[j]) * fy;
+}
+
+bool bsdf_is_mirror(const Bsdf* b) { return b->alpha < MIRROR_ALPHA; }
+
+/* E(mu): the dielectric layer's directional albedo (exact Schlick for a mirror). */
+float3 layer_albedo(const Bsdf* b, float mu) {
+    if (bsdf_is_mirror(b)) return b->f0 + (b->f90 - b->f0) * pow5(1.0f - mu);
+    return b->f0 * ggx_table(ggx_albedo_a, mu, b->alpha) + (b->f90 - b->f0) * ggx_table(ggx_albedo_b, mu, b->alpha);
+}
+
+/* E_avg = 2 int E(mu) mu dmu (Schlick's mean is F0 + (F90 - F0) / 21). */
+float3 layer_albedo_avg(const Bsdf* b) {
+    if (bsdf_is_mirror(b)) return b->f0 + (b->f90 - b->f0) * (1.0f / 21.0f);
+    return b->f0 * ggx_table_avg(ggx_albedo_a_avg, b->alpha) + (b->f90 - b->f0) * ggx_table_avg(ggx_albedo_b_avg, b->alpha);
+}
+
+/* ---- lobes ------------------------------------------------------------------------------------ */
+
+bool has_layer(const Bsdf* b) { return HAS_SPECULAR_LAYER && b->dielectric > 0.0f && b->f90 > 0.0f; }
+
+/* The diffuse lobe: base / pi, scaled for the layer above it. */
+float3 diffuse_eval(const Bsdf* b, float cos_o, float cos_i) {
+    float3 c = b->base * (b->dielectric * INV_PI_F);
+    if (!has_layer(b)) return c;
+    float3 one = (float3)(1.0f);
+    float3 rest = one - layer_albedo_avg(b);
+    float3 s = (one - layer_albedo(b, cos_o)) * (one - layer_albedo(b, cos_i));
+    return select((float3)(0.0f), c * s / rest, isgreater(rest, (float3)(1e-6f)));
+}
+
+float3 metal_fresnel(const Bsdf* b, float cos_d) { return b->base + (1.0f - b->base) * pow5(1.0f - cos_d); }
+
+/* Kulla-Conty multiple scattering for the conductor: F_ms (1 - A(mu_o))(1 - A(mu_i)) / (pi (1 -
+ * A_avg)), F_ms = F_avg^2 A_avg / (1 - F_avg (1 - A_avg)), F_avg = F0 + (1 - F0) / 21. */
+float3 metal_ms_color(const Bsdf* b, float a_avg) {
+    float3 f_avg = b->base + (1.0f - b->base) * (1.0f / 21.0f);
+    return f_avg * f_avg * a_avg / (1.0f - f_avg * (1.0f - a_avg));
+}
+
+float3 metal_ms_eval(const Bsdf* b, float cos_o, float cos_i) {
+    float a_avg = ggx_table_avg(ggx_albedo_a_avg, b->alpha);
+    if (!(1.0f - a_avg > 1e-6f)) return (float3)(0.0f);
+    float s = (1.0f - ggx_table(ggx_albedo_a, cos_o, b->alpha)) * (1.0f - ggx_table(ggx_albedo_a, cos_i, b->alpha));
+    return metal_ms_color(b, a_avg) * (b->metal * s * INV_PI_F / (1.0f - a_avg));
+}
+
+/* Selection weights of the five sampling techniques (diffuse, layer, glass, metal, metal's
+ * multiple scattering) for the lobes in mask: estimates of each one's albedo at cos_o. */
+#define TECH_DIFFUSE 0
+#define TECH_LAYER 1
+#define TECH_GLASS 2
+#define TECH_METAL 3
+#define TECH_METAL_MS 4
+#define NUM_TECHS 5
+
+float lobe_weights(const Bsdf* b, float cos_o, uint mask, float* w) {
+    for (int k = 0; k < NUM_TECHS; ++k) w[k] = 0.0f;
+    float3 e = has_layer(b) ? layer_albedo(b, cos_o) : (float3)(0.0f);
+    if (mask & LOBE_DIFFUSE) w[TECH_DIFFUSE] = b->dielectric * mean3(b->base * (1.0f - e));
+    if (HAS_SPECULAR_LAYER && (mask & LOBE_SPECULAR)) w[TECH_LAYER] = b->dielectric * mean3(e);
+    if (HAS_GLASS && (mask & LOBE_GLASS)) w[TECH_GLASS] = b->glass;
+    if (HAS_METAL && (mask & LOBE_METAL) && b->metal > 0.0f) {
+        bool mirror = bsdf_is_mirror(b);
+        float a_o = mirror ? 1.0f : ggx_table(ggx_albedo_a, cos_o, b->alpha);
+        w[TECH_METAL] = b->metal * mean3(metal_fresnel(b, cos_o)) * a_o;
+        if (!mirror) {
+            float a_avg = ggx_table_avg(ggx_albedo_a_avg, b->alpha);
+            if (1.0f - a_avg > 1e-6f) w[TECH_METAL_MS] = b->metal * mean3(metal_ms_color(b, a_avg)) * (1.0f - a_o);
+        }
+    }
+    float total = 0.0f;
+    for (int k = 0; k < NUM_TECHS; ++k) total += w[k];
+    return total;
+}
+
+/* f(wo, wi) of the non-delta part of the lobes in mask; zero for wi below the surface. */
+float3 bsdf_eval(const Bsdf* b, float3 wo, float3 wi, uint mask) {
+    float cos_o = dot(b->ns, wo), cos_i = dot(b->ns, wi);
+    if (cos_o <= 0.0f || cos_i <= 0.0f) return (float3)(0.0f);
+    float3 f = (float3)(0.0f);
+    if (mask & LOBE_DIFFUSE) f += diffuse_eval(b, cos_o, cos_i);
+    if (!HAS_NON_DIFFUSE || bsdf_is_mirror(b)) return f;
+    bool layer = has_layer(b) && (mask & LOBE_SPECULAR);
+    bool metal = HAS_METAL && b->metal > 0.0f && (mask & LOBE_METAL);
+    if (layer || metal) {
+        float cos_d;
+        float g = ggx_reflection(b->ns, wo, wi, b->alpha, &cos_d);
+        float s5 = pow5(1.0f - cos_d);
+        if (layer) f += (b->f0 + (b->f90 - b->f0) * s5) * (b->dielectric * g);
+        if (metal) f += (b->base + (1.0f - b->base) * s5) * (b->metal * g) + metal_ms_eval(b, cos_o, cos_i);
+    }
+    return f;
+}
+
+/* The density bsdf_sample draws a non-delta wi with, given the selection weights w (total W). */
+float bsdf_pdf_weighted(const Bsdf* b, float3 wo, float3 wi, const float* w, float total) {
+    float cos_o = dot(b->ns, wo), cos_i = dot(b->ns, wi);
+    if (cos_o <= 0.0f || cos_i <= 0.0f || !(total > 0.0f)) return 0.0f;
+    float p = (w[TECH_DIFFUSE] + w[TECH_METAL_MS]) * cos_i * INV_PI_F;
+    if (!bsdf_is_mirror(b) && w[TECH_LAYER] + w[TECH_METAL] > 0.0f)
+        p += (w[TECH_LAYER] + w[TECH_METAL]) * ggx_pdf(b->ns, wo, wi, b->alpha);
+    return p / total;
+}
+
+float bsdf_pdf(const Bsdf* b, float3 wo, float3 wi, uint mask) {
+    float w[NUM_TECHS];
+    float total = lobe_weights(b, dot(b->ns, wo), mask, w);
+    return bsdf_pdf_weighted(b, wo, wi, w, total);
+}
+
+/* Samples the lobes in mask: one technique chosen by its weight with u_lobe, then the direction
+ * with (u1, u2). Non-delta samples are weighted by the whole set's eval and pdf (one-sample MIS
+ * over the lobes). False when nothing is sampled (no lobe, or wi below the geometric surface). */
+bool bsdf_sample(const Bsdf* b, float3 wo, uint mask, float u_lobe, float u1, float u2, BsdfSample* s) {
+    float cos_o = dot(b->ns, wo);
+    s->delta = false;
+    s->below = false;
+    s->pdf = 0.0f;
+    s->weight = (float3)(0.0f);
+    if (!(cos_o > 0.0f)) return false;
+    float w[NUM_TECHS];
+    float total = lobe_weights(b, cos_o, mask, w);
+    if (!(total > 0.0f)) return false;
+    /* The technique, and u_lobe rescaled to [0, 1) within it (glass's reflect-or-refract choice). */
+    float u = u_lobe * total, acc = 0.0f;
+    int tech = -1;
+    for (int k = 0; k < NUM_TECHS; ++k) {
+        if (!(w[k] > 0.0f)) continue;
+        tech = k;
+        if (u < acc + w[k]) break;
+        acc += w[k];
+    }
+    float u_in = clamp((u - acc) / w[tech], 0.0f, 0.99999994f);
+    float p_tech = w[tech] / total;
+    bool mirror = bsdf_is_mirror(b);
+    if (HAS_GLASS && tech == TECH_GLASS) {
+        /* Reflect with probability F: the Fresnel weights cancel the probabilities. */
+        float F = fresnel_dielectric(cos_o, b->eta);
+        s->delta = true;
+        if (u_in < F) {
+            s->wi = bsdf_mirror(b, wo);
+            s->weight = (float3)(b->glass / p_tech);
+            return true;
+        }
+        s->wi = refract_dir(-wo, b->ns, b->eta);
+        if (dot(s->wi, b->ng) >= 0.0f) return false;
+        s->below = true;
+        s->weight = b->base * (b->glass / p_tech);
         return true;
     }
-    *dir = refract_dir(*dir, sf->ns, eta);
-    if (dot(*dir, sf->ng) >= 0.0f) return false;
-    *weight *= base;
-    *org = offset_origin(SCENE_ARGS, sf->p, -sf->ng);
+    if (mirror && (tech == TECH_LAYER || tech == TECH_METAL)) {
+        s->delta = true;
+        s->wi = bsdf_mirror(b, wo);
+        float3 F = tech == TECH_LAYER ? (b->f0 + (b->f90 - b->f0) * pow5(1.0f - cos_o)) * b->dielectric
+                                      : metal_fresnel(b, cos_o) * b->metal;
+        s->weight = F / p_tech;
+        return true;
+    }
+    if (tech == TECH_DIFFUSE || tech == TECH_METAL_MS) {
+        s->wi = sample_cosine_hemisphere(b->ns, u1, u2);
+    } else {
+        float3 h = ggx_sample_h(b->ns, wo, b->alpha, u1, u2);
+        s->wi = normalize(2.0f * dot(wo, h) * h - wo);
+    }
+    float cos_i = dot(b->ns, s->wi);
+    if (cos_i <= 0.0f || dot(s->wi, b->ng) <= 0.0f) return false;
+    if (!HAS_NON_DIFFUSE || (mask & ~LOBE_DIFFUSE) == 0u || total == w[TECH_DIFFUSE]) {
+        /* Only the diffuse lobe: f cos / pdf in closed form (exactly the base colour when the
+         * surface is plain Lambertian). */
+        s->pdf = cos_i * INV_PI_F;
+        s->weight = diffuse_eval(b, cos_o, cos_i) * (PI_F / p_tech);
+        if (!has_layer(b)) s->weight = b->base * (b->dielectric / p_tech);
+        return true;
+    }
+    s->pdf = bsdf_pdf_weighted(b, wo, s->wi, w, total);
+    if (!(s->pdf > 0.0f)) return false;
+    s->weight = bsdf_eval(b, wo, s->wi, mask) * (cos_i / s->pdf);
     return true;
 }
 
-float material_alpha(__global const Material* m) { return fmax(m->roughness * m->roughness, 1e-4f); }
-
-/* The kind of the metal part of a metallic surface: a mirror when perfectly smooth. */
-uint metal_kind(__global const Material* m) {
-    if (!HAS_GLOSSY) return MATERIAL_MIRROR;
-    if (!HAS_MIRROR) return MATERIAL_GLOSSY;
-    return m->roughness > 0.0f ? MATERIAL_GLOSSY : MATERIAL_MIRROR;
+/* The lobes a hit point keeps (the gather and direct lighting evaluate them there): the diffuse
+ * one, and the reflection lobes when they are rough enough. The eye pass follows the others. */
+uint bsdf_gathered_lobes(float alpha) {
+    return alpha >= GLOSSY_HITPOINT_ALPHA ? (LOBE_DIFFUSE | LOBE_SPECULAR | LOBE_METAL) : LOBE_DIFFUSE;
 }
 
-/* The material kind at this surface once METAL_MIX has been resolved with u (the metal with
- * probability metallic, else diffuse). */
-uint resolve_kind(SCENE_PARAMS, const Surface* s, float u) {
+/* Whether any lobe in mask has weight here. */
+bool bsdf_has(const Bsdf* b, uint mask) {
+    float w[NUM_TECHS];
+    return lobe_weights(b, dot(b->ns, b->ns), mask, w) > 0.0f;
+}
+
+/* ---- a material at a surface ------------------------------------------------------------------ */
+
+/* The glTF material at this surface (factors times textures). */
+Bsdf surface_bsdf(SCENE_PARAMS, const Surface* s) {
     __global const Material* m = &materials[s->material];
-    if (!HAS_NON_DIFFUSE) return MATERIAL_DIFFUSE;
-    if (HAS_METAL_MIX && m->kind == MATERIAL_METAL_MIX) return u < m->metallic ? metal_kind(m) : MATERIAL_DIFFUSE;
-    return m->kind;
+    Bsdf b;
+    b.ns = s->ns;
+    b.ng = s->ng;
+    b.base = surface_base_color(SCENE_ARGS, s);
+    float metallic = HAS_METAL ? m->metallic : 0.0f;
+    float t = HAS_GLASS ? m->transmission : 0.0f;
+    b.metal = metallic;
+    b.glass = (1.0f - metallic) * t;
+    b.dielectric = (1.0f - metallic) * (1.0f - t);
+    float r = m->roughness;
+    b.alpha = r * r;
+    /* KHR_materials_ior and KHR_materials_specular: F0 = ((ior - 1) / (ior + 1))^2 times the
+     * specular colour, at most 1, both F0 and F90 times the specular factor. */
+    float q = (m->ior - 1.0f) / (m->ior + 1.0f);
+    float spec = HAS_SPECULAR_LAYER ? m->specular_color[3] : 0.0f;
+    b.f0 = fmin(q * q * load3g(m->specular_color), (float3)(1.0f)) * spec;
+    b.f90 = spec;
+    b.eta = s->front ? m->ior : 1.0f / m->ior;
+    return b;
 }
 
 #endif

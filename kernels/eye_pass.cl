@@ -1,9 +1,10 @@
 /* eye_pass.cl: the first pass of progressive photon mapping (Hachisuka et al. 2008, Sec. 4.1).
- * Each pixel sample follows specular chains from the camera to the first non-specular surfaces
- * (diffuse, or glossy at least GLOSSY_HITPOINT_ALPHA rough) and stores a hit point there.
- * Smoother glossy surfaces are importance-sampled through (VNDF) like mirrors.
- * Where a dielectric or a partly metallic surface splits the path, both branches are followed
- * with their Fresnel / metallic weights while slots remain (EYE_SLOTS per sample), so the stored
+ * Each pixel sample follows specular chains from the camera and stores a hit point wherever a
+ * surface has lobes the gather can estimate (diffuse, and reflection at least
+ * GLOSSY_HITPOINT_ALPHA rough: bsdf_gathered_lobes in kernels/bsdf.cl); smoother lobes and glass
+ * are sampled through. Where a surface splits the path (a hit point and a smooth reflection,
+ * glass's reflection and refraction), the branches are followed with their weights while slots
+ * remain (EYE_SLOTS per sample), so the stored
  * set of hit points carries no sampling noise from those choices; beyond that one branch is
  * chosen at random with the same expected value. Emission met on the way is added to the
  * sample's radiance directly.
@@ -29,11 +30,10 @@ typedef struct {
 /* One way an eye path can go on from a surface: a new ray, or a hit point here. */
 typedef struct {
     float3 weight;
-    float3 dir;   /* ray branches */
-    bool below;   /* the ray leaves through the surface (refraction) */
+    float3 dir;      /* ray branches */
+    bool below;      /* the ray leaves through the surface (refraction) */
     bool hitpoint;
-    float3 color; /* hit point branches: albedo or F0 */
-    float alpha;
+    float magnitude; /* what the branch is expected to carry: chooses between branches */
 } Branch;
 
 Branch no_branch(void) {
@@ -42,17 +42,7 @@ Branch no_branch(void) {
     b.dir = (float3)(0.0f);
     b.below = false;
     b.hitpoint = false;
-    b.color = (float3)(0.0f);
-    b.alpha = 0.0f;
-    return b;
-}
-
-Branch hitpoint_branch(float3 weight, float3 color, float alpha) {
-    Branch b = no_branch();
-    b.weight = weight;
-    b.hitpoint = true;
-    b.color = color;
-    b.alpha = alpha;
+    b.magnitude = 0.0f;
     return b;
 }
 
@@ -61,43 +51,44 @@ Branch ray_branch(float3 weight, float3 dir, bool below) {
     b.weight = weight;
     b.dir = dir;
     b.below = below;
+    b.magnitude = max3(weight);
     return b;
 }
 
-/* The metal part of a surface: mirror, glossy hit point, or a sampled glossy ray. */
-Branch metal_branch(SCENE_PARAMS, const Surface* sf, float3 in_dir, float3 weight, float3 base, Rng* rng) {
-    __global const Material* m = &materials[sf->material];
-    if (!HAS_GLOSSY || metal_kind(m) == MATERIAL_MIRROR) return ray_branch(weight * base, specular_reflect(sf, in_dir), false);
-    float alpha = material_alpha(m);
-    if (alpha >= GLOSSY_HITPOINT_ALPHA) return hitpoint_branch(weight, base, alpha);
-    float3 wi;
-    float3 w = ggx_sample(sf->ns, -in_dir, base, alpha, rng_float(rng), rng_float(rng), &wi);
-    if (dot(wi, sf->ng) <= 0.0f) w = (float3)(0.0f);
-    return ray_branch(weight * w, wi, false);
-}
+#define MAX_BRANCHES 4
 
-/* The (at most two) continuations of an eye path at a surface. */
-void surface_branches(SCENE_PARAMS, const Surface* sf, float3 in_dir, float3 weight, Rng* rng, Branch* a, Branch* b) {
-    __global const Material* m = &materials[sf->material];
-    float3 base = surface_base_color(SCENE_ARGS, sf);
-    *a = no_branch();
-    *b = no_branch();
-    if (!HAS_NON_DIFFUSE || m->kind == MATERIAL_DIFFUSE) {
-        *a = hitpoint_branch(weight, base, 0.0f);
-    } else if ((HAS_MIRROR || HAS_GLOSSY) && (m->kind == MATERIAL_MIRROR || m->kind == MATERIAL_GLOSSY)) {
-        *a = metal_branch(SCENE_ARGS, sf, in_dir, weight, base, rng);
-    } else if (HAS_METAL_MIX && m->kind == MATERIAL_METAL_MIX) {
-        *a = metal_branch(SCENE_ARGS, sf, in_dir, weight * m->metallic, base, rng);
-        *b = hitpoint_branch(weight * (1.0f - m->metallic), base, 0.0f);
-    } else if (HAS_DIELECTRIC) {
-        float eta = dielectric_eta(SCENE_ARGS, sf);
-        float F = fresnel_dielectric(-dot(in_dir, sf->ns), eta);
-        *a = ray_branch(weight * F, specular_reflect(sf, in_dir), false);
+/* The continuations of an eye path at a surface (kernels/bsdf.cl decides which lobes are whose):
+ * a hit point for the lobes it keeps; one sampled ray for the other reflection lobes; and, at
+ * glass, its reflection and its refraction with their Fresnel weights. Returns how many. */
+uint surface_branches(const Bsdf* bsdf, float3 wo, float3 weight, Rng* rng, Branch* br) {
+    uint n = 0;
+    float cos_o = dot(bsdf->ns, wo);
+    uint gathered = bsdf_gathered_lobes(bsdf->alpha);
+    float w[NUM_TECHS];
+    float kept = lobe_weights(bsdf, cos_o, gathered, w);
+    if (kept > 0.0f) {
+        Branch b = no_branch();
+        b.weight = weight;
+        b.hitpoint = true;
+        b.magnitude = max3(weight) * kept;
+        br[n++] = b;
+    }
+    if (!HAS_NON_DIFFUSE) return n;
+    uint followed = LOBE_ALL & ~gathered & ~LOBE_GLASS;
+    if (lobe_weights(bsdf, cos_o, followed, w) > 0.0f) {
+        BsdfSample s;
+        float u0 = rng_float(rng), u1 = rng_float(rng), u2 = rng_float(rng);
+        if (bsdf_sample(bsdf, wo, followed, u0, u1, u2, &s)) br[n++] = ray_branch(weight * s.weight, s.wi, false);
+    }
+    if (HAS_GLASS && bsdf->glass > 0.0f) {
+        float F = fresnel_dielectric(cos_o, bsdf->eta);
+        br[n++] = ray_branch(weight * (bsdf->glass * F), bsdf_mirror(bsdf, wo), false);
         if (F < 1.0f) {
-            float3 t = refract_dir(in_dir, sf->ns, eta);
-            if (dot(t, sf->ng) < 0.0f) *b = ray_branch(weight * base * (1.0f - F), t, true);
+            float3 t = refract_dir(-wo, bsdf->ns, bsdf->eta);
+            if (dot(t, bsdf->ng) < 0.0f) br[n++] = ray_branch(weight * bsdf->base * (bsdf->glass * (1.0f - F)), t, true);
         }
     }
+    return n;
 }
 
 __kernel void eye_pass(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong pass, uint first_sample, uint num_samples,
@@ -134,31 +125,41 @@ __kernel void eye_pass(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong p
         if (r.depth + 1 >= info->max_bounces) continue;
         float plen = r.path_length + sf.t;
 
-        Branch br[2];
-        surface_branches(SCENE_ARGS, &sf, r.dir, r.weight, &rng, &br[0], &br[1]);
-        float m0 = max3(br[0].weight), m1 = max3(br[1].weight);
-        bool take0 = m0 > 0.0f, take1 = m1 > 0.0f;
-        if (take0 && take1) {
-            /* Split only when a slot is free for the extra branch and both matter; otherwise keep
-             * one, chosen in proportion to weight and reweighted (expected value unchanged). */
-            bool room = top + stored + 2 <= EYE_SLOTS;
-            if (!room || fmin(m0, m1) < SPLIT_MIN_WEIGHT * max3(r.weight)) {
-                float p0 = m0 / (m0 + m1);
-                if (rng_float(&rng) < p0) {
-                    take1 = false;
-                    br[0].weight /= p0;
-                } else {
-                    take0 = false;
-                    br[1].weight /= (1.0f - p0);
+        Bsdf bsdf = surface_bsdf(SCENE_ARGS, &sf);
+        Branch br[MAX_BRANCHES];
+        uint nb = surface_branches(&bsdf, -r.dir, r.weight, &rng, br);
+        bool take[MAX_BRANCHES];
+        uint count = 0;
+        float total = 0.0f, least = INFINITY;
+        for (uint k = 0; k < nb; ++k) {
+            take[k] = br[k].magnitude > 0.0f;
+            if (!take[k]) continue;
+            ++count;
+            total += br[k].magnitude;
+            least = fmin(least, br[k].magnitude);
+        }
+        if (count > 1) {
+            /* Split only when slots are free for every branch and all matter; otherwise keep
+             * one, chosen in proportion to magnitude and reweighted (expected value unchanged). */
+            bool room = top + stored + count <= EYE_SLOTS;
+            if (!room || least < SPLIT_MIN_WEIGHT * max3(r.weight)) {
+                float u = rng_float(&rng) * total, acc = 0.0f;
+                uint pick = nb;
+                for (uint k = 0; k < nb; ++k) {
+                    if (!take[k]) continue;
+                    pick = k;
+                    if (u < acc + br[k].magnitude) break;
+                    acc += br[k].magnitude;
                 }
+                for (uint k = 0; k < nb; ++k) take[k] = k == pick;
+                br[pick].weight *= total / br[pick].magnitude;
             }
         }
-        for (int k = 0; k < 2; ++k) {
-            if (!(k == 0 ? take0 : take1)) continue;
+        for (uint k = 0; k < nb; ++k) {
+            if (!take[k]) continue;
             Branch b = br[k];
             if (b.hitpoint) {
-                store_hitpoint(&out[stored++], pixel, sf.p, sf.ns, sf.ng, -r.dir, b.weight, b.color, b.alpha,
-                               plen * pixel_angle);
+                store_hitpoint(&out[stored++], pixel, sf.p, -r.dir, b.weight, &bsdf, plen * pixel_angle);
             } else {
                 EyeRay nr = {offset_origin(SCENE_ARGS, sf.p, b.below ? -sf.ng : sf.ng), b.dir, b.weight, plen,
                              r.depth + 1};

@@ -1,6 +1,6 @@
-/* ggx.cl: the glossy metal BRDF, a GGX (Trowbridge-Reitz) microfacet conductor with the
- * height-correlated Smith shadowing and Schlick's Fresnel with F0 = base colour (glTF's metal
- * model, with alpha = roughness^2). Sampled by the distribution of visible normals (Heitz 2018,
+/* ggx.cl: the GGX (Trowbridge-Reitz) microfacet reflection lobe with the height-correlated
+ * Smith shadowing and Schlick's Fresnel, as glTF's metal and specular layer use it (alpha =
+ * roughness^2; kernels/bsdf.cl combines the lobes). Sampled by the distribution of visible normals (Heitz 2018,
  * "Sampling the GGX Distribution of Visible Normals"). All directions point away from the
  * surface; n is the shading normal on the side of wo. tests/bsdf_test.cpp holds the host
  * reference. */
@@ -49,13 +49,6 @@ float3 ggx_eval(float3 n, float3 wo, float3 wi, float3 f0, float alpha) {
     return fresnel_schlick(f0, dot(wi, h)) * (d * g / (4.0f * cos_o * cos_i));
 }
 
-/* The BRDF of a non-specular surface: Lambertian with albedo `color` when alpha is 0, else the
- * GGX conductor with F0 = color. Zero for light from below. */
-float3 nonspecular_brdf(float3 n, float3 wo, float3 wi, float3 color, float alpha) {
-    if (alpha == 0.0f) return dot(n, wi) > 0.0f ? color * INV_PI_F : (float3)(0.0f);
-    return ggx_eval(n, wo, wi, color, alpha);
-}
-
 /* pdf of ggx_sample over wi (solid angle): D_wo(h) / (4 wo.h) = G1(wo) D(h) / (4 cos_o). */
 float ggx_pdf(float3 n, float3 wo, float3 wi, float alpha) {
     float cos_o = dot(n, wo), cos_i = dot(n, wi);
@@ -64,13 +57,13 @@ float ggx_pdf(float3 n, float3 wo, float3 wi, float alpha) {
     return ggx_g1(cos_o, alpha) * ggx_d(dot(n, h), alpha) / (4.0f * cos_o);
 }
 
-/* Samples wi by the visible normals seen from wo. Returns the weight f cos_i / pdf =
- * F G2 / G1(wo), zero when wi falls below the surface. */
-float3 ggx_sample(float3 n, float3 wo, float3 f0, float alpha, float u1, float u2, float3* wi) {
+/* A microfacet normal h sampled by the visible normals seen from wo (Heitz 2018, listing 1:
+ * stretch, sample the projected hemisphere, unstretch); its density over wi = reflect(wo, h)
+ * is ggx_pdf. */
+float3 ggx_sample_h(float3 n, float3 wo, float alpha, float u1, float u2) {
     float3 t, b;
     make_frame(n, &t, &b);
     float3 v = (float3)(dot(wo, t), dot(wo, b), dot(wo, n));
-    /* Heitz 2018, listing 1: stretch, sample the projected hemisphere, unstretch. */
     float3 vh = normalize((float3)(alpha * v.x, alpha * v.y, v.z));
     float lensq = vh.x * vh.x + vh.y * vh.y;
     float3 T1 = lensq > 0.0f ? (float3)(-vh.y, vh.x, 0.0f) * rsqrt(lensq) : (float3)(1.0f, 0.0f, 0.0f);
@@ -81,11 +74,28 @@ float3 ggx_sample(float3 n, float3 wo, float3 f0, float alpha, float u1, float u
     t2 = (1.0f - s) * sqrt(fmax(0.0f, 1.0f - t1 * t1)) + s * t2;
     float3 nh = t1 * T1 + t2 * T2 + sqrt(fmax(0.0f, 1.0f - t1 * t1 - t2 * t2)) * vh;
     float3 hl = normalize((float3)(alpha * nh.x, alpha * nh.y, fmax(1e-6f, nh.z)));
-    float3 h = t * hl.x + b * hl.y + n * hl.z;
+    return t * hl.x + b * hl.y + n * hl.z;
+}
+
+/* Samples wi by the visible normals seen from wo. Returns the weight f cos_i / pdf =
+ * F G2 / G1(wo), zero when wi falls below the surface. */
+float3 ggx_sample(float3 n, float3 wo, float3 f0, float alpha, float u1, float u2, float3* wi) {
+    float3 h = ggx_sample_h(n, wo, alpha, u1, u2);
     *wi = normalize(2.0f * dot(wo, h) * h - wo);
-    float cos_i = dot(n, *wi), cos_o = v.z;
+    float cos_i = dot(n, *wi), cos_o = dot(n, wo);
     if (cos_i <= 0.0f || cos_o <= 0.0f) return (float3)(0.0f);
     return fresnel_schlick(f0, dot(*wi, h)) * (ggx_g2(cos_o, cos_i, alpha) / ggx_g1(cos_o, alpha));
+}
+
+/* D G2 / (4 cos_o cos_i): the GGX reflection lobe without its Fresnel factor, which the caller
+ * takes at *cos_d = wi.h. Zero below the surface. */
+float ggx_reflection(float3 n, float3 wo, float3 wi, float alpha, float* cos_d) {
+    float cos_o = dot(n, wo), cos_i = dot(n, wi);
+    *cos_d = 1.0f;
+    if (cos_o <= 0.0f || cos_i <= 0.0f) return 0.0f;
+    float3 h = normalize(wo + wi);
+    *cos_d = clamp(dot(wi, h), 0.0f, 1.0f);
+    return ggx_d(dot(n, h), alpha) * ggx_g2(cos_o, cos_i, alpha) / (4.0f * cos_o * cos_i);
 }
 
 #endif

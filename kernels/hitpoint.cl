@@ -1,30 +1,50 @@
-/* hitpoint.cl: writing a hit point, and the BRDF the gather and direct lighting evaluate there:
- * Lambertian (alpha 0) or the GGX conductor. */
+/* hitpoint.cl: writing a hit point, and the BSDF the gather and direct lighting evaluate there:
+ * the lobes bsdf_gathered_lobes keeps of the material the eye path met (kernels/bsdf.cl). */
 #ifndef CLPPM_HITPOINT_CL
 #define CLPPM_HITPOINT_CL
 
 #include "shared_types.h"
 #include "sampling.cl"
-#include "ggx.cl"
+#include "bsdf.cl"
 
-void store_hitpoint(__global HitPoint* hp, uint pixel, float3 p, float3 ns, float3 ng, float3 wo, float3 weight,
-                    float3 color, float alpha, float footprint) {
+void store_hitpoint(__global HitPoint* hp, uint pixel, float3 p, float3 wo, float3 weight, const Bsdf* b,
+                    float footprint) {
     hp->pos[0] = p.x; hp->pos[1] = p.y; hp->pos[2] = p.z;
     hp->weight[0] = weight.x; hp->weight[1] = weight.y; hp->weight[2] = weight.z;
-    hp->color[0] = color.x; hp->color[1] = color.y; hp->color[2] = color.z;
-    hp->alpha = alpha;
+    hp->color[0] = b->base.x; hp->color[1] = b->base.y; hp->color[2] = b->base.z;
+    hp->alpha = b->alpha;
+    hp->f0[0] = b->f0.x; hp->f0[1] = b->f0.y; hp->f0[2] = b->f0.z;
+    hp->f90 = b->f90;
+    hp->dielectric = b->dielectric;
+    hp->metal = b->metal;
     hp->footprint = footprint;
-    hp->normal_oct = oct_encode(ns);
-    hp->ng_oct = oct_encode(ng);
+    hp->normal_oct = oct_encode(b->ns);
+    hp->ng_oct = oct_encode(b->ng);
     hp->wo_oct = oct_encode(wo);
     hp->pad0 = 0;
     hp->pixel = pixel;
 }
 
-/* f(wo, wi) at the hit point; zero for light from below the surface. */
-float3 hitpoint_brdf(__global const HitPoint* hp, float3 n, float3 wi) {
-    float3 wo = hp->alpha == 0.0f ? n : oct_decode(hp->wo_oct); /* Lambertian ignores wo */
-    return nonspecular_brdf(n, wo, wi, load3g(hp->color), hp->alpha);
+/* The material at the hit point, with shading normal n (decoded once by the caller). */
+Bsdf hitpoint_bsdf(__global const HitPoint* hp, float3 n) {
+    Bsdf b;
+    b.ns = n;
+    b.ng = oct_decode(hp->ng_oct);
+    b.base = load3g(hp->color);
+    b.alpha = hp->alpha;
+    b.f0 = load3g(hp->f0);
+    b.f90 = hp->f90;
+    b.dielectric = hp->dielectric;
+    b.metal = hp->metal;
+    b.glass = 0.0f;
+    b.eta = 1.0f;
+    return b;
+}
+
+/* f(wo, wi) at the hit point over the lobes it keeps; zero for light from below the surface. */
+float3 hitpoint_brdf(__global const HitPoint* hp, const Bsdf* b, float3 wi) {
+    float3 wo = HAS_NON_DIFFUSE ? oct_decode(hp->wo_oct) : b->ns; /* Lambertian ignores wo */
+    return bsdf_eval(b, wo, wi, bsdf_gathered_lobes(b->alpha));
 }
 
 #endif

@@ -11,10 +11,9 @@
 #define CLPPM_FEATURES_H
 
 #define CLPPM_KERNEL_FEATURES(X)                                                                                       \
-    X(HAS_MIRROR, mirror, "mirror")                                                                                    \
-    X(HAS_GLOSSY, glossy, "glossy")                                                                                    \
-    X(HAS_DIELECTRIC, dielectric, "dielectric")                                                                        \
-    X(HAS_METAL_MIX, metal_mix, "metal mix")                                                                           \
+    X(HAS_SPECULAR_LAYER, specular_layer, "specular layer")                                                            \
+    X(HAS_METAL, metal, "metal")                                                                                       \
+    X(HAS_GLASS, glass, "glass")                                                                                       \
     X(HAS_TEXTURES, textures, "textures")                                                                              \
     X(HAS_AREA_LIGHTS, area_lights, "area lights")                                                                     \
     X(HAS_POINT_LIGHTS, point_lights, "point lights")                                                                  \
@@ -24,17 +23,14 @@
 
 #ifdef __OPENCL_VERSION__
 
-#ifndef HAS_MIRROR
-#define HAS_MIRROR 1
+#ifndef HAS_SPECULAR_LAYER
+#define HAS_SPECULAR_LAYER 1
 #endif
-#ifndef HAS_GLOSSY
-#define HAS_GLOSSY 1
+#ifndef HAS_METAL
+#define HAS_METAL 1
 #endif
-#ifndef HAS_DIELECTRIC
-#define HAS_DIELECTRIC 1
-#endif
-#ifndef HAS_METAL_MIX
-#define HAS_METAL_MIX 1
+#ifndef HAS_GLASS
+#define HAS_GLASS 1
 #endif
 #ifndef HAS_TEXTURES
 #define HAS_TEXTURES 1
@@ -61,7 +57,7 @@ enum { CLPPM_FEATURES_WITH_DEFAULTS = 0 CLPPM_KERNEL_FEATURES(CLPPM_FEATURE_TERM
 #undef CLPPM_FEATURE_TERM
 
 /* Any surface that is not Lambertian. */
-#define HAS_NON_DIFFUSE (HAS_MIRROR || HAS_GLOSSY || HAS_DIELECTRIC || HAS_METAL_MIX)
+#define HAS_NON_DIFFUSE (HAS_SPECULAR_LAYER || HAS_METAL || HAS_GLASS)
 
 #endif /* __OPENCL_VERSION__ */
 

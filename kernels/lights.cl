@@ -81,10 +81,22 @@ void emit_photon(SCENE_PARAMS, Rng* rng, float3* org, float3* dir, float3* flux)
     }
 }
 
+/* The solid-angle density with which sample_light picks a point seen at squared distance d2
+ * and cosine cos_y on an emissive triangle of radiance le: pick (power / total power) times
+ * d2 / (cos_y A), where power = mean(Le) A pi sides (src/scene/device_scene.cpp), so the area
+ * cancels and a triangle hit by a ray needs no light index. The path tracer's MIS weights take
+ * both densities from here, so that they sum to 1 exactly. */
+float area_light_pdf(SCENE_PARAMS, float3 le, bool two_sided, float d2, float cos_y) {
+    float power_per_area = (le.x + le.y + le.z) * (1.0f / 3.0f) * PI_F * (two_sided ? 2.0f : 1.0f);
+    return power_per_area / info->total_power * d2 / cos_y;
+}
+
 /* One light sample for direct lighting at x (normal n on the side of interest): the direction
- * to the light, the distance to shadow-test, and Le G / pdf without the cosine at x. Returns
- * false when the sample contributes nothing. */
-bool sample_light(SCENE_PARAMS, float3 x, Rng* rng, float3* wi, float* dist, float3* contrib) {
+ * to the light, the distance to shadow-test, Le G / pdf without the cosine at x, and the
+ * sample's solid-angle density (0 for punctual and directional lights, which no ray can hit).
+ * Returns false when the sample contributes nothing. */
+bool sample_light(SCENE_PARAMS, float3 x, Rng* rng, float3* wi, float* dist, float3* contrib, float* pdf) {
+    *pdf = 0.0f;
     if (info->num_lights == 0) return false;
     uint l = pick_light(SCENE_ARGS, rng_float(rng));
     __global const Light* L = &lights[l];
@@ -103,6 +115,7 @@ bool sample_light(SCENE_PARAMS, float3 x, Rng* rng, float3* wi, float* dist, flo
         if (cos_y <= 0.0f) return false;
         /* Le cos_y / d^2 / (pick / A): area sampling (Veach 1997, Eq. 8.10) */
         *contrib = rad * (cos_y * L->area / (d2 * pick));
+        *pdf = area_light_pdf(SCENE_ARGS, rad, L->two_sided != 0u, d2, cos_y);
         /* Stop the shadow ray short of the light's own surface. */
         float m = fmax(fabs(y.x), fmax(fabs(y.y), fabs(y.z)));
         *dist = len - 2.0f * (info->ray_eps + 4e-6f * m);

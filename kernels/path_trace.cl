@@ -1,23 +1,32 @@
-/* path_trace.cl: a unidirectional path tracer on the same scene kernels, for comparisons with
- * photon mapping at equal time and to cross-check diffuse scenes. Next-event estimation at
- * diffuse vertices; emission found by a ray after a diffuse bounce is then skipped (the light
- * was already counted by NEE), after a specular event it is counted. One sample per pixel per
- * pass, accumulated in double. */
+/* path_trace.cl: a unidirectional path tracer on the same scene kernels and the same BSDF
+ * (kernels/bsdf.cl), for comparisons with photon mapping at equal time and to cross-check
+ * diffuse scenes. At every vertex with non-delta lobes, one light sample (next-event
+ * estimation) and the BSDF sample that continues the path both count emission, weighted by the
+ * power heuristic (Veach 1997, Sec. 9.2); emission found after a delta lobe counts in full.
+ * One sample per pixel per pass, accumulated in double. */
 #include "rng.cl"
 #include "camera.cl"
 #include "lights.cl"
 #include "bsdf.cl"
 
-/* Next-event estimation at a non-specular surface (nonspecular_brdf: Lambertian when alpha is
- * 0, else GGX): one light sample, shadow-tested. */
-float3 path_nee(SCENE_PARAMS, const Surface* sf, float3 wo, float3 color, float alpha, Rng* rng) {
+float power_heuristic(float a, float b) {
+    float a2 = a * a, b2 = b * b;
+    return a2 + b2 > 0.0f ? a2 / (a2 + b2) : 0.0f;
+}
+
+/* Next-event estimation at a surface: one light sample, shadow-tested, MIS-weighted against the
+ * BSDF's sampling of the same direction. */
+float3 path_nee(SCENE_PARAMS, const Bsdf* b, float3 p, float3 wo, Rng* rng) {
     float3 wi, contrib;
-    float dist;
-    if (!sample_light(SCENE_ARGS, sf->p, rng, &wi, &dist, &contrib)) return (float3)(0.0f);
-    float cos_x = dot(wi, sf->ns);
-    if (cos_x <= 0.0f || dot(wi, sf->ng) <= 0.0f) return (float3)(0.0f);
-    if (trace_occluded(SCENE_ARGS, offset_origin(SCENE_ARGS, sf->p, sf->ng), wi, dist)) return (float3)(0.0f);
-    return nonspecular_brdf(sf->ns, wo, wi, color, alpha) * contrib * cos_x;
+    float dist, light_pdf;
+    if (!sample_light(SCENE_ARGS, p, rng, &wi, &dist, &contrib, &light_pdf)) return (float3)(0.0f);
+    float cos_x = dot(wi, b->ns);
+    if (cos_x <= 0.0f || dot(wi, b->ng) <= 0.0f) return (float3)(0.0f);
+    float3 f = bsdf_eval(b, wo, wi, LOBE_ALL);
+    if (!(max3(f) > 0.0f)) return (float3)(0.0f);
+    if (trace_occluded(SCENE_ARGS, offset_origin(SCENE_ARGS, p, b->ng), wi, dist)) return (float3)(0.0f);
+    float mis = light_pdf > 0.0f ? power_heuristic(light_pdf, bsdf_pdf(b, wo, wi, LOBE_ALL)) : 1.0f;
+    return f * contrib * (cos_x * mis);
 }
 
 __kernel void path_trace(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong pass, uint num_pixels,
@@ -30,56 +39,41 @@ __kernel void path_trace(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong
     float3 org, dir;
     camera_ray(cam, (float)(pixel % cam->width) + off.x, (float)(pixel / cam->width) + off.y, lens, &org, &dir);
     float3 L = (float3)(0.0f), beta = (float3)(1.0f);
-    bool count_emission = true;
+    bool prev_delta = true; /* camera rays and delta lobes: emission found counts in full */
+    float prev_pdf = 0.0f;
     for (uint depth = 0; depth < info->max_bounces; ++depth) {
         Hit hit;
         if (!trace_closest(SCENE_ARGS, org, dir, INFINITY, &hit)) break;
         Surface sf = make_surface(SCENE_ARGS, dir, &hit);
-        if (count_emission) L += beta * surface_emission(SCENE_ARGS, &sf);
-        float3 base = surface_base_color(SCENE_ARGS, &sf);
-        uint kind = resolve_kind(SCENE_ARGS, &sf, rng_float(&rng));
-        if (kind == MATERIAL_DIFFUSE) {
-            L += beta * path_nee(SCENE_ARGS, &sf, -dir, base, 0.0f, &rng);
-            count_emission = false;
-            /* Russian roulette after the first bounces, survival by throughput. */
-            float q = fmin(max3(beta * base), 1.0f);
-            if (depth >= 2) {
-                if (!(rng_float(&rng) < q)) break;
-                beta *= base / q;
-            } else {
-                beta *= base;
+        float3 le = surface_emission(SCENE_ARGS, &sf);
+        if (max3(le) > 0.0f) {
+            float mis = 1.0f;
+            if (!prev_delta) {
+                bool two_sided = (materials[sf.material].flags & MATERIAL_FLAG_DOUBLE_SIDED) != 0u;
+                float light_pdf = area_light_pdf(SCENE_ARGS, le, two_sided, sf.t * sf.t * dot(dir, dir),
+                                                 fabs(dot(dir, sf.ng)) / length(dir));
+                mis = power_heuristic(prev_pdf, light_pdf);
             }
-            dir = sample_cosine_hemisphere(sf.ns, rng_float(&rng), rng_float(&rng));
-            if (dot(dir, sf.ng) <= 0.0f) break;
-            org = offset_origin(SCENE_ARGS, sf.p, sf.ng);
-        } else if (HAS_GLOSSY && kind == MATERIAL_GLOSSY) {
-            /* Rough glossy surfaces take next-event estimation like diffuse ones; smooth ones are
-             * treated like mirrors (emission found by the sampled ray counts). */
-            float alpha = material_alpha(&materials[sf.material]);
-            bool rough = alpha >= GLOSSY_HITPOINT_ALPHA;
-            if (rough) L += beta * path_nee(SCENE_ARGS, &sf, -dir, base, alpha, &rng);
-            count_emission = !rough;
-            float3 wi;
-            float3 w = ggx_sample(sf.ns, -dir, base, alpha, rng_float(&rng), rng_float(&rng), &wi);
-            if (dot(wi, sf.ng) <= 0.0f) break;
-            if (depth >= 2) {
-                float q = fmin(max3(beta * w), 1.0f);
-                if (!(rng_float(&rng) < q)) break;
-                beta *= w / q;
-            } else {
-                beta *= w;
-            }
-            dir = wi;
-            org = offset_origin(SCENE_ARGS, sf.p, sf.ng);
-        } else if (HAS_MIRROR && kind == MATERIAL_MIRROR) {
-            beta *= base;
-            dir = specular_reflect(&sf, dir);
-            org = offset_origin(SCENE_ARGS, sf.p, sf.ng);
-            count_emission = true;
-        } else if (HAS_DIELECTRIC) {
-            if (!sample_dielectric(SCENE_ARGS, &sf, rng_float(&rng), base, &dir, &org, &beta)) break;
-            count_emission = true;
+            L += beta * le * mis;
         }
+        Bsdf b = surface_bsdf(SCENE_ARGS, &sf);
+        float3 wo = -dir;
+        L += beta * path_nee(SCENE_ARGS, &b, sf.p, wo, &rng);
+        BsdfSample s;
+        float u0 = rng_float(&rng), u1 = rng_float(&rng), u2 = rng_float(&rng);
+        if (!bsdf_sample(&b, wo, LOBE_ALL, u0, u1, u2, &s)) break;
+        /* Russian roulette after the first bounces, survival by throughput. */
+        if (depth >= 2) {
+            float q = fmin(max3(beta * s.weight), 1.0f);
+            if (!(rng_float(&rng) < q)) break;
+            beta *= s.weight / q;
+        } else {
+            beta *= s.weight;
+        }
+        prev_delta = s.delta;
+        prev_pdf = s.pdf;
+        dir = s.wi;
+        org = offset_origin(SCENE_ARGS, sf.p, s.below ? -sf.ng : sf.ng);
         if (!(max3(beta) > 0.0f)) break;
     }
     if (!all(isfinite(L))) L = (float3)(0.0f); /* never let one bad sample poison a pixel */

@@ -1,7 +1,7 @@
 /* photon_trace.cl: one refinement pass's photons (Hachisuka et al. 2008, Sec. 4.2). Each work
- * item emits one photon in proportion to light power, follows it through specular events and
- * diffuse and glossy bounces with Russian roulette, and stores every hit on a surface that gets
- * hit points (diffuse, and glossy at least GLOSSY_HITPOINT_ALPHA rough).
+ * item emits one photon in proportion to light power, scatters it by sampling the surface's BSDF
+ * (kernels/bsdf.cl) with Russian roulette, and stores every hit on a surface with lobes that get
+ * hit points (bsdf_gathered_lobes).
  * With skip_direct set (explicit direct lighting at hit points), the first diffuse hit of a
  * photon that came straight from the light is not stored: that light is sampled directly. */
 #include "rng.cl"
@@ -33,38 +33,22 @@ __kernel void photon_trace(SCENE_PARAMS, ulong seed, ulong pass, uint first_phot
         Hit hit;
         if (!trace_closest(SCENE_ARGS, org, dir, INFINITY, &hit)) return;
         Surface sf = make_surface(SCENE_ARGS, dir, &hit);
-        float3 base = surface_base_color(SCENE_ARGS, &sf);
-        uint kind = resolve_kind(SCENE_ARGS, &sf, rng_float(&rng));
-        if (kind == MATERIAL_DIFFUSE) {
-            if (!(skip_direct && bounce == 0))
-                store_photon(photons, capacity, counter, sf.p, sf.ns, flux, -dir);
-            /* Russian roulette with the albedo as survival probability keeps flux near constant. */
-            float q = fmin(max3(base), 1.0f);
-            if (!(rng_float(&rng) < q)) return;
-            flux *= base / q;
-            dir = sample_cosine_hemisphere(sf.ns, rng_float(&rng), rng_float(&rng));
-            if (dot(dir, sf.ng) <= 0.0f) return;
-            org = offset_origin(SCENE_ARGS, sf.p, sf.ng);
-        } else if (HAS_GLOSSY && kind == MATERIAL_GLOSSY) {
-            float alpha = material_alpha(&materials[sf.material]);
-            /* Stored where the eye pass puts hit points (rough enough), as on diffuse surfaces. */
-            if (alpha >= GLOSSY_HITPOINT_ALPHA && !(skip_direct && bounce == 0))
-                store_photon(photons, capacity, counter, sf.p, sf.ns, flux, -dir);
-            float3 wo;
-            float3 w = ggx_sample(sf.ns, -dir, base, alpha, rng_float(&rng), rng_float(&rng), &wo);
-            if (dot(wo, sf.ng) <= 0.0f) return;
-            float q = fmin(max3(w), 1.0f);
-            if (!(rng_float(&rng) < q)) return;
-            flux *= w / q;
-            dir = wo;
-            org = offset_origin(SCENE_ARGS, sf.p, sf.ng);
-        } else if (HAS_MIRROR && kind == MATERIAL_MIRROR) {
-            flux *= base;
-            dir = specular_reflect(&sf, dir);
-            org = offset_origin(SCENE_ARGS, sf.p, sf.ng);
-        } else if (HAS_DIELECTRIC) {
-            if (!sample_dielectric(SCENE_ARGS, &sf, rng_float(&rng), base, &dir, &org, &flux)) return;
-        }
+        Bsdf bsdf = surface_bsdf(SCENE_ARGS, &sf);
+        float3 wo = -dir;
+        /* Stored where the eye pass puts hit points: on surfaces with lobes the gather keeps. */
+        if (!(skip_direct && bounce == 0) && bsdf_has(&bsdf, bsdf_gathered_lobes(bsdf.alpha)))
+            store_photon(photons, capacity, counter, sf.p, sf.ns, flux, wo);
+        /* The BSDF is reciprocal, so sampling it from the photon's side scatters flux correctly. */
+        BsdfSample s;
+        float u0 = rng_float(&rng), u1 = rng_float(&rng), u2 = rng_float(&rng);
+        if (!bsdf_sample(&bsdf, wo, LOBE_ALL, u0, u1, u2, &s)) return;
+        /* Russian roulette with the scattering weight as survival probability keeps flux near
+         * constant. */
+        float q = fmin(max3(s.weight), 1.0f);
+        if (!(rng_float(&rng) < q)) return;
+        flux *= s.weight / q;
+        dir = s.wi;
+        org = offset_origin(SCENE_ARGS, sf.p, s.below ? -sf.ng : sf.ng);
         if (!(max3(flux) > 0.0f)) return;
     }
 }

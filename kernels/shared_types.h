@@ -58,23 +58,19 @@ typedef struct {
 
 /* ---- materials and textures ---------------------------------------------------------------- */
 
-#define MATERIAL_DIFFUSE 0u    /* Lambertian, albedo = base colour */
-#define MATERIAL_MIRROR 1u     /* perfect mirror tinted by base colour */
-#define MATERIAL_DIELECTRIC 2u /* smooth dielectric: Fresnel, refraction by ior */
-#define MATERIAL_METAL_MIX 3u  /* 0 < metallic < 1: the metal (mirror or glossy) with probability metallic, else diffuse */
-#define MATERIAL_GLOSSY 4u     /* metallic 1, roughness > 0: GGX conductor tinted by base colour */
-
 #define MATERIAL_FLAG_DOUBLE_SIDED 1u
 
+/* glTF 2.0 metallic-roughness material (Appendix B) with KHR_materials_ior, _specular,
+ * _transmission and _emissive_strength; kernels/bsdf.cl is its scattering model. */
 typedef struct {
-    float base_color[4]; /* linear RGB; [3] unused */
-    float emission[4];   /* emitted radiance, emissiveFactor * emissive_strength; [3] unused */
+    float base_color[4];     /* linear RGB; [3] alpha (unused) */
+    float emission[4];       /* emitted radiance, emissiveFactor * emissive_strength; [3] unused */
+    float specular_color[4]; /* KHR_materials_specular: specularColorFactor, [3] specularFactor */
     float metallic, roughness, transmission, ior;
     i32 base_color_tex; /* index into Texture array, -1 when none */
     u32 flags;          /* MATERIAL_FLAG_* */
-    u32 kind;           /* MATERIAL_* derived on the host from the glTF parameters */
-    u32 pad0;
-} Material; /* 64 bytes */
+    u32 pad0, pad1;
+} Material; /* 80 bytes */
 
 typedef struct {
     u32 offset; /* first texel in the texel buffer (float4 linear RGBA) */
@@ -134,13 +130,19 @@ typedef struct {
     u32 pixel;        /* y * width + x; HITPOINT_NONE marks an unused slot */
     float weight[3];  /* path throughput from the camera up to this surface */
     float footprint;  /* pixel footprint at the hit, world units (initial radius heuristic) */
-    float color[3];   /* Lambertian albedo, or the GGX conductor's F0 */
-    float alpha;      /* 0: Lambertian; > 0: GGX roughness alpha (kernels/ggx.cl) */
+    /* The material there, as kernels/bsdf.cl's Bsdf holds it: the lobes the gather evaluates are
+     * the diffuse one and, when alpha >= GLOSSY_HITPOINT_ALPHA, the specular and metal ones. */
+    float color[3];   /* base colour */
+    float alpha;      /* GGX alpha = roughness^2 */
+    float f0[3];      /* the dielectric layer's Schlick F0 */
+    float f90;        /* and its F90 (KHR_materials_specular specularFactor) */
+    float dielectric; /* weight of the dielectric base: (1 - metallic)(1 - transmission) */
+    float metal;      /* weight of the conductor: metallic */
     u32 normal_oct;   /* shading normal on the side the eye path arrives from, octahedral 2x16 */
     u32 ng_oct;       /* geometric normal, same side (shadow-ray offsets) */
     u32 wo_oct;       /* unit direction back along the eye path */
     u32 pad0;
-} HitPoint; /* 64 bytes */
+} HitPoint; /* 88 bytes */
 
 #define HITPOINT_NONE 0xffffffffu
 

@@ -104,7 +104,7 @@ class GltfBuilder:
 
     def material(self, name, base_color=(0.8, 0.8, 0.8), metallic=0.0, roughness=1.0,
                  emissive=None, emissive_strength=None, transmission=None, ior=None,
-                 double_sided=False, base_color_texture=None):
+                 double_sided=False, base_color_texture=None, specular=None, specular_color=None):
         pbr = {"baseColorFactor": list(base_color) + [1.0] * (4 - len(base_color)),
                "metallicFactor": metallic, "roughnessFactor": roughness}
         if base_color_texture is not None:
@@ -119,6 +119,13 @@ class GltfBuilder:
             ext["KHR_materials_transmission"] = {"transmissionFactor": transmission}
         if ior is not None:
             ext["KHR_materials_ior"] = {"ior": ior}
+        if specular is not None or specular_color is not None:
+            spec = {}
+            if specular is not None:
+                spec["specularFactor"] = specular
+            if specular_color is not None:
+                spec["specularColorFactor"] = list(specular_color)
+            ext["KHR_materials_specular"] = spec
         if ext:
             m["extensions"] = ext
             self.extensions_used.update(ext)
@@ -323,10 +330,10 @@ CORNELL_CAMERA = {"translation": [0.0, 0.0, 3.9], "yfov": 0.68}
 def cornell_walls(b):
     """Box [-1,1]^3 open at z = +1, normals into the box, and the ceiling light.
     Returns the mesh indices (walls, light)."""
-    white = b.material("white", WHITE)
-    red = b.material("red", RED)
-    green = b.material("green", GREEN)
-    light = b.material("light", (0.78, 0.78, 0.78), emissive=(1.0, 1.0, 1.0),
+    white = b.material("white", WHITE, specular=0.0)
+    red = b.material("red", RED, specular=0.0)
+    green = b.material("green", GREEN, specular=0.0)
+    light = b.material("light", (0.78, 0.78, 0.78), specular=0.0, emissive=(1.0, 1.0, 1.0),
                        emissive_strength=LIGHT_RADIANCE)
     walls = [
         (quad((0, -1, 0), (0, 0, 1), (1, 0, 0)), white),   # floor, normal +y
@@ -378,8 +385,8 @@ def cornell_box(out_dir):
 
 def caustic(out_dir):
     b = GltfBuilder()
-    floor = b.material("floor", (0.8, 0.8, 0.8))
-    wall = b.material("wall", (0.6, 0.6, 0.6))
+    floor = b.material("floor", (0.8, 0.8, 0.8), specular=0.0)
+    wall = b.material("wall", (0.6, 0.6, 0.6), specular=0.0)
     glass = b.material("glass", (1.0, 1.0, 1.0), metallic=0.0, roughness=0.0, transmission=1.0, ior=1.5)
     fpos, fnrm, fidx = quad((0, 0, 0), (0, 0, 4), (4, 0, 0))
     wpos, wnrm, widx = quad((0, 2, -3), (4, 0, 0), (0, 2, 0))
@@ -409,7 +416,7 @@ def caustic(out_dir):
 
 def furnace(out_dir):
     b = GltfBuilder()
-    mat = b.material("furnace", (0.5, 0.5, 0.5), emissive=(1.0, 1.0, 1.0), double_sided=True)
+    mat = b.material("furnace", (0.5, 0.5, 0.5), emissive=(1.0, 1.0, 1.0), double_sided=True, specular=0.0)
     pos, nrm, idx = uv_sphere(32, 16, radius=1.0, inward=True)
     check_front_faces(pos, nrm, idx)
     mesh = b.mesh([b.primitive(pos, idx, nrm, material=mat)], "furnace_sphere")
@@ -421,7 +428,7 @@ def furnace(out_dir):
 
 def plane_point_light(out_dir):
     b = GltfBuilder()
-    mat = b.material("plane", (0.5, 0.5, 0.5))
+    mat = b.material("plane", (0.5, 0.5, 0.5), specular=0.0)
     pos, nrm, idx = quad((0, 0, 0), (0, 0, 2), (2, 0, 0))
     assert nrm[0] == (0.0, 1.0, 0.0)
     mesh = b.mesh([b.primitive(pos, idx, nrm, material=mat)], "plane")
@@ -447,7 +454,7 @@ def blob_displacement(d):
 def bunny_100k(out_dir):
     b = GltfBuilder()
     walls, light = cornell_walls(b)
-    mat = b.material("blob", (0.72, 0.62, 0.45))
+    mat = b.material("blob", (0.72, 0.62, 0.45), specular=0.0)
     pos, nrm, idx = uv_sphere(320, 160, radius=0.5, displace=blob_displacement)
     # Rest the lowest vertex just above the floor (y = -1).
     lift = -0.999 - min(p[1] for p in pos)

@@ -46,11 +46,55 @@ __kernel void ggx_sample_many(float nx, float ny, float nz, float ox, float oy, 
     o[0] = wi.x; o[1] = wi.y; o[2] = wi.z; o[3] = w.x;
     o[4] = f.x * fmax(0.0f, dot(n, wi)); o[5] = pdf;
 }
-/* The Lambertian branch of hitpoint_brdf (alpha 0). */
+/* The whole model (kernels/bsdf.cl) from 12 parameters: base rgb, f0 rgb, f90, alpha, dielectric,
+ * glass, metal, eta; the shading and geometric normal are n. */
+Bsdf test_bsdf(__global const float* p, float3 n) {
+    Bsdf b;
+    b.ns = n;
+    b.ng = n;
+    b.base = (float3)(p[0], p[1], p[2]);
+    b.f0 = (float3)(p[3], p[4], p[5]);
+    b.f90 = p[6];
+    b.alpha = p[7];
+    b.dielectric = p[8];
+    b.glass = p[9];
+    b.metal = p[10];
+    b.eta = p[11];
+    return b;
+}
+/* bsdf_eval (rgb) and bsdf_pdf at (wo, wi[i]) over the lobes in mask. */
+__kernel void model_eval_pdf(__global const float* p, float nx, float ny, float nz, float ox, float oy, float oz,
+                             uint mask, __global const float* wi, __global float* out) {
+    uint i = get_global_id(0);
+    float3 n = (float3)(nx, ny, nz), wo = (float3)(ox, oy, oz);
+    float3 w = (float3)(wi[3 * i], wi[3 * i + 1], wi[3 * i + 2]);
+    Bsdf b = test_bsdf(p, n);
+    float3 f = bsdf_eval(&b, wo, w, mask);
+    out[4 * i] = f.x; out[4 * i + 1] = f.y; out[4 * i + 2] = f.z;
+    out[4 * i + 3] = bsdf_pdf(&b, wo, w, mask);
+}
+/* bsdf_sample from wo with u[3 i .. 3 i + 2]: wi, weight, pdf, and flags (1 sampled, 2 delta,
+ * 4 below). */
+__kernel void model_sample(__global const float* p, float nx, float ny, float nz, float ox, float oy, float oz,
+                           uint mask, __global const float* u, __global float* out) {
+    uint i = get_global_id(0);
+    float3 n = (float3)(nx, ny, nz), wo = (float3)(ox, oy, oz);
+    Bsdf b = test_bsdf(p, n);
+    BsdfSample s;
+    bool ok = bsdf_sample(&b, wo, mask, u[3 * i], u[3 * i + 1], u[3 * i + 2], &s);
+    __global float* o = &out[8 * i];
+    o[0] = s.wi.x; o[1] = s.wi.y; o[2] = s.wi.z;
+    o[3] = s.weight.x; o[4] = s.weight.y; o[5] = s.weight.z;
+    o[6] = s.pdf;
+    o[7] = (float)((ok ? 1 : 0) | (s.delta ? 2 : 0) | (s.below ? 4 : 0));
+}
+/* The diffuse lobe of a hit point's BSDF, seen from the normal. */
 __kernel void lambert(__global const HitPoint* hp, float nx, float ny, float nz, __global const float* wi,
                       __global float* out) {
     uint i = get_global_id(0);
-    out[i] = hitpoint_brdf(hp, (float3)(nx, ny, nz), (float3)(wi[3 * i], wi[3 * i + 1], wi[3 * i + 2])).y;
+    float3 n = (float3)(nx, ny, nz);
+    Bsdf b = hitpoint_bsdf(hp, n);
+    out[i] = bsdf_eval(&b, n, (float3)(wi[3 * i], wi[3 * i + 1], wi[3 * i + 2]), LOBE_DIFFUSE).y;
 }
 )CL";
 
@@ -129,5 +173,104 @@ inline const double kViews[] = {1.0, 0.7, 0.2};
 // Gauss-Legendre nodes on [0, 1] (4 points) for the quadratures of both tests.
 inline const double kGlX[4] = {0.0694318442029737, 0.3300094782075719, 0.6699905217924281, 0.9305681557970263};
 inline const double kGlW[4] = {0.1739274225687269, 0.3260725774312731, 0.3260725774312731, 0.1739274225687269};
+
+// ---- host references and quadrature shared by the BSDF tests ----
+
+// GGX (Walter et al. 2007, Eq. 33), Smith Lambda (Heitz 2014, Eq. 72), height-correlated G2
+// (Heitz 2014, Eq. 99), Schlick's Fresnel.
+inline double ref_d(double c, double a) {
+    double t = c * c * (a * a - 1) + 1;
+    return a * a / (M_PI * t * t);
+}
+inline double ref_lambda(double c, double a) { return 0.5 * (-1 + std::sqrt(1 + a * a * (1 - c * c) / (c * c))); }
+inline double ref_eval(D3 n, D3 wo, D3 wi, double f0, double a) {
+    double co = dot(n, wo), ci = dot(n, wi);
+    if (co <= 0 || ci <= 0) return 0;
+    D3 h = normalized(wo + wi);
+    double F = f0 + (1 - f0) * std::pow(1 - dot(wi, h), 5);
+    return F * ref_d(dot(n, h), a) / (1 + ref_lambda(co, a) + ref_lambda(ci, a)) / (4 * co * ci);
+}
+inline double ref_pdf(D3 n, D3 wo, D3 wi, double a) {
+    double co = dot(n, wo), ci = dot(n, wi);
+    if (co <= 0 || ci <= 0) return 0;
+    D3 h = normalized(wo + wi);
+    return ref_d(dot(n, h), a) / (1 + ref_lambda(co, a)) / (4 * co);
+}
+
+// Directions wi parameterised by their half vector h about n: tan^2(theta_h) = alpha^2 u / (1 - u)
+// makes D(h) cos(theta_h) d omega_h = du dphi / (2 pi), so a grid in (u, phi) is dense where the
+// lobe is, whatever alpha. With wi = reflect(wo, h), d omega_i = 4 (wo.h) d omega_h: an integral
+// over wi is the sum over (u, phi) of g(wi) * jacobian.
+struct HalfVectorGrid {
+    D3 n, t, b, wo;
+    double alpha;
+    HalfVectorGrid(D3 n_, D3 wo_, double a) : n(n_), wo(wo_), alpha(a) { host_frame(n, t, b); }
+    // h, and whether it reflects wo to a defined wi (wo.h > 0).
+    D3 half(double u, double phi) const {
+        double tan2 = alpha * alpha * u / (1 - u), c = 1 / std::sqrt(1 + tan2), s = std::sqrt(std::max(0.0, 1 - c * c));
+        return (s * std::cos(phi)) * t + (s * std::sin(phi)) * b + c * n;
+    }
+    D3 wi(D3 h) const { return (2 * dot(wo, h)) * h - wo; }
+    double jacobian(D3 h) const { return 4 * dot(wo, h) / (ref_d(dot(h, n), alpha) * dot(h, n)) / (2 * M_PI); }
+    // (u, phi) of a direction wi, for binning samples.
+    void coords(D3 wi_, double* u, double* phi) const {
+        D3 h = normalized(wo + wi_);
+        double c = std::min(1.0, dot(h, n)), s2 = std::max(0.0, 1 - c * c);
+        *u = s2 / (s2 + c * c * alpha * alpha);
+        *phi = std::atan2(dot(h, b), dot(h, t));
+        if (*phi < 0) *phi += 2 * M_PI;
+    }
+};
+
+// Quadrature points over (u, phi) in [0,1] x [0, 2 pi): nu x nphi cells of 4 x 4 Gauss-Legendre
+// nodes. The integrands jump to zero where wi crosses the horizon; a cell in which that happens
+// (nodes, corners and edge midpoints disagree about wi.n > 0) is split in four, down to `depth`
+// levels, so the jump costs 4^-depth of a cell instead of a cell. Returns the wi of every node
+// with wo.h > 0, its weight (cell area x jacobian), and the top-level cell it lies in.
+struct Quadrature {
+    std::vector<float> wi;
+    std::vector<double> weight;
+    std::vector<int> cell;
+};
+inline void quadrature_cell(const HalfVectorGrid& g, double u0, double u1, double p0, double p1, int depth, int id,
+                            Quadrature& q) {
+    auto above = [&](double u, double phi) {
+        D3 h = g.half(u, phi);
+        return dot(g.wo, h) > 0 && dot(g.wi(h), g.n) > 0;
+    };
+    const double du = u1 - u0, dp = p1 - p0;
+    if (depth > 0) {
+        int count = 0, total = 0;
+        for (double a : {0.0, 0.5, 1.0})
+            for (double c : {0.0, 0.5, 1.0}) count += above(u0 + a * du, p0 + c * dp), ++total;
+        for (int a = 0; a < 4; ++a)
+            for (int c = 0; c < 4; ++c) count += above(u0 + kGlX[a] * du, p0 + kGlX[c] * dp), ++total;
+        if (count > 0 && count < total) {
+            const double um = u0 + 0.5 * du, pm = p0 + 0.5 * dp;
+            quadrature_cell(g, u0, um, p0, pm, depth - 1, id, q);
+            quadrature_cell(g, um, u1, p0, pm, depth - 1, id, q);
+            quadrature_cell(g, u0, um, pm, p1, depth - 1, id, q);
+            quadrature_cell(g, um, u1, pm, p1, depth - 1, id, q);
+            return;
+        }
+    }
+    for (int a = 0; a < 4; ++a)
+        for (int c = 0; c < 4; ++c) {
+            double u = u0 + kGlX[a] * du, phi = p0 + kGlX[c] * dp;
+            D3 h = g.half(u, phi);
+            if (dot(g.wo, h) <= 0) continue;
+            push3(q.wi, normalized(g.wi(h)));
+            q.weight.push_back(kGlW[a] * kGlW[c] * du * dp * g.jacobian(h));
+            q.cell.push_back(id);
+        }
+}
+inline Quadrature half_vector_quadrature(const HalfVectorGrid& g, int nu, int nphi, int depth = 6) {
+    Quadrature q;
+    const double du = 1.0 / nu, dp = 2 * M_PI / nphi;
+    for (int i = 0; i < nu; ++i)
+        for (int j = 0; j < nphi; ++j)
+            quadrature_cell(g, i * du, (i + 1) * du, j * dp, (j + 1) * dp, depth, i * nphi + j, q);
+    return q;
+}
 
 } // namespace clppm::test::bsdf

@@ -162,7 +162,8 @@ TEST(Bsdf, LambertianAlbedoOverPiIntegratesToAlbedo) {
     for (float rho : {0.0f, 0.25f, 0.8f, 1.0f}) {
         dev::HitPoint hp{};
         hp.color[0] = hp.color[1] = hp.color[2] = rho;
-        hp.alpha = 0;
+        hp.alpha = 1;
+        hp.dielectric = 1; // no specular layer (f0 = f90 = 0): plain Lambertian
         std::vector<float> wi;
         std::vector<double> wts;
         const int nc = 32, np = 32;

@@ -107,8 +107,9 @@ std::vector<double> block_means(const Image& img) {
 
 // The furnace (closed sphere, albedo 0.5, Le = 1: L = 2 everywhere) has no spatial variation, so
 // every alpha converges to the same 2.0 whatever the radius does; photons only (no direct-light
-// shortcut). Tolerance 1.5%: at 16 passes of 10k photons the measured errors are 0.65% for
-// alpha = 0.01 (which keeps 1% of each pass's photons) and at most 0.5% for the others.
+// shortcut). Tolerance 1.5%, 4% for alpha = 0.01, which keeps 1% of each pass's photons: at 16
+// passes of 10k photons its mean over six seeds was 1.999 with a spread of 1.92 to 2.04 (32x32,
+// clppm --seed 1..6); the others stay within 0.5%.
 // Radius: alpha = 1 is photon mapping with a fixed radius (mean R stays R0, to float summation:
 // 1e-6); smaller alpha shrinks R faster.
 TEST(Extremes, AlphaFromOneHundredthToOneConvergesOnTheFurnace) {
@@ -120,7 +121,7 @@ TEST(Extremes, AlphaFromOneHundredthToOneConvergesOnTheFurnace) {
             s.alpha = alpha;
             IntegratorStats st;
             Image img = render(furnace(0.5f, 1.0f), s, 16, &st);
-            EXPECT_NEAR(mean_radiance(img), 2.0, 0.03) << name(integ) << " alpha " << alpha;
+            EXPECT_NEAR(mean_radiance(img), 2.0, alpha == 0.01 ? 0.08 : 0.03) << name(integ) << " alpha " << alpha;
             ASSERT_GT(st.initial_radius, 0.0);
             EXPECT_TRUE(std::isfinite(st.mean_radius) && st.mean_radius > 0) << name(integ) << " alpha " << alpha;
             if (alpha == 1.0) {
@@ -321,9 +322,9 @@ TEST(Extremes, PhotonsEscapingAnOpenSceneLeaveTheSkyBlack) {
 TEST(Extremes, ASceneOfOnlySpecularSurfaces) {
     Scene s;
     s.source = "<mirror box>";
-    uint32_t mirror = add_material(s, 0.9f, 0.9f, 0.9f, 0.f, false, MATERIAL_MIRROR);
-    uint32_t glass = add_material(s, 1, 1, 1, 0.f, false, MATERIAL_DIELECTRIC, 1.5f);
-    uint32_t lamp = add_material(s, 0.9f, 0.9f, 0.9f, 5.f, false, MATERIAL_MIRROR);
+    uint32_t mirror = add_material(s, 0.9f, 0.9f, 0.9f, 0.f, false, MAT_MIRROR);
+    uint32_t glass = add_material(s, 1, 1, 1, 0.f, false, MAT_GLASS, 1.5f);
+    uint32_t lamp = add_material(s, 0.9f, 0.9f, 0.9f, 5.f, false, MAT_MIRROR);
     add_quad(s, {-1, -1, -1}, {-1, -1, 1}, {1, -1, 1}, {1, -1, -1}, mirror);
     add_quad(s, {-1, 1, -1}, {1, 1, -1}, {1, 1, 1}, {-1, 1, 1}, mirror);
     add_quad(s, {-1, -1, -1}, {1, -1, -1}, {1, 1, -1}, {-1, 1, -1}, mirror);

@@ -59,7 +59,10 @@ GatherCase make_case(float cell, float radius, uint32_t n_photons, uint32_t n_hi
         }
         h.pos[0] = x, h.pos[1] = 0, h.pos[2] = z;
         h.normal_oct = oct(0, 1, 0);
-        h.color[0] = h.color[1] = h.color[2] = 1; // Lambertian, f = 1/pi
+        h.wo_oct = h.normal_oct;
+        h.color[0] = h.color[1] = h.color[2] = 1; // Lambertian (no layer: f0 = f90 = 0), f = 1/pi
+        h.alpha = 1;
+        h.dielectric = 1;
         h.weight[0] = h.weight[1] = h.weight[2] = 1;
         h.pixel = i;
         c.hitpoints.push_back(h);

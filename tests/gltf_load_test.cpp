@@ -211,17 +211,18 @@ TEST(GltfMirror, NegativeDeterminantKeepsWindingAndNormalsConsistent) {
 
 // ---- materials and textures ---------------------------------------------------------------------
 
-TEST(GltfMaterials, KindMapping) {
+TEST(GltfMaterials, ParametersAreKeptAsTheFileSays) {
     Scene s = load_gltf(data("materials.gltf"));
-    ASSERT_EQ(s.materials.size(), 9u); // 8 in the file + the default
-    // Metallic 1 is a mirror when roughness is 0 and a GGX conductor otherwise (the glTF default
-    // material, metallic 1 roughness 1, is a rough white metal).
-    const uint32_t want[9] = {MATERIAL_DIFFUSE, MATERIAL_DIFFUSE,    MATERIAL_DIELECTRIC,
-                              MATERIAL_MIRROR,  MATERIAL_METAL_MIX,  MATERIAL_DIFFUSE,
-                              MATERIAL_GLOSSY,  MATERIAL_DIELECTRIC, MATERIAL_GLOSSY};
-    for (size_t i = 0; i < 9; ++i) EXPECT_EQ(s.materials[i].kind, want[i]) << "material " << i;
-    ASSERT_EQ(s.num_triangles(), 9u);
-    for (uint32_t t = 0; t < 9; ++t) EXPECT_EQ(s.shading[t].material, t);
+    ASSERT_EQ(s.materials.size(), 10u); // 9 in the file + the default
+    // glTF's parameters reach the device as they are: kernels/bsdf.cl is the model they define.
+    const float metallic[10] = {0, 0, 0, 1, 0.4f, 0, 1, 0, 0, 1};
+    const float transmission[10] = {0, 0, 1, 0, 0, 0, 0, 0.5f, 0, 0};
+    for (size_t i = 0; i < 10; ++i) {
+        EXPECT_FLOAT_EQ(s.materials[i].metallic, metallic[i]) << "material " << i;
+        EXPECT_FLOAT_EQ(s.materials[i].transmission, transmission[i]) << "material " << i;
+    }
+    ASSERT_EQ(s.num_triangles(), 10u);
+    for (uint32_t t = 0; t < 10; ++t) EXPECT_EQ(s.shading[t].material, t);
     expect_vec3(s.materials[0].base_color, 0.5, 0.25, 0.125);
     EXPECT_FLOAT_EQ(s.materials[0].roughness, 0.7f);
     EXPECT_FLOAT_EQ(s.materials[4].metallic, 0.4f);
@@ -247,10 +248,22 @@ TEST(GltfMaterials, TransmissionAndIor) {
     EXPECT_FLOAT_EQ(s.materials[3].roughness, 0.f);
 }
 
+TEST(GltfMaterials, SpecularExtensionScalesTheLayerAndDefaultsToOne) {
+    Scene s = load_gltf(data("materials.gltf"));
+    const dev::Material& m = s.materials[8];
+    expect_vec3(m.specular_color, 1, 0.5, 0.25);
+    EXPECT_FLOAT_EQ(m.specular_color[3], 0.5f);
+    // Without the extension: specularFactor 1, specularColorFactor 1 (KHR_materials_specular).
+    expect_vec3(s.materials[0].specular_color, 1, 1, 1);
+    EXPECT_FLOAT_EQ(s.materials[0].specular_color[3], 1.f);
+    EXPECT_FLOAT_EQ(s.materials[9].specular_color[3], 1.f);
+    EXPECT_TRUE(s.warnings.empty()) << ::testing::PrintToString(s.warnings);
+}
+
 TEST(GltfMaterials, DefaultMaterialFollowsTheSpecification) {
     Scene s = load_gltf(data("materials.gltf"));
     // glTF 2.0: base colour 1, metallic 1, roughness 1 -> a rough white GGX metal by our mapping.
-    const dev::Material& d = s.materials[8];
+    const dev::Material& d = s.materials[9];
     expect_vec3(d.base_color, 1, 1, 1);
     EXPECT_FLOAT_EQ(d.metallic, 1.f);
     EXPECT_FLOAT_EQ(d.roughness, 1.f);
@@ -480,10 +493,21 @@ TEST(GltfRobustness, MutatedFilesLoadOrFailCleanly) {
 
 // ---- shipped scenes -----------------------------------------------------------------------------
 
-bool has_kind(const Scene& s, uint32_t kind) {
+bool has_glass(const Scene& s) {
     for (const dev::Material& m : s.materials)
-        if (m.kind == kind) return true;
+        if (m.transmission > 0 && m.metallic < 1) return true;
     return false;
+}
+
+bool has_mirror(const Scene& s) {
+    for (const dev::Material& m : s.materials)
+        if (m.metallic == 1 && m.roughness == 0) return true;
+    return false;
+}
+
+// Lambertian as the classic scenes mean it: no metal, no glass, no specular layer.
+bool is_lambertian(const dev::Material& m) {
+    return m.metallic == 0 && m.transmission == 0 && m.specular_color[3] == 0;
 }
 
 const dev::Material* emissive_material(const Scene& s) {
@@ -503,8 +527,11 @@ TEST(GltfDefaultScene, IsTheEmbeddedCornellBox) {
     expect_vec3(s.cameras[0].position, 0, 0, 3.9);
     expect_vec3(s.cameras[0].forward, 0, 0, -1);
     EXPECT_FLOAT_EQ(s.cameras[0].yfov, 0.68f);
-    EXPECT_TRUE(has_kind(s, MATERIAL_DIELECTRIC));
-    EXPECT_TRUE(has_kind(s, MATERIAL_MIRROR));
+    EXPECT_TRUE(has_glass(s));
+    EXPECT_TRUE(has_mirror(s));
+    size_t lambertian = 0;
+    for (const dev::Material& m : s.materials) lambertian += is_lambertian(m);
+    EXPECT_EQ(lambertian, 4u); // the white, red and green walls and the light
     EXPECT_EQ(s.degenerate_triangles_skipped, 0u);
     EXPECT_TRUE(s.warnings.empty()) << ::testing::PrintToString(s.warnings);
     // The embedded copy is the shipped file.
@@ -538,7 +565,7 @@ TEST(GltfShippedScenes, FurnaceIsAnInwardFacingEmitterOfAlbedoHalf) {
     const dev::Material& m = s.materials[0];
     expect_vec3(m.base_color, 0.5, 0.5, 0.5);
     expect_vec3(m.emission, 1, 1, 1);
-    EXPECT_EQ(m.kind, MATERIAL_DIFFUSE);
+    EXPECT_TRUE(is_lambertian(m));
     EXPECT_EQ(m.flags, MATERIAL_FLAG_DOUBLE_SIDED);
     expect_vec3(s.cameras[0].position, 0, 0, 0);
     // Every normal points at the centre, where the camera is.
@@ -568,7 +595,7 @@ TEST(GltfShippedScenes, CausticSpotAimsAtTheGlassSphere) {
     expect_vec3(spot.position, -3, 3.5, 0);
     double r = 1 / std::sqrt(2.0);
     expect_vec3(spot.direction, r, -r, 0);
-    EXPECT_TRUE(has_kind(s, MATERIAL_DIELECTRIC));
+    EXPECT_TRUE(has_glass(s));
 }
 
 } // namespace

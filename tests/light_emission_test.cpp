@@ -44,8 +44,8 @@ __kernel void sample_light_many(SCENE_PARAMS, ulong seed, float px, float py, fl
     double min_dist = INFINITY;
     for (int k = 0; k < SAMPLES; ++k) {
         float3 wi, c;
-        float dist = 0.0f;
-        if (!sample_light(SCENE_ARGS, x, &rng, &wi, &dist, &c)) continue;
+        float dist = 0.0f, pdf;
+        if (!sample_light(SCENE_ARGS, x, &rng, &wi, &dist, &c, &pdf)) continue;
         double3 e = convert_double3(c * fmax(0.0f, dot(wi, n)));
         sum += e;
         sum_sq += e * e;

@@ -9,18 +9,24 @@
 
 namespace clppm::test {
 
+// The materials the tests build, in glTF's parameters: Lambertian (metallic 0 and
+// KHR_materials_specular's specularFactor 0: no specular layer), a mirror and a GGX metal
+// (metallic 1, roughness 0 or the given one), smooth glass (transmission 1).
+enum TestMaterial : uint32_t { MAT_DIFFUSE, MAT_MIRROR, MAT_GLASS, MAT_METAL };
+
 inline uint32_t add_material(Scene& s, float r, float g, float b, float emission = 0.f, bool double_sided = false,
-                             uint32_t kind = MATERIAL_DIFFUSE, float ior = 1.5f, float roughness = 1.f) {
+                             TestMaterial kind = MAT_DIFFUSE, float ior = 1.5f, float roughness = 1.f) {
     dev::Material m{};
     m.base_color[0] = r, m.base_color[1] = g, m.base_color[2] = b, m.base_color[3] = 1;
     m.emission[0] = m.emission[1] = m.emission[2] = emission;
-    m.roughness = kind == MATERIAL_MIRROR ? 0.f : roughness;
+    m.roughness = kind == MAT_MIRROR ? 0.f : roughness;
     m.ior = ior;
-    m.metallic = kind == MATERIAL_MIRROR || kind == MATERIAL_GLOSSY ? 1.f : 0.f;
-    m.transmission = kind == MATERIAL_DIELECTRIC ? 1.f : 0.f;
+    m.metallic = kind == MAT_MIRROR || kind == MAT_METAL ? 1.f : 0.f;
+    m.transmission = kind == MAT_GLASS ? 1.f : 0.f;
+    m.specular_color[0] = m.specular_color[1] = m.specular_color[2] = 1.f;
+    m.specular_color[3] = kind == MAT_DIFFUSE ? 0.f : 1.f;
     m.base_color_tex = -1;
     m.flags = double_sided ? MATERIAL_FLAG_DOUBLE_SIDED : 0u;
-    m.kind = kind;
     s.materials.push_back(m);
     return uint32_t(s.materials.size() - 1);
 }
@@ -146,7 +152,7 @@ inline Scene furnace(float rho, float le) {
 inline Scene glossy_furnace(float f0, float roughness, float le) {
     Scene s;
     s.source = "<glossy furnace>";
-    uint32_t m = add_material(s, f0, f0, f0, le, true, MATERIAL_GLOSSY, 1.5f, roughness);
+    uint32_t m = add_material(s, f0, f0, f0, le, true, MAT_METAL, 1.5f, roughness);
     add_sphere(s, {0, 0, 0}, 1.f, 24, 48, m, true);
     add_camera(s, {0, 0, 0.2f}, {0, 0, -1}, {0, 1, 0}, 1.0f);
     return s;
@@ -184,8 +190,8 @@ inline Scene diffuse_box(bool with_blocks = true) {
 inline Scene glossy_box() {
     Scene s = diffuse_box(false);
     s.source = "<glossy box>";
-    uint32_t rough = add_material(s, 0.9f, 0.8f, 0.6f, 0.f, false, MATERIAL_GLOSSY, 1.5f, 0.5f);
-    uint32_t smooth = add_material(s, 0.8f, 0.8f, 0.9f, 0.f, false, MATERIAL_GLOSSY, 1.5f, 0.12f);
+    uint32_t rough = add_material(s, 0.9f, 0.8f, 0.6f, 0.f, false, MAT_METAL, 1.5f, 0.5f);
+    uint32_t smooth = add_material(s, 0.8f, 0.8f, 0.9f, 0.f, false, MAT_METAL, 1.5f, 0.12f);
     // The back wall (triangles 4 and 5 of diffuse_box) becomes rough metal.
     s.shading[4].material = s.shading[5].material = rough;
     float x0 = -0.6f, x1 = 0.0f, z0 = -0.5f, z1 = 0.1f, y1 = -0.2f;

@@ -37,10 +37,12 @@ TEST(Specialization, BuildOptionsRemoveWhatTheSceneDoesNotUse) {
     area.type = LIGHT_TRIANGLE;
     ds.lights.push_back(area);
     SceneFeatures fb = scene_features(box, ds), ff = scene_features(furnace, ds);
-    EXPECT_TRUE(fb.mirror && fb.dielectric && fb.area_lights);
-    EXPECT_FALSE(fb.glossy || fb.textures || fb.spot_lights || fb.point_lights || fb.thin_lens);
+    // The box: Lambertian walls, a mirror sphere (metal) and a glass one; the glass has no
+    // opaque part, so no specular layer either.
+    EXPECT_TRUE(fb.metal && fb.glass && fb.area_lights);
+    EXPECT_FALSE(fb.specular_layer || fb.textures || fb.spot_lights || fb.point_lights || fb.thin_lens);
     EXPECT_EQ(feature_build_options(ff),
-              "-DHAS_MIRROR=0 -DHAS_GLOSSY=0 -DHAS_DIELECTRIC=0 -DHAS_METAL_MIX=0 -DHAS_TEXTURES=0 "
+              "-DHAS_SPECULAR_LAYER=0 -DHAS_METAL=0 -DHAS_GLASS=0 -DHAS_TEXTURES=0 "
               "-DHAS_POINT_LIGHTS=0 -DHAS_SPOT_LIGHTS=0 -DHAS_DIRECTIONAL_LIGHTS=0 -DHAS_THIN_LENS=0");
     EXPECT_EQ(feature_build_options(SceneFeatures::all()), "");
 }

@@ -19,11 +19,12 @@ CLPPM_CHECK_OFFSET(BvhNode, child, 24 * BVH_WIDTH);
 CLPPM_CHECK_OFFSET(BvhNode, count, 28 * BVH_WIDTH);
 static_assert(BVH_WIDTH == 4 || BVH_WIDTH == 8, "bvh_traverse.cl has float4 and float8 node tests");
 
-CLPPM_CHECK_SIZE(Material, 64);
+CLPPM_CHECK_SIZE(Material, 80);
 CLPPM_CHECK_OFFSET(Material, emission, 16);
-CLPPM_CHECK_OFFSET(Material, metallic, 32);
-CLPPM_CHECK_OFFSET(Material, base_color_tex, 48);
-CLPPM_CHECK_OFFSET(Material, kind, 56);
+CLPPM_CHECK_OFFSET(Material, specular_color, 32);
+CLPPM_CHECK_OFFSET(Material, metallic, 48);
+CLPPM_CHECK_OFFSET(Material, base_color_tex, 64);
+CLPPM_CHECK_OFFSET(Material, flags, 68);
 
 CLPPM_CHECK_SIZE(Texture, 16);
 
@@ -42,14 +43,18 @@ CLPPM_CHECK_OFFSET(SceneInfo, radius, 16);
 CLPPM_CHECK_OFFSET(SceneInfo, num_lights, 28);
 CLPPM_CHECK_OFFSET(SceneInfo, max_bounces, 40);
 
-CLPPM_CHECK_SIZE(HitPoint, 64);
+CLPPM_CHECK_SIZE(HitPoint, 88);
 CLPPM_CHECK_OFFSET(HitPoint, pixel, 12);
 CLPPM_CHECK_OFFSET(HitPoint, weight, 16);
 CLPPM_CHECK_OFFSET(HitPoint, footprint, 28);
 CLPPM_CHECK_OFFSET(HitPoint, color, 32);
 CLPPM_CHECK_OFFSET(HitPoint, alpha, 44);
-CLPPM_CHECK_OFFSET(HitPoint, normal_oct, 48);
-CLPPM_CHECK_OFFSET(HitPoint, wo_oct, 56);
+CLPPM_CHECK_OFFSET(HitPoint, f0, 48);
+CLPPM_CHECK_OFFSET(HitPoint, f90, 60);
+CLPPM_CHECK_OFFSET(HitPoint, dielectric, 64);
+CLPPM_CHECK_OFFSET(HitPoint, metal, 68);
+CLPPM_CHECK_OFFSET(HitPoint, normal_oct, 72);
+CLPPM_CHECK_OFFSET(HitPoint, wo_oct, 80);
 
 CLPPM_CHECK_SIZE(HitStats, 64);
 CLPPM_CHECK_OFFSET(HitStats, n, 8);

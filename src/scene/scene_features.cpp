@@ -11,17 +11,11 @@ SceneFeatures scene_features(const Scene& scene, const DeviceScene& ds) {
     for (size_t i = 0; i < scene.materials.size(); ++i) {
         if (!used[i]) continue;
         const dev::Material& m = scene.materials[i];
-        const bool metal_is_glossy = m.roughness > 0.f;
-        switch (m.kind) {
-        case MATERIAL_MIRROR: f.mirror = true; break;
-        case MATERIAL_GLOSSY: f.glossy = true; break;
-        case MATERIAL_DIELECTRIC: f.dielectric = true; break;
-        case MATERIAL_METAL_MIX:
-            f.metal_mix = true;
-            (metal_is_glossy ? f.glossy : f.mirror) = true;
-            break;
-        default: break;
-        }
+        // The lobes of kernels/bsdf.cl this material gives weight to.
+        const float dielectric = (1.f - m.metallic) * (1.f - m.transmission);
+        if (dielectric > 0.f && m.specular_color[3] > 0.f) f.specular_layer = true;
+        if (m.metallic > 0.f) f.metal = true;
+        if (m.transmission > 0.f && m.metallic < 1.f) f.glass = true;
         if (m.base_color_tex >= 0) f.textures = true;
     }
     for (const dev::Light& l : ds.lights) {

@@ -22,7 +22,7 @@ struct SceneFeatures {
 
 SceneFeatures scene_features(const Scene& scene, const DeviceScene& ds);
 
-// "-DHAS_MIRROR=0 ..." for every absent feature; "" for the generic program.
+// "-DHAS_METAL=0 ..." for every absent feature; "" for the generic program.
 std::string feature_build_options(const SceneFeatures& f);
 
 // A short human-readable list: "diffuse, dielectric, area lights".

@@ -172,10 +172,12 @@ def materials():
     b.material("two_sided", (0.3, 0.3, 0.3), double_sided=True)
     b._append("materials", {"name": "pbr_default"})
     b.material("glass_default_ior", (1, 1, 1), metallic=0.0, transmission=0.5)
+    b.material("specular", (0.5, 0.5, 0.5), metallic=0.0, roughness=0.4, specular=0.5,
+               specular_color=(1.0, 0.5, 0.25))
     prims = []
-    for i in range(9):
+    for i in range(10):
         tri = [(x, y, float(i)) for x, y, _ in TRI]
-        prims.append(b.primitive(tri, [0, 1, 2], TRI_N, material=i if i < 8 else None))
+        prims.append(b.primitive(tri, [0, 1, 2], TRI_N, material=i if i < 9 else None))
     b.scene([b.node(name="swatches", mesh=b.mesh(prims))])
     b.write_embedded(out("materials.gltf"))
 

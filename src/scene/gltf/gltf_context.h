@@ -28,7 +28,8 @@ constexpr size_t kMaxByteStride = 252; // glTF 2.0 limit
 constexpr double kPi = 3.14159265358979323846;
 
 inline const std::set<std::string> kSupportedExtensions = {"KHR_lights_punctual", "KHR_materials_emissive_strength",
-                                                           "KHR_materials_transmission", "KHR_materials_ior"};
+                                                           "KHR_materials_transmission", "KHR_materials_ior",
+                                                           "KHR_materials_specular"};
 
 // Error messages are one line: tinygltf and nlohmann texts are joined with "; ".
 std::string one_line(const std::string& text);

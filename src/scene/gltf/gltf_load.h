@@ -1,15 +1,10 @@
 // glTF 2.0 scene loading: .gltf (external or data-URI buffers) and .glb files become a Scene of
 // world-space triangles, materials, textures, punctual lights and cameras.
 //
-// Material kind (dev::Material::kind) from the glTF parameters, in this order:
-//   transmission > 0  -> MATERIAL_DIELECTRIC (KHR_materials_transmission; ior from KHR_materials_ior,
-//                        default 1.5; roughness is ignored for now)
-//   metallic >= 1     -> MATERIAL_MIRROR when roughness is 0 (tinted by base colour), else
-//                        MATERIAL_GLOSSY (GGX conductor, alpha = roughness^2, F0 = base colour)
-//   metallic > 0      -> MATERIAL_METAL_MIX (that metal with probability metallic, else diffuse)
-//   otherwise         -> MATERIAL_DIFFUSE
+// Materials keep glTF's parameters (metallic, roughness, KHR_materials_transmission, _ior,
+// _specular); kernels/bsdf.cl is the scattering model they define, and README.md the mapping.
 // A primitive without a material gets the glTF specification's default material: base colour 1,
-// metallic 1, roughness 1, which the mapping above makes a rough white MATERIAL_GLOSSY.
+// metallic 1, roughness 1 (a rough white metal).
 // emission = emissiveFactor * KHR_materials_emissive_strength.emissiveStrength.
 //
 // Every failure throws clppm::Error with one line that starts with the file path (or display name).

@@ -30,14 +30,6 @@ double extension_number(const tinygltf::ExtensionMap& extensions, const char* ex
     return v.IsNumber() ? v.GetNumberAsDouble() : fallback;
 }
 
-// The material kind mapping documented in gltf_load.h.
-uint32_t material_kind(float metallic, float roughness, float transmission) {
-    if (transmission > 0.f) return MATERIAL_DIELECTRIC;
-    if (metallic >= 1.f) return roughness > 0.f ? MATERIAL_GLOSSY : MATERIAL_MIRROR;
-    if (metallic > 0.f) return MATERIAL_METAL_MIX;
-    return MATERIAL_DIFFUSE;
-}
-
 // glTF 2.0 Sec. 5.19: the material of a primitive that names none.
 dev::Material default_material() {
     dev::Material m{};
@@ -46,8 +38,8 @@ dev::Material default_material() {
     m.metallic = 1.f;
     m.roughness = 1.f;
     m.ior = 1.5f;
+    for (int c = 0; c < 4; ++c) m.specular_color[c] = 1.f;
     m.base_color_tex = -1;
-    m.kind = material_kind(m.metallic, m.roughness, m.transmission);
     return m;
 }
 
@@ -105,9 +97,37 @@ dev::Material MaterialConverter::convert_material(int index) {
     if (g.emissiveTexture.index >= 0) ctx_.warn(label + " emissiveTexture is not supported; emission is uniform");
     if (pbr.metallicRoughnessTexture.index >= 0)
         ctx_.warn(label + " metallicRoughnessTexture is not supported; factors only");
+    convert_specular(g, label, m);
     m.flags = g.doubleSided ? MATERIAL_FLAG_DOUBLE_SIDED : 0u;
-    m.kind = material_kind(m.metallic, m.roughness, m.transmission);
     return m;
+}
+
+// KHR_materials_specular: specularFactor (default 1) scales the dielectric layer's F0 and F90,
+// specularColorFactor (default 1) its F0 (kernels/bsdf.cl surface_bsdf).
+void MaterialConverter::convert_specular(const tinygltf::Material& g, const std::string& label, dev::Material& m) {
+    for (int c = 0; c < 3; ++c) m.specular_color[c] = 1.f;
+    m.specular_color[3] = 1.f;
+    auto it = g.extensions.find("KHR_materials_specular");
+    if (it == g.extensions.end() || !it->second.IsObject()) return;
+    const tinygltf::Value& ext = it->second;
+    m.specular_color[3] =
+        std::max(0.f, finite_factor(extension_number(g.extensions, "KHR_materials_specular", "specularFactor", 1.0),
+                                    "specularFactor", label));
+    if (ext.Has("specularColorFactor")) {
+        const tinygltf::Value& v = ext.Get("specularColorFactor");
+        if (!v.IsArray() || v.ArrayLen() != 3) ctx_.fail(label + " specularColorFactor must have 3 components");
+        for (int c = 0; c < 3; ++c) {
+            const tinygltf::Value& x = v.Get(c);
+            if (!x.IsNumber()) ctx_.fail(label + " specularColorFactor must have 3 numbers");
+            m.specular_color[c] = std::max(0.f, finite_factor(x.GetNumberAsDouble(), "specularColorFactor", label));
+        }
+    }
+    if (m.specular_color[3] > 1.f) {
+        ctx_.warn(label + " specularFactor " + std::to_string(m.specular_color[3]) + " is above 1; using 1");
+        m.specular_color[3] = 1.f;
+    }
+    if (ext.Has("specularTexture") || ext.Has("specularColorTexture"))
+        ctx_.warn(label + " KHR_materials_specular textures are not supported; factors only");
 }
 
 uint32_t MaterialConverter::material_index(int gltf_material, const std::string& owner) {

@@ -27,6 +27,7 @@ private:
                      const std::string& label);
 
     float finite_factor(double v, const std::string& what, const std::string& label);
+    void convert_specular(const tinygltf::Material& g, const std::string& label, dev::Material& m);
 
     dev::Material convert_material(int index);
 

@@ -1,0 +1,368 @@
+// kernels/bsdf.cl, the whole glTF metallic-roughness model, on the device against a host reference
+// in double written out from the formulas in bsdf.cl's header (glTF 2.0 Appendix B, Kulla and
+// Conty 2017, Kelemen and Szirmay-Kalos 2001): eval against the reference, reciprocity, the
+// sampler's histogram against bsdf_pdf (chi-square), the sample weight against eval cos / pdf,
+// white furnaces without gain, continuity at the mirror limit, and the albedo tables against an
+// independent quadrature.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <string>
+
+#include "bsdf_kernels.h"
+#include "ggx_albedo.h"
+#include "stat_tests.h"
+#include "test_util.h"
+
+using namespace clppm;
+using namespace clppm::test;
+using namespace clppm::test::bsdf;
+
+namespace {
+
+constexpr unsigned kDiffuse = 1, kSpecular = 2, kGlass = 4, kMetal = 8, kAll = 15;
+
+struct Params {
+    D3 base{1, 1, 1}, f0{0.04, 0.04, 0.04};
+    double f90 = 1, alpha = 0.25, dielectric = 1, glass = 0, metal = 0, eta = 1.5;
+    std::vector<float> pack() const {
+        return {float(base.x), float(base.y), float(base.z), float(f0.x),       float(f0.y),    float(f0.z),
+                float(f90),    float(alpha),  float(dielectric), float(glass), float(metal), float(eta)};
+    }
+    std::string name() const {
+        return "base (" + std::to_string(base.x) + "," + std::to_string(base.y) + "," + std::to_string(base.z) +
+               ") alpha " + std::to_string(alpha) + " dielectric " + std::to_string(dielectric) + " metal " +
+               std::to_string(metal) + " glass " + std::to_string(glass) + " f90 " + std::to_string(f90);
+    }
+};
+
+Params dielectric(double alpha, D3 base = {0.8, 0.5, 0.2}) {
+    Params p;
+    p.alpha = alpha;
+    p.base = base;
+    return p;
+}
+Params metal(double alpha, D3 base = {0.95, 0.64, 0.54}) {
+    Params p;
+    p.alpha = alpha, p.base = base, p.dielectric = 0, p.metal = 1;
+    return p;
+}
+Params mixed(double alpha) { // metallic 0.4, transmission 0.25, a tinted specular colour
+    Params p;
+    p.alpha = alpha, p.base = {0.7, 0.6, 0.3}, p.f0 = {0.04, 0.02, 0.01}, p.f90 = 0.8;
+    p.metal = 0.4, p.dielectric = 0.6 * 0.75, p.glass = 0.6 * 0.25;
+    return p;
+}
+
+// ---- the host reference ----------------------------------------------------------------------
+
+// Bilinear in the generated table, in double (the table's data is checked separately below).
+double table(const float* t, double mu, double alpha) {
+    double x = std::clamp(mu * GGX_ALBEDO_MU - 0.5, 0.0, GGX_ALBEDO_MU - 1.0);
+    double y = std::clamp(std::sqrt(alpha) * (GGX_ALBEDO_ALPHA - 1), 0.0, GGX_ALBEDO_ALPHA - 1.0);
+    int i = std::min(int(x), GGX_ALBEDO_MU - 2), j = std::min(int(y), GGX_ALBEDO_ALPHA - 2);
+    double fx = x - i, fy = y - j;
+    auto at = [&](int a, int b) { return double(t[b * GGX_ALBEDO_MU + a]); };
+    return (1 - fy) * ((1 - fx) * at(i, j) + fx * at(i + 1, j)) + fy * ((1 - fx) * at(i, j + 1) + fx * at(i + 1, j + 1));
+}
+double table_avg(const float* t, double alpha) {
+    double y = std::clamp(std::sqrt(alpha) * (GGX_ALBEDO_ALPHA - 1), 0.0, GGX_ALBEDO_ALPHA - 1.0);
+    int j = std::min(int(y), GGX_ALBEDO_ALPHA - 2);
+    return (1 - (y - j)) * t[j] + (y - j) * t[j + 1];
+}
+
+double comp(D3 v, int c) { return c == 0 ? v.x : c == 1 ? v.y : v.z; }
+
+// One channel c of f(wo, wi) over the lobes in mask (non-delta parts).
+double ref_model(const Params& p, D3 n, D3 wo, D3 wi, unsigned mask, int c) {
+    double co = dot(n, wo), ci = dot(n, wi);
+    if (co <= 0 || ci <= 0) return 0;
+    const bool mirror = p.alpha < 1e-4;
+    const double base = comp(p.base, c), f0 = comp(p.f0, c), f90 = p.f90;
+    auto E = [&](double mu) {
+        return mirror ? f0 + (f90 - f0) * std::pow(1 - mu, 5)
+                      : f0 * table(ggx_albedo_a, mu, p.alpha) + (f90 - f0) * table(ggx_albedo_b, mu, p.alpha);
+    };
+    const double e_avg = mirror ? f0 + (f90 - f0) / 21
+                                : f0 * table_avg(ggx_albedo_a_avg, p.alpha) + (f90 - f0) * table_avg(ggx_albedo_b_avg, p.alpha);
+    double f = 0;
+    if (mask & kDiffuse) {
+        double d = p.dielectric * base / M_PI;
+        if (p.dielectric > 0 && f90 > 0) d *= 1 - e_avg > 1e-6 ? (1 - E(co)) * (1 - E(ci)) / (1 - e_avg) : 0;
+        f += d;
+    }
+    if (mirror) return f;
+    D3 h = normalized(wo + wi);
+    const double dg = ref_d(dot(n, h), p.alpha) / (1 + ref_lambda(co, p.alpha) + ref_lambda(ci, p.alpha)) / (4 * co * ci);
+    const double s5 = std::pow(1 - dot(wi, h), 5);
+    if ((mask & kSpecular) && f90 > 0) f += p.dielectric * (f0 + (f90 - f0) * s5) * dg;
+    if ((mask & kMetal) && p.metal > 0) {
+        f += p.metal * (base + (1 - base) * s5) * dg;
+        const double a_avg = table_avg(ggx_albedo_a_avg, p.alpha);
+        const double f_avg = base + (1 - base) / 21, f_ms = f_avg * f_avg * a_avg / (1 - f_avg * (1 - a_avg));
+        if (1 - a_avg > 1e-6)
+            f += p.metal * f_ms * (1 - table(ggx_albedo_a, co, p.alpha)) * (1 - table(ggx_albedo_a, ci, p.alpha)) /
+                 (M_PI * (1 - a_avg));
+    }
+    return f;
+}
+
+// ---- the device --------------------------------------------------------------------------------
+
+// Per wi: f.rgb and pdf.
+std::vector<float> model_eval(const Params& p, D3 n, D3 wo, const std::vector<float>& wi, unsigned mask) {
+    const Device& d = device();
+    const size_t m = wi.size() / 3;
+    cl::Buffer pb = d.input(p.pack()), ib = d.input(wi), out = d.output(4 * m * sizeof(float));
+    cl::Kernel k(d.program, "model_eval_pdf");
+    k.setArg(0, pb), k.setArg(1, float(n.x)), k.setArg(2, float(n.y)), k.setArg(3, float(n.z));
+    k.setArg(4, float(wo.x)), k.setArg(5, float(wo.y)), k.setArg(6, float(wo.z)), k.setArg(7, cl_uint(mask));
+    k.setArg(8, ib), k.setArg(9, out);
+    d.run(k, m);
+    return d.read<float>(out, 4 * m);
+}
+
+// Per sample: wi, weight, pdf, flags (1 sampled, 2 delta, 4 below).
+std::vector<float> model_sample(const Params& p, D3 n, D3 wo, size_t m, unsigned mask, uint64_t seed) {
+    const Device& d = device();
+    cl::Buffer pb = d.input(p.pack()), ub = d.input(uniforms(3 * m, seed)), out = d.output(8 * m * sizeof(float));
+    cl::Kernel k(d.program, "model_sample");
+    k.setArg(0, pb), k.setArg(1, float(n.x)), k.setArg(2, float(n.y)), k.setArg(3, float(n.z));
+    k.setArg(4, float(wo.x)), k.setArg(5, float(wo.y)), k.setArg(6, float(wo.z)), k.setArg(7, cl_uint(mask));
+    k.setArg(8, ub), k.setArg(9, out);
+    d.run(k, m);
+    return d.read<float>(out, 8 * m);
+}
+
+// Random unit directions, a quarter of them below the surface.
+std::vector<float> random_directions(D3 n, size_t m, uint64_t seed) {
+    std::mt19937_64 g(seed);
+    std::uniform_real_distribution<double> u(-1, 1);
+    std::vector<float> v;
+    while (v.size() < 3 * m) {
+        D3 w{u(g), u(g), u(g)};
+        double l = length(w);
+        if (l < 0.1 || l > 1) continue;
+        w = (1 / l) * w;
+        if (dot(w, n) < 0 && (v.size() / 3) % 4 != 0) w = w - (2 * dot(w, n)) * n;
+        push3(v, w);
+    }
+    return v;
+}
+
+const std::vector<Params>& cases() {
+    static const std::vector<Params> c = {dielectric(0.05), dielectric(0.25), dielectric(1.0), metal(0.05),
+                                          metal(0.3),       metal(1.0),       mixed(0.1),      mixed(0.6)};
+    return c;
+}
+
+} // namespace
+
+// bsdf_eval against the double reference for every lobe set, at random directions (a quarter of
+// them below the surface, where f is 0). Relative 3e-3 plus 1e-6 of the largest value, as for
+// GGX alone (tests/ggx_test.cpp explains the float error near the peak).
+TEST(BsdfModel, EvalMatchesHostReference) {
+    const D3 n = float_normal();
+    for (const Params& p : cases())
+        for (double cos_o : kViews)
+            for (unsigned mask : {kAll, kDiffuse, kSpecular | kMetal}) {
+                SCOPED_TRACE(p.name() + " cos_o " + std::to_string(cos_o) + " mask " + std::to_string(mask));
+                D3 wo = view(cos_o);
+                std::vector<float> wi = random_directions(n, 400, 7);
+                std::vector<float> v = model_eval(p, n, wo, wi, mask);
+                double peak = 0;
+                for (size_t i = 0; i < 400; ++i) peak = std::max(peak, double(v[4 * i]));
+                for (size_t i = 0; i < 400; ++i) {
+                    D3 w = at3(wi, i);
+                    if (std::fabs(dot(w, n)) < 1e-4) continue;
+                    for (int c = 0; c < 3; ++c) {
+                        double want = ref_model(p, n, wo, w, mask, c);
+                        ASSERT_NEAR(v[4 * i + c], want, 3e-3 * want + 1e-6 * peak + 1e-9) << "wi " << i << " channel " << c;
+                    }
+                }
+            }
+}
+
+// f(wo, wi) = f(wi, wo): photons sample the BSDF from their side and the gather evaluates it from
+// the eye's, so the model must be reciprocal (the coupled diffuse and Kulla-Conty terms are).
+TEST(BsdfModel, EvalIsReciprocal) {
+    const D3 n = float_normal();
+    std::vector<float> dirs = random_directions(n, 64, 11);
+    for (const Params& p : cases())
+        for (size_t a = 0; a < 64; ++a) {
+            D3 wo = at3(dirs, a);
+            if (dot(wo, n) <= 1e-3) continue;
+            std::vector<float> fwd = model_eval(p, n, wo, dirs, kAll);
+            for (size_t b = 0; b < 64; ++b) {
+                D3 wi = at3(dirs, b);
+                if (dot(wi, n) <= 1e-3) continue;
+                std::vector<float> one;
+                push3(one, wo);
+                std::vector<float> back = model_eval(p, n, wi, one, kAll);
+                for (int c = 0; c < 3; ++c)
+                    ASSERT_NEAR(fwd[4 * b + c], back[c], 2e-3 * std::fabs(back[c]) + 1e-7)
+                        << p.name() << " pair " << a << "," << b << " channel " << c;
+            }
+        }
+}
+
+// Histogram of bsdf_sample's directions against bsdf_pdf integrated over the bins (Pearson's
+// chi-square, Sidak-corrected over all cases). Bins are cells of the half-vector grid about the
+// lobes' alpha, so the peak is resolved; samples that are not drawn (below the surface, or from
+// a delta lobe) go to one extra cell whose expectation is the rest of the mass.
+TEST(BsdfModel, SampleMatchesPdfChiSquare) {
+    const D3 n = float_normal();
+    const int nu = 16, nphi = 32;
+    const double level = sidak(1e-3, int(cases().size() * 3 * 2));
+    for (const Params& p : cases())
+        for (double cos_o : kViews)
+            for (unsigned mask : {kAll, kDiffuse | kMetal}) {
+                SCOPED_TRACE(p.name() + " cos_o " + std::to_string(cos_o) + " mask " + std::to_string(mask));
+                D3 wo = view(cos_o);
+                // Not narrower than 0.15: the diffuse part would crowd into the last bins in u.
+                HalfVectorGrid grid(n, wo, std::max(p.alpha, 0.15));
+                Quadrature q = half_vector_quadrature(grid, 4 * nu, 4 * nphi);
+                std::vector<float> v = model_eval(p, n, wo, q.wi, mask);
+                const size_t m = 200000;
+                std::vector<double> expected(nu * nphi + 1, 0), observed(nu * nphi + 1, 0);
+                for (size_t i = 0; i < q.weight.size(); ++i) {
+                    int c = q.cell[i], bu = (c / (4 * nphi)) / 4, bp = (c % (4 * nphi)) / 4;
+                    expected[bu * nphi + bp] += m * v[4 * i + 3] * q.weight[i];
+                }
+                double inside = 0;
+                for (int k = 0; k < nu * nphi; ++k) inside += expected[k];
+                expected[nu * nphi] = std::max(0.0, m - inside);
+                std::vector<float> s = model_sample(p, n, wo, m, mask, 100 + uint64_t(cos_o * 10) + mask);
+                for (size_t i = 0; i < m; ++i) {
+                    int flags = int(s[8 * i + 7]);
+                    if (!(flags & 1) || (flags & 2)) {
+                        observed[nu * nphi] += 1;
+                        continue;
+                    }
+                    double u, phi;
+                    grid.coords(D3{s[8 * i], s[8 * i + 1], s[8 * i + 2]}, &u, &phi);
+                    int bu = std::min(nu - 1, int(u * nu)), bp = std::min(nphi - 1, int(phi / (2 * M_PI) * nphi));
+                    observed[bu * nphi + bp] += 1;
+                }
+                Chi2Result c = chi2_test(observed, expected);
+                EXPECT_TRUE(c.error.empty()) << c.error;
+                EXPECT_GT(c.p_value, level) << "chi2 " << c.chi2 << " dof " << c.dof;
+            }
+}
+
+// A drawn sample's weight is eval cos / pdf at its direction, and its pdf is bsdf_pdf there (so
+// the path tracer's MIS weights and estimators that use eval and pdf agree with sampling).
+TEST(BsdfModel, SampleWeightIsEvalCosOverPdf) {
+    const D3 n = float_normal();
+    for (const Params& p : cases())
+        for (double cos_o : kViews) {
+            SCOPED_TRACE(p.name() + " cos_o " + std::to_string(cos_o));
+            D3 wo = view(cos_o);
+            const size_t m = 2000;
+            std::vector<float> s = model_sample(p, n, wo, m, kAll, 5);
+            std::vector<float> wi;
+            for (size_t i = 0; i < m; ++i) push3(wi, D3{s[8 * i], s[8 * i + 1], s[8 * i + 2]});
+            std::vector<float> v = model_eval(p, n, wo, wi, kAll);
+            for (size_t i = 0; i < m; ++i) {
+                int flags = int(s[8 * i + 7]);
+                if (!(flags & 1) || (flags & 2)) continue;
+                const double cos_i = dot(at3(wi, i), n), pdf = v[4 * i + 3];
+                ASSERT_NEAR(s[8 * i + 6], pdf, 1e-3 * pdf) << "sample " << i;
+                for (int c = 0; c < 3; ++c) {
+                    const double want = v[4 * i + c] * cos_i / pdf;
+                    ASSERT_NEAR(s[8 * i + 3 + c], want, 1e-3 * want + 1e-7) << "sample " << i << " channel " << c;
+                }
+            }
+        }
+}
+
+// White furnace: the albedo (the mean sample weight, delta lobes included) never exceeds 1, and a
+// white metal or a white dielectric reflects everything at every roughness and view: the
+// coupled diffuse takes exactly what the layer does not reflect, Kulla-Conty gives back what
+// single-scattering GGX loses. Bounds: 4 standard errors plus 2e-3 for the albedo tables'
+// interpolation.
+TEST(BsdfModel, WhiteFurnaceWithoutGain) {
+    const D3 n = float_normal();
+    const size_t m = 400000;
+    for (double alpha : {0.0, 0.01, 0.05, 0.2, 0.5, 1.0})
+        for (double cos_o : {1.0, 0.7, 0.3, 0.05}) {
+            std::vector<Params> white = {dielectric(alpha, {1, 1, 1}), metal(alpha, {1, 1, 1})};
+            Params colored = mixed(alpha);
+            colored.base = {1, 1, 1};
+            for (const Params& p : white) {
+                SCOPED_TRACE(p.name() + " cos_o " + std::to_string(cos_o));
+                std::vector<float> s = model_sample(p, n, view(cos_o), m, kAll, 9 + uint64_t(alpha * 100));
+                double sum = 0, sum2 = 0;
+                for (size_t i = 0; i < m; ++i) {
+                    double w = int(s[8 * i + 7]) & 1 ? s[8 * i + 4] : 0.0;
+                    sum += w, sum2 += w * w;
+                }
+                const double mean = sum / m, se = std::sqrt(std::max(0.0, sum2 / m - mean * mean) / m);
+                EXPECT_LE(mean, 1 + 4 * se + 2e-3);
+                // At grazing views the part of GGX's samples that falls below the horizon is lost
+                // to the sampler as to the model; the tables cover it within 1%.
+                EXPECT_GE(mean, (cos_o < 0.1 ? 0.99 : 0.997) - 4 * se);
+            }
+            std::vector<float> s = model_sample(colored, n, view(cos_o), m, kAll, 13);
+            for (int c = 0; c < 3; ++c) {
+                double sum = 0, sum2 = 0;
+                for (size_t i = 0; i < m; ++i) {
+                    double w = int(s[8 * i + 7]) & 1 ? s[8 * i + 3 + c] : 0.0;
+                    sum += w, sum2 += w * w;
+                }
+                const double mean = sum / m, se = std::sqrt(std::max(0.0, sum2 / m - mean * mean) / m);
+                EXPECT_LE(mean, 1 + 4 * se + 2e-3) << colored.name() << " channel " << c;
+            }
+        }
+}
+
+// Continuous in roughness: just above MIRROR_ALPHA the GGX lobes reflect what the mirror does.
+TEST(BsdfModel, GgxMeetsTheMirrorAtTheDeltaThreshold) {
+    const D3 n = float_normal();
+    for (double cos_o : {1.0, 0.5, 0.1}) {
+        for (const Params& base : {dielectric(0), metal(0)}) {
+            double albedo[2];
+            for (int k = 0; k < 2; ++k) {
+                Params p = base;
+                p.alpha = k == 0 ? 0.0 : 1.2e-4;
+                const size_t m = 100000;
+                std::vector<float> s = model_sample(p, n, view(cos_o), m, kAll, 21);
+                double sum = 0;
+                for (size_t i = 0; i < m; ++i) sum += int(s[8 * i + 7]) & 1 ? s[8 * i + 3] : 0.0;
+                albedo[k] = sum / m;
+            }
+            EXPECT_NEAR(albedo[1], albedo[0], 5e-3) << base.name() << " cos_o " << cos_o;
+        }
+    }
+}
+
+// The generated tables against an independent quadrature over wi (not over half vectors, as the
+// generator integrates): A = int D G2 / (4 mu) dwi and B the same with (1 - wo.h)^5, at table
+// nodes (no interpolation).
+TEST(BsdfModel, AlbedoTablesMatchAnIndependentQuadrature) {
+    const D3 n{0, 0, 1};
+    for (int j : {12, 20, 31}) // roughness 0.39 and up: the lobe is wide enough for a plain grid over wi
+        for (int i : {3, 16, 29}) {
+            const double r = double(j) / (GGX_ALBEDO_ALPHA - 1), alpha = r * r, mu = (i + 0.5) / GGX_ALBEDO_MU;
+            const D3 wo{std::sqrt(1 - mu * mu), 0, mu};
+            double a = 0, b = 0;
+            const int nc = 200, np = 200;
+            for (int x = 0; x < nc; ++x)
+                for (int y = 0; y < np; ++y)
+                    for (int g = 0; g < 4; ++g)
+                        for (int k = 0; k < 4; ++k) {
+                            double ci = (x + kGlX[g]) / nc, phi = 2 * M_PI * (y + kGlX[k]) / np;
+                            double si = std::sqrt(1 - ci * ci);
+                            D3 wi{si * std::cos(phi), si * std::sin(phi), ci};
+                            double w = kGlW[g] * kGlW[k] / nc * (2 * M_PI / np);
+                            D3 h = normalized(wo + wi);
+                            double f = ref_d(dot(n, h), alpha) / (1 + ref_lambda(mu, alpha) + ref_lambda(ci, alpha)) /
+                                       (4 * mu * ci) * ci * w;
+                            a += f;
+                            b += f * std::pow(1 - dot(wo, h), 5);
+                        }
+            EXPECT_NEAR(ggx_albedo_a[j * GGX_ALBEDO_MU + i], a, 1e-3) << "alpha " << alpha << " mu " << mu;
+            EXPECT_NEAR(ggx_albedo_b[j * GGX_ALBEDO_MU + i], b, 1e-3) << "alpha " << alpha << " mu " << mu;
+        }
+}
