@@ -135,6 +135,11 @@ float3 layer_albedo_avg(const Bsdf* b) {
 
 bool has_layer(const Bsdf* b) { return HAS_SPECULAR_LAYER && b->dielectric > 0.0f && b->f90 > 0.0f; }
 
+/* Nothing but the Lambertian lobe (no layer, metal or glass): the fast paths below. */
+bool bsdf_plain_lambert(const Bsdf* b) {
+    return !HAS_NON_DIFFUSE || (!(HAS_METAL && b->metal > 0.0f) && !(HAS_GLASS && b->glass > 0.0f) && !has_layer(b));
+}
+
 /* The diffuse lobe: base / pi, scaled for the layer above it. */
 float3 diffuse_eval(const Bsdf* b, float cos_o, float cos_i) {
     float3 c = b->base * (b->dielectric * INV_PI_F);
@@ -162,38 +167,43 @@ float3 metal_ms_eval(const Bsdf* b, float cos_o, float cos_i) {
 }
 
 /* Selection weights of the five sampling techniques (diffuse, layer, glass, metal, metal's
- * multiple scattering) for the lobes in mask: estimates of each one's albedo at cos_o. */
+ * multiple scattering) for the lobes in mask: estimates of each one's albedo at cos_o. Named
+ * fields rather than an array: an indexed private array would live in memory on PoCL. */
 #define TECH_DIFFUSE 0
 #define TECH_LAYER 1
 #define TECH_GLASS 2
 #define TECH_METAL 3
 #define TECH_METAL_MS 4
-#define NUM_TECHS 5
 
-float lobe_weights(const Bsdf* b, float cos_o, uint mask, float* w) {
-    for (int k = 0; k < NUM_TECHS; ++k) w[k] = 0.0f;
+typedef struct {
+    float diffuse, layer, glass, metal, metal_ms, total;
+} LobeWeights;
+
+LobeWeights lobe_weights(const Bsdf* b, float cos_o, uint mask) {
+    LobeWeights w;
+    w.diffuse = w.layer = w.glass = w.metal = w.metal_ms = 0.0f;
     float3 e = has_layer(b) ? layer_albedo(b, cos_o) : (float3)(0.0f);
-    if (mask & LOBE_DIFFUSE) w[TECH_DIFFUSE] = b->dielectric * mean3(b->base * (1.0f - e));
-    if (HAS_SPECULAR_LAYER && (mask & LOBE_SPECULAR)) w[TECH_LAYER] = b->dielectric * mean3(e);
-    if (HAS_GLASS && (mask & LOBE_GLASS)) w[TECH_GLASS] = b->glass;
+    if (mask & LOBE_DIFFUSE) w.diffuse = b->dielectric * mean3(b->base * (1.0f - e));
+    if (HAS_SPECULAR_LAYER && (mask & LOBE_SPECULAR)) w.layer = b->dielectric * mean3(e);
+    if (HAS_GLASS && (mask & LOBE_GLASS)) w.glass = b->glass;
     if (HAS_METAL && (mask & LOBE_METAL) && b->metal > 0.0f) {
         bool mirror = bsdf_is_mirror(b);
         float a_o = mirror ? 1.0f : ggx_table(ggx_albedo_a, cos_o, b->alpha);
-        w[TECH_METAL] = b->metal * mean3(metal_fresnel(b, cos_o)) * a_o;
+        w.metal = b->metal * mean3(metal_fresnel(b, cos_o)) * a_o;
         if (!mirror) {
             float a_avg = ggx_table_avg(ggx_albedo_a_avg, b->alpha);
-            if (1.0f - a_avg > 1e-6f) w[TECH_METAL_MS] = b->metal * mean3(metal_ms_color(b, a_avg)) * (1.0f - a_o);
+            if (1.0f - a_avg > 1e-6f) w.metal_ms = b->metal * mean3(metal_ms_color(b, a_avg)) * (1.0f - a_o);
         }
     }
-    float total = 0.0f;
-    for (int k = 0; k < NUM_TECHS; ++k) total += w[k];
-    return total;
+    w.total = w.diffuse + w.layer + w.glass + w.metal + w.metal_ms;
+    return w;
 }
 
 /* f(wo, wi) of the non-delta part of the lobes in mask; zero for wi below the surface. */
 float3 bsdf_eval(const Bsdf* b, float3 wo, float3 wi, uint mask) {
     float cos_o = dot(b->ns, wo), cos_i = dot(b->ns, wi);
     if (cos_o <= 0.0f || cos_i <= 0.0f) return (float3)(0.0f);
+    if (bsdf_plain_lambert(b)) return (mask & LOBE_DIFFUSE) ? b->base * (b->dielectric * INV_PI_F) : (float3)(0.0f);
     float3 f = (float3)(0.0f);
     if (mask & LOBE_DIFFUSE) f += diffuse_eval(b, cos_o, cos_i);
     if (!HAS_NON_DIFFUSE || bsdf_is_mirror(b)) return f;
@@ -209,20 +219,22 @@ float3 bsdf_eval(const Bsdf* b, float3 wo, float3 wi, uint mask) {
     return f;
 }
 
-/* The density bsdf_sample draws a non-delta wi with, given the selection weights w (total W). */
-float bsdf_pdf_weighted(const Bsdf* b, float3 wo, float3 wi, const float* w, float total) {
+/* The density bsdf_sample draws a non-delta wi with, given the selection weights w. */
+float bsdf_pdf_weighted(const Bsdf* b, float3 wo, float3 wi, const LobeWeights* w) {
     float cos_o = dot(b->ns, wo), cos_i = dot(b->ns, wi);
-    if (cos_o <= 0.0f || cos_i <= 0.0f || !(total > 0.0f)) return 0.0f;
-    float p = (w[TECH_DIFFUSE] + w[TECH_METAL_MS]) * cos_i * INV_PI_F;
-    if (!bsdf_is_mirror(b) && w[TECH_LAYER] + w[TECH_METAL] > 0.0f)
-        p += (w[TECH_LAYER] + w[TECH_METAL]) * ggx_pdf(b->ns, wo, wi, b->alpha);
-    return p / total;
+    if (cos_o <= 0.0f || cos_i <= 0.0f || !(w->total > 0.0f)) return 0.0f;
+    float p = (w->diffuse + w->metal_ms) * cos_i * INV_PI_F;
+    if (!bsdf_is_mirror(b) && w->layer + w->metal > 0.0f) p += (w->layer + w->metal) * ggx_pdf(b->ns, wo, wi, b->alpha);
+    return p / w->total;
 }
 
 float bsdf_pdf(const Bsdf* b, float3 wo, float3 wi, uint mask) {
-    float w[NUM_TECHS];
-    float total = lobe_weights(b, dot(b->ns, wo), mask, w);
-    return bsdf_pdf_weighted(b, wo, wi, w, total);
+    if (bsdf_plain_lambert(b)) {
+        float cos_i = dot(b->ns, wi);
+        return (mask & LOBE_DIFFUSE) && dot(b->ns, wo) > 0.0f && cos_i > 0.0f ? cos_i * INV_PI_F : 0.0f;
+    }
+    LobeWeights w = lobe_weights(b, dot(b->ns, wo), mask);
+    return bsdf_pdf_weighted(b, wo, wi, &w);
 }
 
 /* Samples the lobes in mask: one technique chosen by its weight with u_lobe, then the direction
@@ -235,20 +247,39 @@ bool bsdf_sample(const Bsdf* b, float3 wo, uint mask, float u_lobe, float u1, fl
     s->pdf = 0.0f;
     s->weight = (float3)(0.0f);
     if (!(cos_o > 0.0f)) return false;
-    float w[NUM_TECHS];
-    float total = lobe_weights(b, cos_o, mask, w);
-    if (!(total > 0.0f)) return false;
-    /* The technique, and u_lobe rescaled to [0, 1) within it (glass's reflect-or-refract choice). */
-    float u = u_lobe * total, acc = 0.0f;
-    int tech = -1;
-    for (int k = 0; k < NUM_TECHS; ++k) {
-        if (!(w[k] > 0.0f)) continue;
-        tech = k;
-        if (u < acc + w[k]) break;
-        acc += w[k];
+    if (bsdf_plain_lambert(b)) { /* f cos / pdf is the albedo itself: no lobe to choose */
+        if (!(mask & LOBE_DIFFUSE) || !(b->dielectric > 0.0f)) return false;
+        s->wi = sample_cosine_hemisphere(b->ns, u1, u2);
+        float cos_i = dot(b->ns, s->wi);
+        if (cos_i <= 0.0f || dot(s->wi, b->ng) <= 0.0f) return false;
+        s->pdf = cos_i * INV_PI_F;
+        s->weight = b->base * b->dielectric;
+        return true;
     }
-    float u_in = clamp((u - acc) / w[tech], 0.0f, 0.99999994f);
-    float p_tech = w[tech] / total;
+    LobeWeights w = lobe_weights(b, cos_o, mask);
+    float total = w.total;
+    if (!(total > 0.0f)) return false;
+    /* The technique, and u_lobe rescaled to [0, 1) within it (glass's reflect-or-refract choice):
+     * the last technique with weight whose cumulative range holds u. */
+    float u = u_lobe * total, acc = 0.0f, wt = 0.0f;
+    int tech = -1;
+    bool found = false;
+#define CLPPM_PICK(field, id)                                                                                          \
+    if (!found && w.field > 0.0f) {                                                                                    \
+        tech = id;                                                                                                     \
+        wt = w.field;                                                                                                  \
+        if (u < acc + w.field) found = true;                                                                           \
+        else acc += w.field;                                                                                           \
+    }
+    CLPPM_PICK(diffuse, TECH_DIFFUSE)
+    CLPPM_PICK(layer, TECH_LAYER)
+    CLPPM_PICK(glass, TECH_GLASS)
+    CLPPM_PICK(metal, TECH_METAL)
+    CLPPM_PICK(metal_ms, TECH_METAL_MS)
+#undef CLPPM_PICK
+    if (!found) acc -= wt; /* u rounded past the end: the last technique */
+    float u_in = clamp((u - acc) / wt, 0.0f, 0.99999994f);
+    float p_tech = wt / total;
     bool mirror = bsdf_is_mirror(b);
     if (HAS_GLASS && tech == TECH_GLASS) {
         /* Reflect with probability F: the Fresnel weights cancel the probabilities. */
@@ -281,7 +312,7 @@ bool bsdf_sample(const Bsdf* b, float3 wo, uint mask, float u_lobe, float u1, fl
     }
     float cos_i = dot(b->ns, s->wi);
     if (cos_i <= 0.0f || dot(s->wi, b->ng) <= 0.0f) return false;
-    if (!HAS_NON_DIFFUSE || (mask & ~LOBE_DIFFUSE) == 0u || total == w[TECH_DIFFUSE]) {
+    if (!HAS_NON_DIFFUSE || (mask & ~LOBE_DIFFUSE) == 0u || total == w.diffuse) {
         /* Only the diffuse lobe: f cos / pdf in closed form (exactly the base colour when the
          * surface is plain Lambertian). */
         s->pdf = cos_i * INV_PI_F;
@@ -289,7 +320,7 @@ bool bsdf_sample(const Bsdf* b, float3 wo, uint mask, float u_lobe, float u1, fl
         if (!has_layer(b)) s->weight = b->base * (b->dielectric / p_tech);
         return true;
     }
-    s->pdf = bsdf_pdf_weighted(b, wo, s->wi, w, total);
+    s->pdf = bsdf_pdf_weighted(b, wo, s->wi, &w);
     if (!(s->pdf > 0.0f)) return false;
     s->weight = bsdf_eval(b, wo, s->wi, mask) * (cos_i / s->pdf);
     return true;
@@ -301,10 +332,10 @@ uint bsdf_gathered_lobes(float alpha) {
     return alpha >= GLOSSY_HITPOINT_ALPHA ? (LOBE_DIFFUSE | LOBE_SPECULAR | LOBE_METAL) : LOBE_DIFFUSE;
 }
 
-/* Whether any lobe in mask has weight here. */
-bool bsdf_has(const Bsdf* b, uint mask) {
-    float w[NUM_TECHS];
-    return lobe_weights(b, dot(b->ns, b->ns), mask, w) > 0.0f;
+/* Whether the surface has a lobe hit points keep (photons are stored there). */
+bool bsdf_has_gathered(const Bsdf* b) {
+    if (b->dielectric > 0.0f && (max3(b->base) > 0.0f || has_layer(b))) return true;
+    return HAS_METAL && b->metal > 0.0f && b->alpha >= GLOSSY_HITPOINT_ALPHA;
 }
 
 /* ---- a material at a surface ------------------------------------------------------------------ */

@@ -13,7 +13,7 @@ __kernel void direct_light(SCENE_PARAMS, ulong seed, ulong pass, __global const 
     if (hp->pixel == HITPOINT_NONE) return;
     Rng rng = rng_make(seed, pass, i, RNG_DIRECT);
     float3 x = load3g(hp->pos), n = oct_decode(hp->normal_oct), ng = oct_decode(hp->ng_oct);
-    Bsdf bsdf = hitpoint_bsdf(hp, n);
+    HitBrdf brdf = hitpoint_brdf_make(hp, n);
     float3 wi, contrib;
     float dist, pdf;
     if (!sample_light(SCENE_ARGS, x, &rng, &wi, &dist, &contrib, &pdf)) return;
@@ -21,7 +21,7 @@ __kernel void direct_light(SCENE_PARAMS, ulong seed, ulong pass, __global const 
     if (cos_x <= 0.0f || dot(wi, ng) <= 0.0f) return;
     float3 org = offset_origin(SCENE_ARGS, x, ng);
     if (trace_occluded(SCENE_ARGS, org, wi, dist)) return;
-    float3 L = load3g(hp->weight) * hitpoint_brdf(hp, &bsdf, wi) * contrib * cos_x;
+    float3 L = load3g(hp->weight) * hitpoint_brdf(&brdf, wi) * contrib * cos_x;
     stats[i].direct[0] += L.x;
     stats[i].direct[1] += L.y;
     stats[i].direct[2] += L.z;

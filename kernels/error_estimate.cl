@@ -34,13 +34,13 @@ __kernel void error_gather(__constant GridInfo* g, __global const Photon* sorted
     long acc = accumulate ? out[i] : 0;
     if (hp->pixel != HITPOINT_NONE) {
         float3 x = load3g(hp->pos), n = oct_decode(hp->normal_oct);
-        Bsdf bsdf = hitpoint_bsdf(hp, n);
+        HitBrdf brdf = hitpoint_brdf_make(hp, n);
         float r2 = global_r2 > 0.0f ? global_r2 : (float)stats[i].r2;
         /* The path throughput folded into the luminance weights: one scalar sum per hit point. */
         float3 wy = (float3)(hp->weight[0] * (float)ERROR_LUMINANCE_R, hp->weight[1] * (float)ERROR_LUMINANCE_G,
                              hp->weight[2] * (float)ERROR_LUMINANCE_B);
         GATHER_FOR_EACH_PHOTON(g, sorted, starts, x, n, r2, {
-            float3 f = hitpoint_brdf(hp, &bsdf, wi);
+            float3 f = hitpoint_brdf(&brdf, wi);
             float y = dot(wy, f * load3g(ph->flux));
             acc += convert_long_rte((double)(y * (2.0f * d2 / r2 - 1.0f)) * FLUX_FIXED_SCALE);
         });

@@ -62,10 +62,18 @@ Branch ray_branch(float3 weight, float3 dir, bool below) {
  * glass, its reflection and its refraction with their Fresnel weights. Returns how many. */
 uint surface_branches(const Bsdf* bsdf, float3 wo, float3 weight, Rng* rng, Branch* br) {
     uint n = 0;
+    if (bsdf_plain_lambert(bsdf)) { /* one way on: a hit point */
+        if (!(bsdf->dielectric > 0.0f)) return 0;
+        Branch b = no_branch();
+        b.weight = weight;
+        b.hitpoint = true;
+        b.magnitude = max3(weight);
+        br[0] = b;
+        return 1;
+    }
     float cos_o = dot(bsdf->ns, wo);
     uint gathered = bsdf_gathered_lobes(bsdf->alpha);
-    float w[NUM_TECHS];
-    float kept = lobe_weights(bsdf, cos_o, gathered, w);
+    float kept = lobe_weights(bsdf, cos_o, gathered).total;
     if (kept > 0.0f) {
         Branch b = no_branch();
         b.weight = weight;
@@ -75,7 +83,7 @@ uint surface_branches(const Bsdf* bsdf, float3 wo, float3 weight, Rng* rng, Bran
     }
     if (!HAS_NON_DIFFUSE) return n;
     uint followed = LOBE_ALL & ~gathered & ~LOBE_GLASS;
-    if (lobe_weights(bsdf, cos_o, followed, w) > 0.0f) {
+    if (lobe_weights(bsdf, cos_o, followed).total > 0.0f) {
         BsdfSample s;
         float u0 = rng_float(rng), u1 = rng_float(rng), u2 = rng_float(rng);
         if (bsdf_sample(bsdf, wo, followed, u0, u1, u2, &s)) br[n++] = ray_branch(weight * s.weight, s.wi, false);

@@ -18,14 +18,14 @@ __kernel void gather(__constant GridInfo* g, __global const Photon* sorted, __gl
         return;
     }
     float3 x = load3g(hp->pos), n = oct_decode(hp->normal_oct);
-    Bsdf bsdf = hitpoint_bsdf(hp, n);
+    HitBrdf brdf = hitpoint_brdf_make(hp, n);
     /* PPPM: one radius for every hit point this pass; (S)PPM: each hit point's own R(x). */
     float r2 = global_r2 > 0.0f ? global_r2 : (float)stats[i].r2;
     long acc0 = 0, acc1 = 0, acc2 = 0;
     uint m = 0;
     GATHER_FOR_EACH_PHOTON(g, sorted, starts, x, n, r2, {
         /* tau_M += f(x, w_p, w_o) Phi_p (Eq. 9); the path throughput is applied later. */
-        float3 f = hitpoint_brdf(hp, &bsdf, wi);
+        float3 f = hitpoint_brdf(&brdf, wi);
         acc0 += convert_long_rte((double)(f.x * ph->flux[0]) * FLUX_FIXED_SCALE);
         acc1 += convert_long_rte((double)(f.y * ph->flux[1]) * FLUX_FIXED_SCALE);
         acc2 += convert_long_rte((double)(f.z * ph->flux[2]) * FLUX_FIXED_SCALE);

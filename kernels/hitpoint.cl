@@ -41,10 +41,31 @@ Bsdf hitpoint_bsdf(__global const HitPoint* hp, float3 n) {
     return b;
 }
 
+/* What the gather evaluates per photon at one hit point, prepared once: the BSDF, the direction
+ * to the eye, the lobes kept, and the constant f of a plain Lambertian surface (the common case,
+ * which then costs one comparison per photon). */
+typedef struct {
+    Bsdf b;
+    float3 wo;
+    uint lobes;
+    bool lambert;
+    float3 f_lambert;
+} HitBrdf;
+
+HitBrdf hitpoint_brdf_make(__global const HitPoint* hp, float3 n) {
+    HitBrdf h;
+    h.b = hitpoint_bsdf(hp, n);
+    h.wo = HAS_NON_DIFFUSE ? oct_decode(hp->wo_oct) : n; /* Lambertian ignores wo */
+    h.lobes = bsdf_gathered_lobes(h.b.alpha);
+    h.lambert = bsdf_plain_lambert(&h.b);
+    h.f_lambert = h.b.base * (h.b.dielectric * INV_PI_F);
+    return h;
+}
+
 /* f(wo, wi) at the hit point over the lobes it keeps; zero for light from below the surface. */
-float3 hitpoint_brdf(__global const HitPoint* hp, const Bsdf* b, float3 wi) {
-    float3 wo = HAS_NON_DIFFUSE ? oct_decode(hp->wo_oct) : b->ns; /* Lambertian ignores wo */
-    return bsdf_eval(b, wo, wi, bsdf_gathered_lobes(b->alpha));
+float3 hitpoint_brdf(const HitBrdf* h, float3 wi) {
+    if (h->lambert) return dot(h->b.ns, wi) > 0.0f ? h->f_lambert : (float3)(0.0f);
+    return bsdf_eval(&h->b, h->wo, wi, h->lobes);
 }
 
 #endif

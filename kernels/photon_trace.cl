@@ -36,7 +36,7 @@ __kernel void photon_trace(SCENE_PARAMS, ulong seed, ulong pass, uint first_phot
         Bsdf bsdf = surface_bsdf(SCENE_ARGS, &sf);
         float3 wo = -dir;
         /* Stored where the eye pass puts hit points: on surfaces with lobes the gather keeps. */
-        if (!(skip_direct && bounce == 0) && bsdf_has(&bsdf, bsdf_gathered_lobes(bsdf.alpha)))
+        if (!(skip_direct && bounce == 0) && bsdf_has_gathered(&bsdf))
             store_photon(photons, capacity, counter, sf.p, sf.ns, flux, wo);
         /* The BSDF is reciprocal, so sampling it from the photon's side scatters flux correctly. */
         BsdfSample s;
@@ -45,7 +45,7 @@ __kernel void photon_trace(SCENE_PARAMS, ulong seed, ulong pass, uint first_phot
         /* Russian roulette with the scattering weight as survival probability keeps flux near
          * constant. */
         float q = fmin(max3(s.weight), 1.0f);
-        if (!(rng_float(&rng) < q)) return;
+        if (q < 1.0f && !(rng_float(&rng) < q)) return;
         flux *= s.weight / q;
         dir = s.wi;
         org = offset_origin(SCENE_ARGS, sf.p, s.below ? -sf.ng : sf.ng);
