@@ -27,7 +27,7 @@ struct Params {
     D3 base{1, 1, 1}, f0{0.04, 0.04, 0.04};
     double f90 = 1, alpha = 0.25, dielectric = 1, glass = 0, metal = 0, eta = 1.5;
     std::vector<float> pack() const {
-        return {float(base.x), float(base.y), float(base.z), float(f0.x),       float(f0.y),    float(f0.z),
+        return {float(base.x), float(base.y), float(base.z),     float(f0.x),  float(f0.y),  float(f0.z),
                 float(f90),    float(alpha),  float(dielectric), float(glass), float(metal), float(eta)};
     }
     std::string name() const {
@@ -64,7 +64,8 @@ double table(const float* t, double mu, double alpha) {
     int i = std::min(int(x), GGX_ALBEDO_MU - 2), j = std::min(int(y), GGX_ALBEDO_ALPHA - 2);
     double fx = x - i, fy = y - j;
     auto at = [&](int a, int b) { return double(t[b * GGX_ALBEDO_MU + a]); };
-    return (1 - fy) * ((1 - fx) * at(i, j) + fx * at(i + 1, j)) + fy * ((1 - fx) * at(i, j + 1) + fx * at(i + 1, j + 1));
+    return (1 - fy) * ((1 - fx) * at(i, j) + fx * at(i + 1, j)) +
+           fy * ((1 - fx) * at(i, j + 1) + fx * at(i + 1, j + 1));
 }
 double table_avg(const float* t, double alpha) {
     double y = std::clamp(std::sqrt(alpha) * (GGX_ALBEDO_ALPHA - 1), 0.0, GGX_ALBEDO_ALPHA - 1.0);
@@ -84,8 +85,9 @@ double ref_model(const Params& p, D3 n, D3 wo, D3 wi, unsigned mask, int c) {
         return mirror ? f0 + (f90 - f0) * std::pow(1 - mu, 5)
                       : f0 * table(ggx_albedo_a, mu, p.alpha) + (f90 - f0) * table(ggx_albedo_b, mu, p.alpha);
     };
-    const double e_avg = mirror ? f0 + (f90 - f0) / 21
-                                : f0 * table_avg(ggx_albedo_a_avg, p.alpha) + (f90 - f0) * table_avg(ggx_albedo_b_avg, p.alpha);
+    const double e_avg =
+        mirror ? f0 + (f90 - f0) / 21
+               : f0 * table_avg(ggx_albedo_a_avg, p.alpha) + (f90 - f0) * table_avg(ggx_albedo_b_avg, p.alpha);
     double f = 0;
     if (mask & kDiffuse) {
         double d = p.dielectric * base / M_PI;
@@ -94,7 +96,8 @@ double ref_model(const Params& p, D3 n, D3 wo, D3 wi, unsigned mask, int c) {
     }
     if (mirror) return f;
     D3 h = normalized(wo + wi);
-    const double dg = ref_d(dot(n, h), p.alpha) / (1 + ref_lambda(co, p.alpha) + ref_lambda(ci, p.alpha)) / (4 * co * ci);
+    const double dg =
+        ref_d(dot(n, h), p.alpha) / (1 + ref_lambda(co, p.alpha) + ref_lambda(ci, p.alpha)) / (4 * co * ci);
     const double s5 = std::pow(1 - dot(wi, h), 5);
     if ((mask & kSpecular) && f90 > 0) f += p.dielectric * (f0 + (f90 - f0) * s5) * dg;
     if ((mask & kMetal) && p.metal > 0) {
@@ -178,7 +181,8 @@ TEST(BsdfModel, EvalMatchesHostReference) {
                     if (std::fabs(dot(w, n)) < 1e-4) continue;
                     for (int c = 0; c < 3; ++c) {
                         double want = ref_model(p, n, wo, w, mask, c);
-                        ASSERT_NEAR(v[4 * i + c], want, 3e-3 * want + 1e-6 * peak + 1e-9) << "wi " << i << " channel " << c;
+                        ASSERT_NEAR(v[4 * i + c], want, 3e-3 * want + 1e-6 * peak + 1e-9)
+                            << "wi " << i << " channel " << c;
                     }
                 }
             }
