@@ -137,7 +137,9 @@ bool has_layer(const Bsdf* b) { return HAS_SPECULAR_LAYER && b->dielectric > 0.0
 
 /* Nothing but the Lambertian lobe (no layer, metal or glass): the fast paths below. */
 bool bsdf_plain_lambert(const Bsdf* b) {
-    return !HAS_NON_DIFFUSE || (!(HAS_METAL && b->metal > 0.0f) && !(HAS_GLASS && b->glass > 0.0f) && !has_layer(b));
+    if (HAS_METAL && b->metal > 0.0f) return false;
+    if (HAS_GLASS && b->glass > 0.0f) return false;
+    return !has_layer(b);
 }
 
 /* The diffuse lobe: base / pi, scaled for the layer above it. */
@@ -348,11 +350,16 @@ Bsdf surface_bsdf(SCENE_PARAMS, const Surface* s) {
     b.ng = s->ng;
     b.base = surface_base_color(SCENE_ARGS, s);
     float metallic = HAS_METAL ? m->metallic : 0.0f;
+    float r = m->roughness;
+    if (HAS_TEXTURES && m->metallic_roughness_tex >= 0) { /* glTF: G is roughness, B metallic */
+        float3 mr = texture_lookup(SCENE_ARGS, m->metallic_roughness_tex, s->uv);
+        r *= mr.y;
+        metallic *= mr.z;
+    }
     float t = HAS_GLASS ? m->transmission : 0.0f;
     b.metal = metallic;
     b.glass = (1.0f - metallic) * t;
     b.dielectric = (1.0f - metallic) * (1.0f - t);
-    float r = m->roughness;
     b.alpha = r * r;
     /* KHR_materials_ior and KHR_materials_specular: F0 = ((ior - 1) / (ior + 1))^2 times the
      * specular colour, at most 1, both F0 and F90 times the specular factor. */

@@ -67,9 +67,10 @@ typedef struct {
     float emission[4];       /* emitted radiance, emissiveFactor * emissive_strength; [3] unused */
     float specular_color[4]; /* KHR_materials_specular: specularColorFactor, [3] specularFactor */
     float metallic, roughness, transmission, ior;
-    i32 base_color_tex; /* index into Texture array, -1 when none */
-    u32 flags;          /* MATERIAL_FLAG_* */
-    u32 pad0, pad1;
+    i32 base_color_tex;         /* index into Texture array (sRGB decoded), -1 when none */
+    u32 flags;                  /* MATERIAL_FLAG_* */
+    i32 metallic_roughness_tex; /* linear texture: G scales roughness, B metallic; -1 when none */
+    u32 pad0;
 } Material; /* 80 bytes */
 
 typedef struct {

@@ -104,11 +104,14 @@ class GltfBuilder:
 
     def material(self, name, base_color=(0.8, 0.8, 0.8), metallic=0.0, roughness=1.0,
                  emissive=None, emissive_strength=None, transmission=None, ior=None,
-                 double_sided=False, base_color_texture=None, specular=None, specular_color=None):
+                 double_sided=False, base_color_texture=None, specular=None, specular_color=None,
+                 metallic_roughness_texture=None):
         pbr = {"baseColorFactor": list(base_color) + [1.0] * (4 - len(base_color)),
                "metallicFactor": metallic, "roughnessFactor": roughness}
         if base_color_texture is not None:
             pbr["baseColorTexture"] = base_color_texture
+        if metallic_roughness_texture is not None:
+            pbr["metallicRoughnessTexture"] = metallic_roughness_texture
         m = {"name": name, "pbrMetallicRoughness": pbr}
         ext = {}
         if emissive is not None:

@@ -25,6 +25,7 @@ CLPPM_CHECK_OFFSET(Material, specular_color, 32);
 CLPPM_CHECK_OFFSET(Material, metallic, 48);
 CLPPM_CHECK_OFFSET(Material, base_color_tex, 64);
 CLPPM_CHECK_OFFSET(Material, flags, 68);
+CLPPM_CHECK_OFFSET(Material, metallic_roughness_tex, 72);
 
 CLPPM_CHECK_SIZE(Texture, 16);
 

@@ -209,6 +209,42 @@ def texture():
     b.write_embedded(out("texture.gltf"))
 
 
+MR_PIXEL = (0, 128, 255, 255)  # G: roughness 128/255, B: metallic 1 (linear, not sRGB)
+
+
+def metallic_roughness():
+    """A lit plane whose metallic and roughness come from a uniform metallicRoughnessTexture,
+    the same plane with the texture's values as factors, and with the factors the texture would
+    leave if it were ignored (metallic 1, roughness 1)."""
+    variants = {
+        "mr_texture.gltf": dict(metallic=1.0, roughness=1.0, texture=True),
+        "mr_factors.gltf": dict(metallic=1.0, roughness=128 / 255, texture=False),
+        "mr_untextured.gltf": dict(metallic=1.0, roughness=1.0, texture=False),
+    }
+    for name, v in variants.items():
+        b = GltfBuilder("clppm tests/data/make_test_gltf.py")
+        tex = None
+        if v["texture"]:
+            png = png_rgba([[MR_PIXEL, MR_PIXEL], [MR_PIXEL, MR_PIXEL]])
+            b.doc["images"] = [{"uri": "data:image/png;base64," + base64.b64encode(png).decode("ascii")}]
+            b.doc["textures"] = [{"source": 0}]
+            tex = {"index": 0}
+        b.material("plate", (0.9, 0.6, 0.3), metallic=v["metallic"], roughness=v["roughness"],
+                   metallic_roughness_texture=tex)
+        quad = [(-1.0, 0.0, -1.0), (-1.0, 0.0, 1.0), (1.0, 0.0, 1.0), (1.0, 0.0, -1.0)]
+        uvs = [(0, 0), (0, 1), (1, 1), (1, 0)]
+        prim = b.primitive(quad, [0, 1, 2, 0, 2, 3], [(0.0, 1.0, 0.0)] * 4, uvs=uvs, material=0)
+        light = b.light({"name": "lamp", "type": "point", "intensity": 4.0})
+        cam = b.camera(0.9)
+        tilt = quat_axis_angle((1, 0, 0), -math.atan2(1.0, 2.0))
+        b.scene([
+            b.node(name="plate", mesh=b.mesh([prim])),
+            b.node(name="lamp", light=light, translation=[0.0, 0.8, -0.6]),
+            b.node(name="camera", camera=cam, translation=[0.0, 1.0, 2.0], rotation=tilt),
+        ])
+        b.write_embedded(out(name))
+
+
 def lights():
     """Point (with range), spot under a translated parent, spot with default cones, directional."""
     b = GltfBuilder("clppm tests/data/make_test_gltf.py")
@@ -339,7 +375,7 @@ def errors():
 
 
 def main():
-    for make in (hierarchy, index_types, byte_stride, containers, no_normals, degenerate, mirror,
+    for make in (hierarchy, index_types, byte_stride, containers, no_normals, degenerate, mirror, metallic_roughness,
                  materials, texture, lights, cameras, errors):
         make()
 

@@ -40,6 +40,7 @@ dev::Material default_material() {
     m.ior = 1.5f;
     for (int c = 0; c < 4; ++c) m.specular_color[c] = 1.f;
     m.base_color_tex = -1;
+    m.metallic_roughness_tex = -1;
     return m;
 }
 
@@ -93,10 +94,9 @@ dev::Material MaterialConverter::convert_material(int index) {
         ctx_.warn(label + " ior " + std::to_string(m.ior) + " is below 1; using 1");
         m.ior = 1.f;
     }
-    m.base_color_tex = texture_for(pbr.baseColorTexture, label);
+    m.base_color_tex = texture_for(pbr.baseColorTexture, label, "baseColorTexture", true);
+    m.metallic_roughness_tex = texture_for(pbr.metallicRoughnessTexture, label, "metallicRoughnessTexture", false);
     if (g.emissiveTexture.index >= 0) ctx_.warn(label + " emissiveTexture is not supported; emission is uniform");
-    if (pbr.metallicRoughnessTexture.index >= 0)
-        ctx_.warn(label + " metallicRoughnessTexture is not supported; factors only");
     convert_specular(g, label, m);
     m.flags = g.doubleSided ? MATERIAL_FLAG_DOUBLE_SIDED : 0u;
     return m;
@@ -140,23 +140,27 @@ uint32_t MaterialConverter::material_index(int gltf_material, const std::string&
     return uint32_t(default_material_);
 }
 
-int32_t MaterialConverter::texture_for(const tinygltf::TextureInfo& info, const std::string& label) {
+int32_t MaterialConverter::texture_for(const tinygltf::TextureInfo& info, const std::string& label,
+                                       const std::string& what, bool srgb) {
     if (info.index < 0) return -1;
     if (size_t(info.index) >= m_.textures.size())
-        ctx_.fail(label + " baseColorTexture " + std::to_string(info.index) + " out of range");
+        ctx_.fail(label + " " + what + " " + std::to_string(info.index) + " out of range");
     if (info.texCoord != 0) {
-        ctx_.warn(label + " baseColorTexture uses TEXCOORD_" + std::to_string(info.texCoord) +
+        ctx_.warn(label + " " + what + " uses TEXCOORD_" + std::to_string(info.texCoord) +
                   "; only TEXCOORD_0 is supported, texture ignored");
         return -1;
     }
     if (info.extensions.count("KHR_texture_transform"))
         ctx_.warn(label + " KHR_texture_transform is not supported; ignored");
-    auto cached = texture_cache_.find(info.index);
+    // Colour textures are decoded from sRGB, data textures (metallic-roughness) are not: one
+    // image used both ways is stored twice.
+    const std::pair<int, bool> key{info.index, srgb};
+    auto cached = texture_cache_.find(key);
     if (cached != texture_cache_.end()) return cached->second;
-    return texture_cache_[info.index] = convert_texture(info.index);
+    return texture_cache_[key] = convert_texture(info.index, srgb);
 }
 
-int32_t MaterialConverter::convert_texture(int index) {
+int32_t MaterialConverter::convert_texture(int index, bool srgb) {
     const tinygltf::Texture& t = m_.textures[size_t(index)];
     std::string label = labelled("texture", index, t.name);
     if (t.source < 0 || size_t(t.source) >= m_.images.size()) {
@@ -172,17 +176,20 @@ int32_t MaterialConverter::convert_texture(int index) {
     if (s_.texels.size() + texels > kMaxTexels) ctx_.fail("textures exceed 2^26 texels in total");
     dev::Texture tex{uint32_t(s_.texels.size()), uint32_t(img.width), uint32_t(img.height),
                      wrap_bits(t.sampler, label)};
-    append_linear_texels(img);
+    append_texels(img, srgb);
     s_.textures.push_back(tex);
     return int32_t(s_.textures.size() - 1);
 }
 
-// Texels are stored top row first, so glTF's (u, v) (origin top left) index them directly.
-void MaterialConverter::append_linear_texels(const tinygltf::Image& img) {
+// Texels are stored top row first, so glTF's (u, v) (origin top left) index them directly;
+// RGB decoded from sRGB when srgb, else taken as linear 8-bit values (alpha is always linear).
+void MaterialConverter::append_texels(const tinygltf::Image& img, bool srgb) {
     const auto& lut = srgb_to_linear_table();
     const unsigned char* p = img.image.data();
-    for (size_t i = 0, n = img.image.size() / 4; i < n; ++i, p += 4)
-        s_.texels.push_back({lut[p[0]], lut[p[1]], lut[p[2]], p[3] / 255.f});
+    for (size_t i = 0, n = img.image.size() / 4; i < n; ++i, p += 4) {
+        if (srgb) s_.texels.push_back({lut[p[0]], lut[p[1]], lut[p[2]], p[3] / 255.f});
+        else s_.texels.push_back({p[0] / 255.f, p[1] / 255.f, p[2] / 255.f, p[3] / 255.f});
+    }
 }
 
 uint32_t MaterialConverter::wrap_bits(int sampler, const std::string& label) {

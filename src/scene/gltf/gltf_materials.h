@@ -1,10 +1,11 @@
 // glTF materials and their textures -> dev::Material and dev::Texture, as the README maps them:
 // factors checked finite and clamped, the material kind from metallic, roughness and
-// transmission, base colour textures decoded from sRGB.
+// transmission, base colour textures decoded from sRGB, metallic-roughness textures linear.
 #pragma once
 #include <cstdint>
 #include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <tiny_gltf.h>
@@ -33,12 +34,14 @@ private:
 
     // -- textures --
 
-    int32_t texture_for(const tinygltf::TextureInfo& info, const std::string& label);
+    // The scene texture of a material's texture reference `what` (-1: none or unusable), decoded
+    // from sRGB for colour (srgb) and kept linear for data.
+    int32_t texture_for(const tinygltf::TextureInfo& info, const std::string& label, const std::string& what,
+                        bool srgb);
 
-    int32_t convert_texture(int index);
+    int32_t convert_texture(int index, bool srgb);
 
-    // Texels are stored top row first, so glTF's (u, v) (origin top left) index them directly.
-    void append_linear_texels(const tinygltf::Image& img);
+    void append_texels(const tinygltf::Image& img, bool srgb);
 
     uint32_t wrap_bits(int sampler, const std::string& label);
 
@@ -46,7 +49,7 @@ private:
     LoadContext& ctx_;
     Scene& s_;
     int default_material_ = -1;
-    std::map<int, int32_t> texture_cache_;
+    std::map<std::pair<int, bool>, int32_t> texture_cache_; // (glTF texture, sRGB) -> scene texture
 };
 
 } // namespace clppm::gltf
