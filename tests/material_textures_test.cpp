@@ -21,8 +21,9 @@ std::string data(const char* name) { return std::string(CLPPM_TEST_DATA) + "/" +
 
 double render_mean(const std::string& file, const std::string& integrator) {
     std::string d = make_temp_dir("mrtex"), out;
-    const std::string args = data(file.c_str()) + " --width 48 --height 32 --passes 6 --photons 50000 --quiet --no-png" +
-                             " --integrator " + integrator + " -o " + d + "/i.exr";
+    const std::string args = data(file.c_str()) +
+                             " --width 48 --height 32 --passes 6 --photons 50000 --quiet --no-png" + " --integrator " +
+                             integrator + " -o " + d + "/i.exr";
     EXPECT_EQ(run_clppm(args, &out), 0) << out;
     return mean_radiance(read_exr(d + "/i.exr"));
 }
