@@ -7,12 +7,15 @@
  * remain (EYE_SLOTS per sample), so the stored
  * set of hit points carries no sampling noise from those choices; beyond that one branch is
  * chosen at random with the same expected value. Emission met on the way is added to the
- * sample's radiance directly.
+ * sample's radiance; on the smooth lobes it samples through (not mirrors), the eye path also
+ * samples the lights (kernels/next_event.cl), and emission its rays find there is weighted by
+ * MIS against that, so no hit point is needed for their direct light.
  * Stochastic PPM and PPPM build this with EYE_SLOTS 1 and run it every pass with a new `pass`:
  * one visible point per pixel, every choice sampled, new jitter and lens position each pass. */
 #include "rng.cl"
 #include "camera.cl"
 #include "bsdf.cl"
+#include "next_event.cl"
 #include "hitpoint.cl"
 
 #ifndef EYE_SLOTS
@@ -25,6 +28,8 @@ typedef struct {
     float3 org, dir, weight;
     float path_length;
     uint depth;
+    float pdf;  /* density the direction was sampled with (MIS against light sampling) */
+    bool delta; /* a camera ray or a delta lobe: emission found counts in full */
 } EyeRay;
 
 /* One way an eye path can go on from a surface: a new ray, or a hit point here. */
@@ -34,6 +39,8 @@ typedef struct {
     bool below;      /* the ray leaves through the surface (refraction) */
     bool hitpoint;
     float magnitude; /* what the branch is expected to carry: chooses between branches */
+    float pdf;       /* ray branches: as EyeRay */
+    bool delta;
 } Branch;
 
 Branch no_branch(void) {
@@ -43,6 +50,8 @@ Branch no_branch(void) {
     b.below = false;
     b.hitpoint = false;
     b.magnitude = 0.0f;
+    b.pdf = 0.0f;
+    b.delta = true;
     return b;
 }
 
@@ -86,7 +95,11 @@ uint surface_branches(const Bsdf* bsdf, float3 wo, float3 weight, Rng* rng, Bran
     if (lobe_weights(bsdf, cos_o, followed).total > 0.0f) {
         BsdfSample s;
         float u0 = rng_float(rng), u1 = rng_float(rng), u2 = rng_float(rng);
-        if (bsdf_sample(bsdf, wo, followed, u0, u1, u2, &s)) br[n++] = ray_branch(weight * s.weight, s.wi, false);
+        if (bsdf_sample(bsdf, wo, followed, u0, u1, u2, &s)) {
+            br[n] = ray_branch(weight * s.weight, s.wi, false);
+            br[n].pdf = s.pdf;
+            br[n++].delta = s.delta;
+        }
     }
     if (HAS_GLASS && bsdf->glass > 0.0f) {
         float F = fresnel_dielectric(cos_o, bsdf->eta);
@@ -119,6 +132,8 @@ __kernel void eye_pass(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong p
     stack[0].weight = (float3)(1.0f);
     stack[0].path_length = 0.0f;
     stack[0].depth = 0;
+    stack[0].pdf = 0.0f;
+    stack[0].delta = true;
     top = 1;
     float3 emitted = (float3)(0.0f);
     __global HitPoint* out = &hitpoints[(size_t)i * EYE_SLOTS];
@@ -129,11 +144,19 @@ __kernel void eye_pass(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong p
         Hit hit;
         if (!trace_closest(SCENE_ARGS, r.org, r.dir, INFINITY, &hit)) continue;
         Surface sf = make_surface(SCENE_ARGS, r.dir, &hit);
-        emitted += r.weight * surface_emission(SCENE_ARGS, &sf);
+        float3 le = surface_emission(SCENE_ARGS, &sf);
+        if (max3(le) > 0.0f) emitted += r.weight * le * (r.delta ? 1.0f : emission_mis(SCENE_ARGS, &sf, r.dir, le, r.pdf));
         if (r.depth + 1 >= info->max_bounces) continue;
         float plen = r.path_length + sf.t;
 
         Bsdf bsdf = surface_bsdf(SCENE_ARGS, &sf);
+        /* The lobes the eye path samples through see the lights directly too (with MIS): no hit
+         * point gathers their direct light, and a sampled ray never finds a punctual light. */
+        if (!bsdf_plain_lambert(&bsdf) && !bsdf_is_mirror(&bsdf)) {
+            uint followed = LOBE_ALL & ~bsdf_gathered_lobes(bsdf.alpha) & ~LOBE_GLASS;
+            if (lobe_weights(&bsdf, dot(bsdf.ns, -r.dir), followed).total > 0.0f)
+                emitted += r.weight * next_event(SCENE_ARGS, &bsdf, sf.p, -r.dir, followed, &rng);
+        }
         Branch br[MAX_BRANCHES];
         uint nb = surface_branches(&bsdf, -r.dir, r.weight, &rng, br);
         bool take[MAX_BRANCHES];
@@ -170,7 +193,7 @@ __kernel void eye_pass(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong p
                 store_hitpoint(&out[stored++], pixel, sf.p, -r.dir, b.weight, &bsdf, plen * pixel_angle);
             } else {
                 EyeRay nr = {offset_origin(SCENE_ARGS, sf.p, b.below ? -sf.ng : sf.ng), b.dir, b.weight, plen,
-                             r.depth + 1};
+                             r.depth + 1, b.pdf, b.delta};
                 stack[top++] = nr;
             }
         }

@@ -6,28 +6,7 @@
  * One sample per pixel per pass, accumulated in double. */
 #include "rng.cl"
 #include "camera.cl"
-#include "lights.cl"
-#include "bsdf.cl"
-
-float power_heuristic(float a, float b) {
-    float a2 = a * a, b2 = b * b;
-    return a2 + b2 > 0.0f ? a2 / (a2 + b2) : 0.0f;
-}
-
-/* Next-event estimation at a surface: one light sample, shadow-tested, MIS-weighted against the
- * BSDF's sampling of the same direction. */
-float3 path_nee(SCENE_PARAMS, const Bsdf* b, float3 p, float3 wo, Rng* rng) {
-    float3 wi, contrib;
-    float dist, light_pdf;
-    if (!sample_light(SCENE_ARGS, p, rng, &wi, &dist, &contrib, &light_pdf)) return (float3)(0.0f);
-    float cos_x = dot(wi, b->ns);
-    if (cos_x <= 0.0f || dot(wi, b->ng) <= 0.0f) return (float3)(0.0f);
-    float3 f = bsdf_eval(b, wo, wi, LOBE_ALL);
-    if (!(max3(f) > 0.0f)) return (float3)(0.0f);
-    if (trace_occluded(SCENE_ARGS, offset_origin(SCENE_ARGS, p, b->ng), wi, dist)) return (float3)(0.0f);
-    float mis = light_pdf > 0.0f ? power_heuristic(light_pdf, bsdf_pdf(b, wo, wi, LOBE_ALL)) : 1.0f;
-    return f * contrib * (cos_x * mis);
-}
+#include "next_event.cl"
 
 __kernel void path_trace(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong pass, uint num_pixels,
                          __global double* accum) {
@@ -47,18 +26,11 @@ __kernel void path_trace(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong
         Surface sf = make_surface(SCENE_ARGS, dir, &hit);
         float3 le = surface_emission(SCENE_ARGS, &sf);
         if (max3(le) > 0.0f) {
-            float mis = 1.0f;
-            if (!prev_delta) {
-                bool two_sided = (materials[sf.material].flags & MATERIAL_FLAG_DOUBLE_SIDED) != 0u;
-                float light_pdf = area_light_pdf(SCENE_ARGS, le, two_sided, sf.t * sf.t * dot(dir, dir),
-                                                 fabs(dot(dir, sf.ng)) / length(dir));
-                mis = power_heuristic(prev_pdf, light_pdf);
-            }
-            L += beta * le * mis;
+            L += beta * le * (prev_delta ? 1.0f : emission_mis(SCENE_ARGS, &sf, dir, le, prev_pdf));
         }
         Bsdf b = surface_bsdf(SCENE_ARGS, &sf);
         float3 wo = -dir;
-        L += beta * path_nee(SCENE_ARGS, &b, sf.p, wo, &rng);
+        L += beta * next_event(SCENE_ARGS, &b, sf.p, wo, LOBE_ALL, &rng);
         BsdfSample s;
         float u0 = rng_float(&rng), u1 = rng_float(&rng), u2 = rng_float(&rng);
         if (!bsdf_sample(&b, wo, LOBE_ALL, u0, u1, u2, &s)) break;

@@ -17,5 +17,5 @@ export LSAN_OPTIONS="suppressions=$PWD/scripts/lsan.supp:print_suppressions=0"
 export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 # Debug code under ASan runs several times slower: hang guards in the tests stretch by this.
 export CLPPM_TEST_TIME_SCALE=10
-slow='^(ppm_test|sppm_test|extremes_test|cli_test|error_estimate_test|specialization_test|multi_device_test|material_textures_test)\.'
+slow='^(ppm_test|sppm_test|extremes_test|cli_test|error_estimate_test|specialization_test|multi_device_test|material_textures_test|smooth_lobe_lights_test)\.'
 exec ctest --test-dir build-sanitize --output-on-failure -j "$jobs" --timeout 1800 -E "$slow"

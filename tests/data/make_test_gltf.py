@@ -220,6 +220,8 @@ def metallic_roughness():
         "mr_texture.gltf": dict(metallic=1.0, roughness=1.0, texture=True),
         "mr_factors.gltf": dict(metallic=1.0, roughness=128 / 255, texture=False),
         "mr_untextured.gltf": dict(metallic=1.0, roughness=1.0, texture=False),
+        # roughness 0.18 (alpha 0.032): smooth enough for the eye pass to sample through
+        "smooth_metal_plate.gltf": dict(metallic=1.0, roughness=0.18, texture=False),
     }
     for name, v in variants.items():
         b = GltfBuilder("clppm tests/data/make_test_gltf.py")

@@ -1,0 +1,41 @@
+/* next_event.cl: next-event estimation with multiple importance sampling, shared by the path
+ * tracer and the eye pass (which uses it on the smooth lobes it samples through, so highlights of
+ * small and punctual lights survive there). One light sample, shadow-tested, weighted by the
+ * power heuristic (Veach 1997, Sec. 9.2) against the BSDF's sampling of the same direction over
+ * the same lobes; emission that a BSDF-sampled ray finds takes the complementary weight
+ * (emission_mis). */
+#ifndef CLPPM_NEXT_EVENT_CL
+#define CLPPM_NEXT_EVENT_CL
+
+#include "lights.cl"
+#include "bsdf.cl"
+
+float power_heuristic(float a, float b) {
+    float a2 = a * a, b2 = b * b;
+    return a2 + b2 > 0.0f ? a2 / (a2 + b2) : 0.0f;
+}
+
+/* Light reflected towards wo by the lobes in mask, from one light sample. */
+float3 next_event(SCENE_PARAMS, const Bsdf* b, float3 p, float3 wo, uint mask, Rng* rng) {
+    float3 wi, contrib;
+    float dist, light_pdf;
+    if (!sample_light(SCENE_ARGS, p, rng, &wi, &dist, &contrib, &light_pdf)) return (float3)(0.0f);
+    float cos_x = dot(wi, b->ns);
+    if (cos_x <= 0.0f || dot(wi, b->ng) <= 0.0f) return (float3)(0.0f);
+    float3 f = bsdf_eval(b, wo, wi, mask);
+    if (!(max3(f) > 0.0f)) return (float3)(0.0f);
+    if (trace_occluded(SCENE_ARGS, offset_origin(SCENE_ARGS, p, b->ng), wi, dist)) return (float3)(0.0f);
+    float mis = light_pdf > 0.0f ? power_heuristic(light_pdf, bsdf_pdf(b, wo, wi, mask)) : 1.0f;
+    return f * contrib * (cos_x * mis);
+}
+
+/* The MIS weight of emission le found at surface sf by a ray along dir that was sampled with
+ * solid-angle density bsdf_pdf (not a delta lobe, not a camera ray). */
+float emission_mis(SCENE_PARAMS, const Surface* sf, float3 dir, float3 le, float bsdf_pdf) {
+    bool two_sided = (materials[sf->material].flags & MATERIAL_FLAG_DOUBLE_SIDED) != 0u;
+    float light_pdf = area_light_pdf(SCENE_ARGS, le, two_sided, sf->t * sf->t * dot(dir, dir),
+                                     fabs(dot(dir, sf->ng)) / length(dir));
+    return power_heuristic(bsdf_pdf, light_pdf);
+}
+
+#endif
