@@ -44,7 +44,10 @@ TEST(RenderSession, InterruptBeforeTheFirstPassReplacesNothing) {
     std::string d = make_temp_dir("early_interrupt"), out;
     const std::string before = "an earlier render's image";
     for (const char* name : {"/i.exr", "/s.json"}) std::ofstream(d + name) << before;
-    const std::string run = "CLPPM_NO_CACHE=1 POCL_KERNEL_CACHE=0 " + clppm_binary() + kArgs +
+    // PoCL builds an uncached program in <cache>/uncached and removes that folder afterwards, so
+    // this render gets a cache folder of its own: one shared with a concurrent test can vanish
+    // under it mid-build ("unable to rename temporary ... No such file or directory").
+    const std::string run = "CLPPM_NO_CACHE=1 POCL_KERNEL_CACHE=0 POCL_CACHE_DIR=" + d + "/pocl " + clppm_binary() + kArgs +
                             " --quiet --passes 5 -o " + d + "/i.exr --stats-json " + d + "/s.json --checkpoint " + d +
                             "/c.ck";
     const std::string script = run + " & pid=$!; sleep 0.5; kill -INT $pid; wait $pid; echo \"status=$?\"";
