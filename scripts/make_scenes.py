@@ -14,10 +14,10 @@ import struct
 import sys
 
 # glTF 2.0 enums
-FLOAT, UBYTE, USHORT, UINT = 5126, 5121, 5123, 5125
+FLOAT, BYTE, UBYTE, SHORT, USHORT, UINT = 5126, 5120, 5121, 5122, 5123, 5125
 ARRAY_BUFFER, ELEMENT_ARRAY_BUFFER = 34962, 34963
 COMPONENTS = {"SCALAR": 1, "VEC2": 2, "VEC3": 3, "VEC4": 4}
-PACK = {FLOAT: "f", UBYTE: "B", USHORT: "H", UINT: "I"}
+PACK = {FLOAT: "f", BYTE: "b", UBYTE: "B", SHORT: "h", USHORT: "H", UINT: "I"}
 
 
 def rounded(x, digits=6):

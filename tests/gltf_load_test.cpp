@@ -34,12 +34,12 @@ void expect_vec3(const float* v, double x, double y, double z, double eps = 1e-5
     EXPECT_NEAR(v[2], z, eps);
 }
 
-void expect_pos(const Scene& s, size_t tri, int k, double x, double y, double z) {
+void expect_pos(const Scene& s, size_t tri, int k, double x, double y, double z, double eps = 1e-5) {
     const Vec3& p = s.positions[3 * tri + size_t(k)];
     SCOPED_TRACE("triangle " + std::to_string(tri) + " vertex " + std::to_string(k));
-    EXPECT_NEAR(p.x, x, 1e-5);
-    EXPECT_NEAR(p.y, y, 1e-5);
-    EXPECT_NEAR(p.z, z, 1e-5);
+    EXPECT_NEAR(p.x, x, eps);
+    EXPECT_NEAR(p.y, y, eps);
+    EXPECT_NEAR(p.z, z, eps);
 }
 
 // Unit normal of the stored winding: (p1 - p0) x (p2 - p0).
@@ -146,6 +146,74 @@ TEST(GltfAccessors, ByteStrideAndNormalizedTexcoords) {
     EXPECT_FLOAT_EQ(s.shading[1].uv0[1], 1.f);
     EXPECT_NEAR(s.shading[1].uv1[0], 0.2, 1e-6);
     EXPECT_NEAR(s.shading[1].uv2[1], 0.4, 1e-6);
+}
+
+// KHR_mesh_quantization: integer positions are dequantized by the node transform, normalized
+// integers map as glTF 2.0 Sec. 3.11 says, unnormalized texcoords keep their integer values.
+TEST(GltfAccessors, QuantizedAttributesDecodeExactly) {
+    Scene s = load_gltf(data("quantized.gltf"));
+    ASSERT_EQ(s.num_triangles(), 3u);
+    expect_pos(s, 0, 1, 1, 0, 0); // SHORT (100, 0, 0) * 0.01
+    expect_pos(s, 0, 2, 1, 2, 0);
+    expect_pos(s, 1, 2, 0, 2, 0);
+    expect_vec3(s.shading[0].n0, 0, 0, 1); // normalized BYTE (0, 0, 127)
+    EXPECT_FLOAT_EQ(s.shading[0].uv1[0], 1.f);
+    EXPECT_FLOAT_EQ(s.shading[0].uv2[1], -1.f); // normalized SHORT -32767
+    expect_pos(s, 2, 1, 1, 0, 1);               // normalized UNSIGNED_BYTE 255
+    expect_pos(s, 2, 2, 0, 0.2, 1);             // 51 / 255
+    EXPECT_FLOAT_EQ(s.shading[2].uv1[0], 2.f);  // unnormalized UNSIGNED_BYTE
+    EXPECT_FLOAT_EQ(s.shading[2].uv2[1], 3.f);
+    EXPECT_FALSE(has_warning(s, "not supported")) << "the required extension is read, not ignored";
+}
+
+TEST(GltfAccessors, SparseSubstitutionsAndAccessorsWithoutABufferView) {
+    Scene s = load_gltf(data("sparse.gltf"));
+    ASSERT_EQ(s.num_triangles(), 2u);
+    expect_pos(s, 0, 0, 0, 0, 0);
+    expect_pos(s, 0, 1, 2, 0, 0); // sparse value replaces (1, 0, 0)
+    expect_pos(s, 0, 2, 0, 1, 0);
+    expect_pos(s, 1, 0, 0, 0, 0); // no bufferView: zeros
+    expect_pos(s, 1, 1, 1, 0, 5);
+    expect_pos(s, 1, 2, 0, 1, 5);
+}
+
+TEST(GltfErrors, SparseIndicesOutOfOrderOrRangeAreRefused) {
+    expect_error("sparse_unsorted.gltf", "accessor 1 sparse indices are not strictly increasing");
+    expect_error("sparse_index_range.gltf", "accessor 1 sparse index 7 is beyond its 3 elements");
+}
+
+// glTF 2.0 Sec. 3.7.2.1: strip p_i = {v_i, v_{i+1+i%2}, v_{i+2-i%2}}, fan p_i = {v_{i+1}, v_{i+2}, v_0}.
+TEST(GltfIndices, StripsAndFansAreTriangulatedAsTheSpecificationSays) {
+    Scene s = load_gltf(data("strips_fans.gltf"));
+    ASSERT_EQ(s.num_triangles(), 10u) << "3 strip + 3 fan + 4 joined-strip triangles";
+    // Strip (0,1) (0,0) (1,1) (1,0) (2,1): the second triangle is {v1, v3, v2}.
+    expect_pos(s, 1, 0, 0, 0, 0);
+    expect_pos(s, 1, 1, 1, 0, 0);
+    expect_pos(s, 1, 2, 1, 1, 0);
+    // Fan: the first triangle is {v1, v2, v0}.
+    expect_pos(s, 3, 0, 1, 0, 1);
+    expect_pos(s, 3, 1, 1, 1, 1);
+    expect_pos(s, 3, 2, 0, 0, 1);
+    // The joined strip's second quad starts at x = 5.
+    expect_pos(s, 8, 0, 5, 1, 2);
+    for (size_t t = 0; t < s.num_triangles(); ++t) {
+        SCOPED_TRACE("triangle " + std::to_string(t));
+        std::array<double, 3> g = winding_normal(s, t);
+        EXPECT_NEAR(g[2], 1.0, 1e-6) << "every assembled triangle keeps the counter-clockwise front face";
+    }
+    EXPECT_EQ(s.degenerate_triangles_skipped, 0u) << "strip joints are intended, not degenerate input";
+}
+
+TEST(GltfHierarchy, GpuInstancingDrawsTheMeshAtEachInstanceTransform) {
+    Scene s = load_gltf(data("gpu_instancing.gltf"));
+    ASSERT_EQ(s.num_triangles(), 3u);
+    expect_pos(s, 0, 1, 1, 0, 10);
+    expect_pos(s, 1, 0, 5, 0, 10);
+    expect_pos(s, 1, 1, 5, 1, 10, 1e-4); // turned 90 degrees about z (normalized SHORT quaternion)
+    expect_pos(s, 1, 2, 4, 0, 10, 1e-4);
+    expect_pos(s, 2, 1, 12, 0, 10); // scaled by 2
+    expect_pos(s, 2, 2, 10, 2, 10);
+    expect_error("gpu_instancing_counts.gltf", "EXT_mesh_gpu_instancing attributes have different counts (3 and 2)");
 }
 
 TEST(GltfContainers, GlbExternalAndEmbeddedBuffersAgree) {

@@ -47,9 +47,9 @@ TEST(RenderSession, InterruptBeforeTheFirstPassReplacesNothing) {
     // PoCL builds an uncached program in <cache>/uncached and removes that folder afterwards, so
     // this render gets a cache folder of its own: one shared with a concurrent test can vanish
     // under it mid-build ("unable to rename temporary ... No such file or directory").
-    const std::string run = "CLPPM_NO_CACHE=1 POCL_KERNEL_CACHE=0 POCL_CACHE_DIR=" + d + "/pocl " + clppm_binary() + kArgs +
-                            " --quiet --passes 5 -o " + d + "/i.exr --stats-json " + d + "/s.json --checkpoint " + d +
-                            "/c.ck";
+    const std::string run = "CLPPM_NO_CACHE=1 POCL_KERNEL_CACHE=0 POCL_CACHE_DIR=" + d + "/pocl " + clppm_binary() +
+                            kArgs + " --quiet --passes 5 -o " + d + "/i.exr --stats-json " + d +
+                            "/s.json --checkpoint " + d + "/c.ck";
     const std::string script = run + " & pid=$!; sleep 0.5; kill -INT $pid; wait $pid; echo \"status=$?\"";
     ASSERT_EQ(run_command("bash -c '" + script + "'", &out), 0) << out;
     EXPECT_NE(out.find("status=130"), std::string::npos) << out;

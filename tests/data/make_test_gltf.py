@@ -16,7 +16,7 @@ import zlib
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.dont_write_bytecode = True  # keep scripts/ free of __pycache__
 sys.path.insert(0, os.path.join(HERE, "..", "..", "scripts"))
-from make_scenes import (ARRAY_BUFFER, FLOAT, UBYTE, UINT, USHORT, GltfBuilder,  # noqa: E402
+from make_scenes import (ARRAY_BUFFER, BYTE, FLOAT, SHORT, UBYTE, UINT, USHORT, GltfBuilder,  # noqa: E402
                          rounded, write_text)
 
 NAN, INF = float("nan"), float("inf")
@@ -290,6 +290,93 @@ def cameras():
     b.write_embedded(out("cameras.gltf"))
 
 
+def quantized():
+    """KHR_mesh_quantization: a quad of SHORT positions dequantized by the node's scale 1/100 with
+    normalized BYTE normals and normalized SHORT texcoords; a triangle of normalized UNSIGNED_BYTE
+    positions with unnormalized UNSIGNED_BYTE texcoords."""
+    b = GltfBuilder("clppm tests/data/make_test_gltf.py")
+    quad = b.accessor([0, 0, 0, 0, 100, 0, 0, 0, 100, 200, 0, 0, 0, 200, 0, 0], SHORT, "VEC4", ARRAY_BUFFER)
+    b.doc["accessors"][quad].update({"type": "VEC3", "min": [0, 0, 0], "max": [100, 200, 0]})
+    b.doc["bufferViews"][b.doc["accessors"][quad]["bufferView"]]["byteStride"] = 8  # 4-byte aligned
+    nrm = b.accessor([0, 0, 127, 0] * 4, BYTE, "VEC4", ARRAY_BUFFER, normalized=True)
+    b.doc["accessors"][nrm]["type"] = "VEC3"  # 4-byte aligned elements: VEC3 through byteStride 4
+    b.doc["bufferViews"][b.doc["accessors"][nrm]["bufferView"]]["byteStride"] = 4
+    uv = b.accessor([0, 0, 32767, 0, 32767, -32767, 0, -32767], SHORT, "VEC2", ARRAY_BUFFER, normalized=True)
+    idx = b.accessor([0, 1, 2, 0, 2, 3], USHORT, "SCALAR")
+    first = {"attributes": {"POSITION": quad, "NORMAL": nrm, "TEXCOORD_0": uv}, "indices": idx}
+    pos8 = b.accessor([0, 0, 0, 0, 255, 0, 0, 0, 0, 51, 0, 0], UBYTE, "VEC4", ARRAY_BUFFER, normalized=True)
+    b.doc["accessors"][pos8].update({"type": "VEC3", "count": 3})  # padded to 4 bytes per vertex
+    b.doc["bufferViews"][b.doc["accessors"][pos8]["bufferView"]]["byteStride"] = 4
+    uv8 = b.accessor([0, 0, 2, 0, 0, 3], UBYTE, "VEC2", ARRAY_BUFFER)
+    second = {"attributes": {"POSITION": pos8, "TEXCOORD_0": uv8}}
+    b.scene([b.node(name="quantized", mesh=b.mesh([first]), scale=[0.01, 0.01, 0.01]),
+             b.node(name="unorm", mesh=b.mesh([second]), translation=[0, 0, 1])])
+    b.doc["extensionsUsed"] = b.doc["extensionsRequired"] = ["KHR_mesh_quantization"]
+    b.write_embedded(out("quantized.gltf"))
+
+
+def sparse():
+    """Sparse accessors: a triangle whose vertex 1 is moved by a sparse substitution (u8 indices),
+    and one whose positions have no bufferView: zeros with vertices 1 and 2 set (u16 indices)."""
+    b = GltfBuilder("clppm tests/data/make_test_gltf.py")
+    base = b.accessor([v for p in TRI for v in p], FLOAT, "VEC3", ARRAY_BUFFER)
+    idx8 = b.buffer_view(struct.pack("<B", 1))
+    val = b.buffer_view(struct.pack("<3f", 2.0, 0.0, 0.0))
+    b.doc["accessors"][base]["sparse"] = {"count": 1, "indices": {"bufferView": idx8, "componentType": UBYTE},
+                                          "values": {"bufferView": val}}
+    idx16 = b.buffer_view(struct.pack("<2H", 1, 2))
+    vals = b.buffer_view(struct.pack("<6f", 1.0, 0.0, 5.0, 0.0, 1.0, 5.0))
+    zeros = b.raw_accessor({"componentType": FLOAT, "count": 3, "type": "VEC3",
+                            "sparse": {"count": 2, "indices": {"bufferView": idx16, "componentType": USHORT},
+                                       "values": {"bufferView": vals}}})
+    mesh = b.mesh([{"attributes": {"POSITION": base}}, {"attributes": {"POSITION": zeros}}], "sparse")
+    b.scene([b.node(name="sparse", mesh=mesh)])
+    b.write_embedded(out("sparse.gltf"))
+    doc = b.document(b.data_uri())
+    b.bin[doc["bufferViews"][idx16]["byteOffset"]:doc["bufferViews"][idx16]["byteOffset"] + 4] = struct.pack("<2H", 2, 1)
+    doc = b.document(b.data_uri())
+    write_doc("sparse_unsorted.gltf", doc)
+    b.bin[doc["bufferViews"][idx16]["byteOffset"]:doc["bufferViews"][idx16]["byteOffset"] + 4] = struct.pack("<2H", 1, 7)
+    write_doc("sparse_index_range.gltf", b.document(b.data_uri()))
+
+
+def strips_fans():
+    """TRIANGLE_STRIP of 5 vertices (3 triangles), TRIANGLE_FAN of 5 (3 triangles), and an indexed
+    strip of two quads joined by repeated vertices (4 real triangles, 4 joining ones dropped); all face +z."""
+    b = GltfBuilder("clppm tests/data/make_test_gltf.py")
+    strip = [(0, 1, 0), (0, 0, 0), (1, 1, 0), (1, 0, 0), (2, 1, 0)]
+    fan = [(0, 0, 1), (1, 0, 1), (1, 1, 1), (0, 1, 1), (-1, 1, 1)]
+    quads = [(0, 1, 2), (0, 0, 2), (1, 1, 2), (1, 0, 2), (5, 1, 2), (5, 0, 2), (6, 1, 2), (6, 0, 2)]
+    p_strip = b.primitive(strip, None, None)
+    p_strip["mode"] = 5
+    p_fan = b.primitive(fan, None, None)
+    p_fan["mode"] = 6
+    p_joined = b.primitive(quads, [0, 1, 2, 3, 3, 4, 4, 5, 6, 7], None)
+    p_joined["mode"] = 5
+    b.scene([b.node(name="strips", mesh=b.mesh([p_strip, p_fan, p_joined], "strips"))])
+    b.write_embedded(out("strips_fans.gltf"))
+
+
+def gpu_instancing():
+    """EXT_mesh_gpu_instancing: the unit triangle drawn three times under a node translated by
+    (0, 0, 10): at x = 0, at x = 5 turned 90 degrees about z, at x = 10 scaled by 2."""
+    b = GltfBuilder("clppm tests/data/make_test_gltf.py")
+    mesh = b.mesh([b.primitive(TRI, [0, 1, 2], TRI_N)], "tri")
+    t = b.accessor([0, 0, 0, 5, 0, 0, 10, 0, 0], FLOAT, "VEC3")
+    q = quat_axis_angle((0, 0, 1), math.pi / 2)
+    r = b.accessor([0, 0, 0, 1] + [round(v * 32767) for v in q] + [0, 0, 0, 32767], SHORT, "VEC4", normalized=True)
+    s = b.accessor([1, 1, 1, 1, 1, 1, 2, 2, 2], FLOAT, "VEC3")
+    node = b.node(name="forest", mesh=mesh, translation=[0, 0, 10])
+    b.doc["nodes"][node]["extensions"] = {"EXT_mesh_gpu_instancing": {"attributes": {
+        "TRANSLATION": t, "ROTATION": r, "SCALE": s}}}
+    b.scene([node])
+    b.doc["extensionsUsed"] = b.doc["extensionsRequired"] = ["EXT_mesh_gpu_instancing"]
+    b.write_embedded(out("gpu_instancing.gltf"))
+    doc = b.document(b.data_uri())
+    doc["accessors"][s]["count"] = 2
+    write_doc("gpu_instancing_counts.gltf", doc)
+
+
 # ---- errors -------------------------------------------------------------------------------------
 
 def triangle_doc(**material):
@@ -378,7 +465,7 @@ def errors():
 
 def main():
     for make in (hierarchy, index_types, byte_stride, containers, no_normals, degenerate, mirror, metallic_roughness,
-                 materials, texture, lights, cameras, errors):
+                 materials, texture, lights, cameras, quantized, sparse, strips_fans, gpu_instancing, errors):
         make()
 
 

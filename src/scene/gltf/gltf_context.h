@@ -25,11 +25,14 @@ constexpr size_t kMaxTexels = size_t(1) << 26;     // 1 GiB of float4 texels, al
 constexpr int kMaxImageSide = 16384;
 constexpr int kMaxJsonDepth = 64;      // tinygltf converts extras recursively
 constexpr size_t kMaxByteStride = 252; // glTF 2.0 limit
+// Sparse accessors (and ones without a bufferView) are expanded to dense copies: a few bytes of
+// JSON can ask for 2^31 elements, so all such copies together are capped.
+constexpr uint64_t kMaxExpandedAccessorBytes = uint64_t(1) << 30;
 constexpr double kPi = 3.14159265358979323846;
 
-inline const std::set<std::string> kSupportedExtensions = {"KHR_lights_punctual", "KHR_materials_emissive_strength",
-                                                           "KHR_materials_transmission", "KHR_materials_ior",
-                                                           "KHR_materials_specular"};
+inline const std::set<std::string> kSupportedExtensions = {
+    "KHR_lights_punctual",    "KHR_materials_emissive_strength", "KHR_materials_transmission", "KHR_materials_ior",
+    "KHR_materials_specular", "KHR_mesh_quantization",           "EXT_mesh_gpu_instancing"};
 
 // Error messages are one line: tinygltf and nlohmann texts are joined with "; ".
 std::string one_line(const std::string& text);

@@ -85,7 +85,10 @@ void SceneBuilder::enter(int index, const glm::dmat4& parent, int parent_index, 
     if (++visits_ > kMaxNodeVisits) ctx_.fail("the node hierarchy instances more than 2^20 nodes");
     glm::dmat4 world(1.0); // the counting pass needs no transforms
     if (counting_) {
-        count_triangles(node.mesh);
+        size_t instances = node.mesh == -1 ? 1 : gpu_instance_count(node, node_label(index));
+        if (instances > 1) visits_ += instances - 1;
+        if (visits_ > kMaxNodeVisits) ctx_.fail("the node hierarchy instances more than 2^20 nodes");
+        for (size_t i = 0; i < instances; ++i) count_triangles(node.mesh);
     } else {
         if (!transform_arrays_valid(node)) ctx_.fail(node_label(index) + " has a transform array of the wrong length");
         glm::dmat4 local = local_matrix(node);
@@ -103,9 +106,85 @@ void SceneBuilder::instantiate(int index, const glm::dmat4& world) {
     bool has_light = light != node.extensions.end();
     if (node.mesh == -1 && node.camera == -1 && !has_light) return;
     std::string label = node_label(index);
-    if (node.mesh != -1) add_mesh(node.mesh, world, label);
+    if (node.mesh != -1) {
+        std::vector<glm::dmat4> instances = gpu_instances(node, label);
+        if (instances.empty()) add_mesh(node.mesh, world, label);
+        for (size_t i = 0; i < instances.size(); ++i) {
+            glm::dmat4 w = world * instances[i];
+            if (!finite(w))
+                ctx_.fail(label + " EXT_mesh_gpu_instancing instance " + std::to_string(i) +
+                          " has a non-finite transform");
+            add_mesh(node.mesh, w, label);
+        }
+    }
     if (node.camera != -1) lights_cameras_.add_camera(node, world, label);
     if (has_light) lights_cameras_.add_light(light->second, world, label);
+}
+
+// EXT_mesh_gpu_instancing: the node's mesh is drawn once per element of its TRANSLATION,
+// ROTATION and SCALE accessors (each optional, all of one count), at node world * T * R * S.
+const tinygltf::Value* SceneBuilder::instancing_attributes(const tinygltf::Node& node, const std::string& label) {
+    auto ext = node.extensions.find("EXT_mesh_gpu_instancing");
+    if (ext == node.extensions.end()) return nullptr;
+    if (!ext->second.IsObject() || !ext->second.Has("attributes") || !ext->second.Get("attributes").IsObject())
+        ctx_.fail(label + " EXT_mesh_gpu_instancing has no attributes object");
+    return &ext->second.Get("attributes");
+}
+
+int SceneBuilder::instancing_accessor(const tinygltf::Value& attributes, const char* name, const std::string& label) {
+    if (!attributes.Has(name)) return -1;
+    const tinygltf::Value& v = attributes.Get(name);
+    if (!v.IsInt() || v.GetNumberAsInt() < 0)
+        ctx_.fail(label + " EXT_mesh_gpu_instancing " + name + " is not an accessor index");
+    return v.GetNumberAsInt();
+}
+
+// 0: the node is not instanced (drawn once).
+size_t SceneBuilder::gpu_instance_count(const tinygltf::Node& node, const std::string& label) {
+    const tinygltf::Value* attributes = instancing_attributes(node, label);
+    if (!attributes) return 1;
+    size_t count = 0;
+    bool any = false;
+    for (const char* name : {"TRANSLATION", "ROTATION", "SCALE"}) {
+        int a = instancing_accessor(*attributes, name, label);
+        if (a < 0) continue;
+        size_t n = reader_.view(a, label + " EXT_mesh_gpu_instancing " + name).count;
+        if (any && n != count)
+            ctx_.fail(label + " EXT_mesh_gpu_instancing attributes have different counts (" + std::to_string(count) +
+                      " and " + std::to_string(n) + ")");
+        count = n, any = true;
+    }
+    return any ? count : 1;
+}
+
+std::vector<glm::dmat4> SceneBuilder::gpu_instances(const tinygltf::Node& node, const std::string& label) {
+    const tinygltf::Value* attributes = instancing_attributes(node, label);
+    if (!attributes) return {};
+    size_t count = gpu_instance_count(node, label);
+    std::string what = label + " EXT_mesh_gpu_instancing ";
+    auto read = [&](const char* name, int components, bool rotation) {
+        int a = instancing_accessor(*attributes, name, label);
+        if (a < 0) return AccessorView{};
+        AccessorView v = reader_.view(a, what + name);
+        bool ok =
+            v.components == components &&
+            (v.component_type == TINYGLTF_COMPONENT_TYPE_FLOAT ||
+             (rotation && v.normalized &&
+              (v.component_type == TINYGLTF_COMPONENT_TYPE_BYTE || v.component_type == TINYGLTF_COMPONENT_TYPE_SHORT)));
+        require(ok, what + name +
+                        (rotation ? " must be a VEC4 of FLOAT or normalized BYTE/SHORT" : " must be a FLOAT VEC3"));
+        return v;
+    };
+    AccessorView t = read("TRANSLATION", 3, false), r = read("ROTATION", 4, true), s = read("SCALE", 3, false);
+    std::vector<glm::dmat4> m(count);
+    for (size_t i = 0; i < count; ++i) {
+        glm::dvec3 ti = t.data ? glm::dvec3(t.get(i, 0), t.get(i, 1), t.get(i, 2)) : glm::dvec3(0.0);
+        glm::dvec3 si = s.data ? glm::dvec3(s.get(i, 0), s.get(i, 1), s.get(i, 2)) : glm::dvec3(1.0);
+        std::vector<double> qi = {0, 0, 0, 1};
+        if (r.data) qi = {r.get(i, 0), r.get(i, 1), r.get(i, 2), r.get(i, 3)};
+        m[i] = trs_matrix(ti, qi, si);
+    }
+    return m;
 }
 
 // Adds the triangles an instance of `mesh` will add (an upper bound: degenerate ones count).
@@ -117,10 +196,11 @@ void SceneBuilder::count_triangles(int mesh) {
         const tinygltf::Mesh& g = m_.meshes[size_t(mesh)];
         for (size_t p = 0; p < g.primitives.size(); ++p) {
             const tinygltf::Primitive& prim = g.primitives[p];
-            if (prim.mode != TINYGLTF_MODE_TRIANGLES || !prim.attributes.count("POSITION")) continue;
+            if (!is_triangle_mode(prim.mode) || !prim.attributes.count("POSITION")) continue;
             std::string label = labelled("mesh", mesh, g.name) + " primitive " + std::to_string(p);
             size_t vertices = attribute(prim, "POSITION", label).count;
-            n += (prim.indices < 0 ? vertices : reader_.view(prim.indices, label + " indices").count) / 3;
+            n += triangle_count(prim.mode,
+                                prim.indices < 0 ? vertices : reader_.view(prim.indices, label + " indices").count);
         }
         cached = mesh_triangles_.emplace(mesh, n).first;
     }
@@ -134,8 +214,9 @@ void SceneBuilder::add_mesh(int mesh, const glm::dmat4& world, const std::string
     for (size_t p = 0; p < g.primitives.size(); ++p) {
         std::string label = labelled("mesh", mesh, g.name) + " primitive " + std::to_string(p);
         const tinygltf::Primitive& prim = g.primitives[p];
-        if (prim.mode != TINYGLTF_MODE_TRIANGLES) {
-            ctx_.warn(label + ": mode " + std::to_string(prim.mode) + " is not TRIANGLES; skipped");
+        if (!is_triangle_mode(prim.mode)) {
+            ctx_.warn(label + ": mode " + std::to_string(prim.mode) + " (" + mode_name(prim.mode) +
+                      ") has no area to render; skipped");
             continue;
         }
         if (!prim.attributes.count("POSITION")) {
@@ -160,8 +241,10 @@ WorldVertices SceneBuilder::world_vertices(const tinygltf::Primitive& prim, cons
                                            const std::string& label) {
     WorldVertices v;
     AccessorView pos = attribute(prim, "POSITION", label);
-    require(pos.components == 3 && pos.component_type == TINYGLTF_COMPONENT_TYPE_FLOAT,
-            label + ": POSITION must be a FLOAT VEC3 accessor");
+    // KHR_mesh_quantization adds (normalized or not) BYTE, UNSIGNED_BYTE, SHORT, UNSIGNED_SHORT.
+    require(pos.components == 3 && pos.component_type != TINYGLTF_COMPONENT_TYPE_INT &&
+                pos.component_type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT,
+            label + ": POSITION must be a VEC3 of FLOAT or (KHR_mesh_quantization) BYTE/SHORT, signed or unsigned");
     v.position.resize(pos.count);
     for (size_t i = 0; i < pos.count; ++i)
         v.position[i] = transform_point(world, {pos.get(i, 0), pos.get(i, 1), pos.get(i, 2)});
@@ -174,8 +257,10 @@ WorldVertices SceneBuilder::world_vertices(const tinygltf::Primitive& prim, cons
 void SceneBuilder::read_normals(const tinygltf::Primitive& prim, const glm::dmat4& world, const std::string& label,
                                 WorldVertices* v) {
     AccessorView n = attribute(prim, "NORMAL", label);
-    require(n.components == 3 && n.component_type == TINYGLTF_COMPONENT_TYPE_FLOAT,
-            label + ": NORMAL must be a FLOAT VEC3 accessor");
+    bool snorm = n.normalized && (n.component_type == TINYGLTF_COMPONENT_TYPE_BYTE ||
+                                  n.component_type == TINYGLTF_COMPONENT_TYPE_SHORT);
+    require(n.components == 3 && (n.component_type == TINYGLTF_COMPONENT_TYPE_FLOAT || snorm),
+            label + ": NORMAL must be a VEC3 of FLOAT or (KHR_mesh_quantization) normalized BYTE/SHORT");
     require(n.count >= v->position.size(), label + ": NORMAL has fewer elements than POSITION");
     glm::dmat3 linear(world);
     double det = glm::determinant(linear);
@@ -187,11 +272,11 @@ void SceneBuilder::read_normals(const tinygltf::Primitive& prim, const glm::dmat
 
 void SceneBuilder::read_uvs(const tinygltf::Primitive& prim, const std::string& label, WorldVertices* v) {
     AccessorView t = attribute(prim, "TEXCOORD_0", label);
-    bool float_or_unorm = t.component_type == TINYGLTF_COMPONENT_TYPE_FLOAT ||
-                          (t.normalized && (t.component_type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
-                                            t.component_type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT));
-    require(t.components == 2 && float_or_unorm,
-            label + ": TEXCOORD_0 must be a VEC2 of FLOAT or normalized UNSIGNED_BYTE/UNSIGNED_SHORT");
+    // Core glTF: FLOAT or normalized UNSIGNED_BYTE/SHORT; KHR_mesh_quantization adds the signed
+    // and the unnormalized 8- and 16-bit integers (scaled by KHR_texture_transform in practice).
+    require(t.components == 2 && t.component_type != TINYGLTF_COMPONENT_TYPE_INT &&
+                t.component_type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT,
+            label + ": TEXCOORD_0 must be a VEC2 of FLOAT or 8- or 16-bit integers");
     require(t.count >= v->position.size(), label + ": TEXCOORD_0 has fewer elements than POSITION");
     v->uv.resize(v->position.size());
     for (size_t i = 0; i < v->uv.size(); ++i) {
@@ -200,14 +285,61 @@ void SceneBuilder::read_uvs(const tinygltf::Primitive& prim, const std::string& 
     }
 }
 
-// Vertex indices of the primitive, three per triangle (a trailing partial triangle dropped).
+bool is_triangle_mode(int mode) {
+    return mode == TINYGLTF_MODE_TRIANGLES || mode == TINYGLTF_MODE_TRIANGLE_STRIP ||
+           mode == TINYGLTF_MODE_TRIANGLE_FAN;
+}
+
+const char* mode_name(int mode) {
+    switch (mode) {
+    case TINYGLTF_MODE_POINTS: return "POINTS";
+    case TINYGLTF_MODE_LINE: return "LINES";
+    case TINYGLTF_MODE_LINE_LOOP: return "LINE_LOOP";
+    case 3: return "LINE_STRIP";
+    default: return "not a glTF primitive mode";
+    }
+}
+
+size_t triangle_count(int mode, size_t vertices) {
+    if (mode == TINYGLTF_MODE_TRIANGLES) return vertices / 3;
+    return vertices >= 3 ? vertices - 2 : 0;
+}
+
+// Vertex indices of the primitive, three per triangle, as glTF 2.0 Sec. 3.7.2.1 assembles them:
+// TRIANGLES (a trailing partial triangle dropped), TRIANGLE_STRIP p_i = {v_i, v_{i+1+i%2},
+// v_{i+2-i%2}}, TRIANGLE_FAN p_i = {v_{i+1}, v_{i+2}, v_0}. Strip and fan triangles that repeat a
+// vertex (how strips are joined) are dropped as intended, not counted as degenerate.
 std::vector<uint32_t> SceneBuilder::triangle_indices(const tinygltf::Primitive& prim, size_t vertex_count,
                                                      const std::string& label) {
+    std::vector<uint32_t> v = vertex_sequence(prim, vertex_count, label);
+    if (prim.mode == TINYGLTF_MODE_TRIANGLES) {
+        if (v.size() % 3)
+            ctx_.warn(label + (prim.indices < 0 ? ": vertex" : ": index") + " count is not a multiple of 3");
+        reserve_triangles(v.size() / 3);
+        v.resize(v.size() / 3 * 3);
+        return v;
+    }
+    size_t n = triangle_count(prim.mode, v.size());
+    reserve_triangles(n);
+    std::vector<uint32_t> idx;
+    idx.reserve(3 * n);
+    for (size_t i = 0; i < n; ++i) {
+        std::array<uint32_t, 3> t = prim.mode == TINYGLTF_MODE_TRIANGLE_STRIP
+                                        ? std::array<uint32_t, 3>{v[i], v[i + 1 + i % 2], v[i + 2 - i % 2]}
+                                        : std::array<uint32_t, 3>{v[i + 1], v[i + 2], v[0]};
+        if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2]) continue;
+        idx.insert(idx.end(), t.begin(), t.end());
+    }
+    return idx;
+}
+
+// The primitive's vertices in drawing order: its indices, else 0, 1, ..., vertex_count - 1.
+std::vector<uint32_t> SceneBuilder::vertex_sequence(const tinygltf::Primitive& prim, size_t vertex_count,
+                                                    const std::string& label) {
     std::vector<uint32_t> idx;
     if (prim.indices < 0) {
-        if (vertex_count % 3) ctx_.warn(label + ": vertex count is not a multiple of 3");
-        reserve_triangles(vertex_count / 3);
-        idx.resize(vertex_count / 3 * 3);
+        if (vertex_count > 3 * kMaxTriangles) ctx_.fail("the scene has more than 2^25 triangles");
+        idx.resize(vertex_count);
         for (size_t i = 0; i < idx.size(); ++i) idx[i] = uint32_t(i);
         return idx;
     }
@@ -218,9 +350,8 @@ std::vector<uint32_t> SceneBuilder::triangle_indices(const tinygltf::Primitive& 
                       a.component_type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
     require(a.components == 1 && index_type && !a.normalized,
             label + ": indices " + name + " must be a SCALAR of UNSIGNED_BYTE/SHORT/INT");
-    if (a.count % 3) ctx_.warn(label + ": index count is not a multiple of 3");
-    reserve_triangles(a.count / 3);
-    idx.resize(a.count / 3 * 3);
+    if (a.count > 3 * kMaxTriangles) ctx_.fail("the scene has more than 2^25 triangles");
+    idx.resize(a.count);
     for (size_t i = 0; i < idx.size(); ++i) {
         idx[i] = a.index(i);
         if (idx[i] >= vertex_count)

@@ -27,6 +27,12 @@ struct WorldVertices {
     std::vector<glm::vec2> uv;      // empty: none
 };
 
+// Primitive modes with area (TRIANGLES, TRIANGLE_STRIP, TRIANGLE_FAN), their names otherwise, and
+// how many triangles a mode assembles from a vertex sequence.
+bool is_triangle_mode(int mode);
+const char* mode_name(int mode);
+size_t triangle_count(int mode, size_t vertices);
+
 class SceneBuilder {
 public:
     SceneBuilder(const tinygltf::Model& m, LoadContext& ctx, Scene& s)
@@ -75,9 +81,20 @@ private:
 
     void read_uvs(const tinygltf::Primitive& prim, const std::string& label, WorldVertices* v);
 
-    // Vertex indices of the primitive, three per triangle (a trailing partial triangle dropped).
+    // Vertex indices of the primitive, three per triangle, assembled by its mode (TRIANGLES,
+    // TRIANGLE_STRIP, TRIANGLE_FAN).
     std::vector<uint32_t> triangle_indices(const tinygltf::Primitive& prim, size_t vertex_count,
                                            const std::string& label);
+    std::vector<uint32_t> vertex_sequence(const tinygltf::Primitive& prim, size_t vertex_count,
+                                          const std::string& label);
+
+    // -- EXT_mesh_gpu_instancing --
+    const tinygltf::Value* instancing_attributes(const tinygltf::Node& node, const std::string& label);
+    int instancing_accessor(const tinygltf::Value& attributes, const char* name, const std::string& label);
+    // How many times the node's mesh is drawn: 1 unless the extension gives per-instance TRS.
+    size_t gpu_instance_count(const tinygltf::Node& node, const std::string& label);
+    // The per-instance T * R * S matrices (empty: not instanced).
+    std::vector<glm::dmat4> gpu_instances(const tinygltf::Node& node, const std::string& label);
 
     void reserve_triangles(size_t count);
 

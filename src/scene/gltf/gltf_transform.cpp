@@ -37,10 +37,16 @@ glm::dmat4 local_matrix(const tinygltf::Node& n) {
             for (int r = 0; r < 4; ++r) m[c][r] = n.matrix[size_t(c * 4 + r)];
         return m;
     }
-    if (!n.translation.empty()) m[3] = {n.translation[0], n.translation[1], n.translation[2], 1.0};
-    if (!n.rotation.empty()) m = m * rotation_matrix(n.rotation);
-    if (!n.scale.empty())
-        for (int c = 0; c < 3; ++c) m[c] *= n.scale[size_t(c)];
+    glm::dvec3 t =
+        n.translation.empty() ? glm::dvec3(0.0) : glm::dvec3(n.translation[0], n.translation[1], n.translation[2]);
+    glm::dvec3 s = n.scale.empty() ? glm::dvec3(1.0) : glm::dvec3(n.scale[0], n.scale[1], n.scale[2]);
+    return trs_matrix(t, n.rotation.empty() ? std::vector<double>{0, 0, 0, 1} : n.rotation, s);
+}
+
+glm::dmat4 trs_matrix(const glm::dvec3& t, const std::vector<double>& q, const glm::dvec3& s) {
+    glm::dmat4 m = rotation_matrix(q);
+    m[3] = {t.x, t.y, t.z, 1.0};
+    for (int c = 0; c < 3; ++c) m[c] *= s[c];
     return m;
 }
 
