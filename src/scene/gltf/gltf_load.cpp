@@ -1,12 +1,13 @@
 // glTF 2.0 -> Scene. Three stages: a guarded pre-scan of the raw JSON (nesting depth, required
 // extensions, URIs, image buffer views: the checks tinygltf does not make before it touches
 // memory or the file system), parsing with tinygltf behind file-system callbacks that stay inside
-// the scene's directory, then flattening the node hierarchy into world-space triangles.
+// the scene's directory, decoding Draco-compressed primitives, then flattening the node hierarchy into world-space triangles.
 #include "scene/gltf/gltf_load.h"
 
 #include <filesystem>
 
 #include "scene/gltf/gltf_context.h"
+#include "scene/gltf/gltf_draco.h"
 #include "scene/gltf/gltf_files.h"
 #include "scene/gltf/gltf_parse.h"
 #include "scene/gltf/gltf_scene_builder.h"
@@ -25,6 +26,7 @@ Scene load_bytes(const std::vector<unsigned char>& bytes, const std::string& bas
     scene.source = source;
     LoadContext ctx(source, &scene);
     tinygltf::Model model = parse_model(bytes, base, ctx);
+    decode_draco_primitives(model, ctx);
     SceneBuilder(model, ctx, scene).build();
     return scene;
 }

@@ -163,14 +163,21 @@ int32_t MaterialConverter::texture_for(const tinygltf::TextureInfo& info, const 
 int32_t MaterialConverter::convert_texture(int index, bool srgb) {
     const tinygltf::Texture& t = m_.textures[size_t(index)];
     std::string label = labelled("texture", index, t.name);
-    if (t.source < 0 || size_t(t.source) >= m_.images.size()) {
+    // EXT_texture_webp names the WebP image; `source`, when present, is a fallback for viewers
+    // without WebP.
+    int source = t.source;
+    auto webp = t.extensions.find("EXT_texture_webp");
+    if (webp != t.extensions.end() && webp->second.IsObject() && webp->second.Has("source") &&
+        webp->second.Get("source").IsInt())
+        source = webp->second.Get("source").GetNumberAsInt();
+    if (source < 0 || size_t(source) >= m_.images.size()) {
         ctx_.warn(label + " has no valid image source; texture ignored");
         return -1;
     }
-    const tinygltf::Image& img = m_.images[size_t(t.source)];
+    const tinygltf::Image& img = m_.images[size_t(source)];
     size_t texels = (img.width > 0 && img.height > 0) ? size_t(img.width) * size_t(img.height) : 0;
     if (texels == 0 || img.component != 4 || img.bits != 8 || img.image.size() != texels * 4) {
-        ctx_.warn(label + " image " + std::to_string(t.source) + " has no decoded pixels; texture ignored");
+        ctx_.warn(label + " image " + std::to_string(source) + " has no decoded pixels; texture ignored");
         return -1;
     }
     if (s_.texels.size() + texels > kMaxTexels) ctx_.fail("textures exceed 2^26 texels in total");

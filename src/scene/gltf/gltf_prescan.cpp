@@ -151,12 +151,51 @@ void check_image_buffer_views(const json& root, const LoadContext& ctx) {
 
 } // namespace
 
-void prescan_json(const char* text, size_t size, const std::string& base, const LoadContext& ctx) {
+json prescan_json(const char* text, size_t size, const std::string& base, const LoadContext& ctx) {
     json root = parse_json_guarded(text, size, ctx);
     if (!root.is_object()) ctx.fail("malformed glTF: the top level is not a JSON object");
     check_required_extensions(root, ctx);
     check_uris(root, base, ctx);
     check_image_buffer_views(root, ctx);
+    return root;
+}
+
+bool drop_draco_indices(json& root) {
+    bool changed = false;
+    auto meshes = root.find("meshes");
+    if (meshes == root.end() || !meshes->is_array()) return false;
+    for (json& mesh : *meshes) {
+        auto prims = mesh.is_object() ? mesh.find("primitives") : mesh.end();
+        if (!mesh.is_object() || prims == mesh.end() || !prims->is_array()) continue;
+        for (json& prim : *prims) {
+            if (!prim.is_object() || !prim.contains("indices")) continue;
+            auto ext = prim.find("extensions");
+            if (ext != prim.end() && ext->is_object() && ext->contains("KHR_draco_mesh_compression")) {
+                prim.erase("indices");
+                changed = true;
+            }
+        }
+    }
+    return changed;
+}
+
+std::vector<unsigned char> glb_with_json(const std::vector<unsigned char>& bytes, const std::string& text) {
+    // Called on a container glb_json_chunk has checked: bytes >= 20 + old JSON chunk length.
+    uint32_t old_length =
+        uint32_t(bytes[12]) | uint32_t(bytes[13]) << 8 | uint32_t(bytes[14]) << 16 | uint32_t(bytes[15]) << 24;
+    std::string padded = text;
+    while (padded.size() % 4) padded += ' ';
+    size_t rest = bytes.size() - 20 - old_length;
+    std::vector<unsigned char> out(20 + padded.size() + rest);
+    std::memcpy(out.data(), bytes.data(), 20);
+    std::memcpy(out.data() + 20, padded.data(), padded.size());
+    if (rest) std::memcpy(out.data() + 20 + padded.size(), bytes.data() + 20 + old_length, rest);
+    auto put = [&](size_t at, uint64_t v) {
+        for (int k = 0; k < 4; ++k) out[at + size_t(k)] = static_cast<unsigned char>(v >> (8 * k));
+    };
+    put(8, out.size());
+    put(12, padded.size());
+    return out;
 }
 
 bool is_glb(const std::vector<unsigned char>& bytes) {
