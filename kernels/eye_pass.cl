@@ -145,7 +145,7 @@ __kernel void eye_pass(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong p
         if (!trace_closest(SCENE_ARGS, r.org, r.dir, INFINITY, &hit)) continue;
         Surface sf = make_surface(SCENE_ARGS, r.dir, &hit);
         float3 le = surface_emission(SCENE_ARGS, &sf);
-        if (max3(le) > 0.0f) emitted += r.weight * le * (r.delta ? 1.0f : emission_mis(SCENE_ARGS, &sf, r.dir, le, r.pdf));
+        if (max3(le) > 0.0f) emitted += r.weight * le * (r.delta ? 1.0f : emission_mis(SCENE_ARGS, &sf, r.dir, r.pdf));
         if (r.depth + 1 >= info->max_bounces) continue;
         float plen = r.path_length + sf.t;
 

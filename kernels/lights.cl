@@ -26,12 +26,44 @@ float spot_falloff(__global const Light* L, float cos_theta) {
     return a * a;
 }
 
-/* A uniform point on an emissive triangle and its winding normal. */
-float3 area_light_point(SCENE_PARAMS, __global const Light* L, Rng* rng, float3* n) {
+/* A uniform point on an emissive triangle, its winding normal and the radiance it emits there
+ * (the material's emission times its emissive texture). */
+float3 area_light_point(SCENE_PARAMS, __global const Light* L, Rng* rng, float3* n, float3* le) {
     float3 v0 = tris[3 * L->prim].xyz, e1 = tris[3 * L->prim + 1].xyz, e2 = tris[3 * L->prim + 2].xyz;
     float2 b = sample_triangle(rng_float(rng), rng_float(rng));
     *n = normalize(cross(e1, e2));
+    *le = load3g(L->radiance);
+    if (HAS_TEXTURES) {
+        __global const TriShading* sh = &shading[L->prim];
+        *le = material_emission(SCENE_ARGS, sh->material, triangle_uv(sh, b.x, b.y));
+    }
     return v0 + e1 * b.x + e2 * b.y;
+}
+
+/* Power per unit area with which the lights are chosen, for a uniform emitter of radiance le:
+ * mean(Le) pi per emitting side (src/scene/device_scene.cpp), so the area cancels and a
+ * triangle hit by a ray needs no light index. */
+float uniform_power_per_area(float3 le, bool two_sided) {
+    return (le.x + le.y + le.z) * (1.0f / 3.0f) * PI_F * (two_sided ? 2.0f : 1.0f);
+}
+
+/* The same for the emissive triangle prim of material `material` wherever a ray finds it: for a
+ * textured emitter the host's integral of its texture (Light.power / area), found by binary
+ * search over the area lights (lights[0, num_emissive_tris), in increasing prim); 0 when the
+ * triangle is no light (its texture is black). */
+float emitter_power_per_area(SCENE_PARAMS, uint prim, uint material) {
+    __global const Material* m = &materials[material];
+    if (HAS_TEXTURES && m->emissive_tex >= 0) {
+        uint lo = 0, hi = info->num_emissive_tris;
+        while (lo < hi) {
+            uint mid = (lo + hi) >> 1;
+            if (lights[mid].prim < prim) lo = mid + 1;
+            else hi = mid;
+        }
+        if (lo == info->num_emissive_tris || lights[lo].prim != prim) return 0.0f;
+        return lights[lo].power / lights[lo].area;
+    }
+    return uniform_power_per_area(load3g(m->emission), (m->flags & MATERIAL_FLAG_DOUBLE_SIDED) != 0u);
 }
 
 /* Emits one photon: origin, direction, flux (units of total power) and, for area lights, the
@@ -44,7 +76,7 @@ void emit_photon(SCENE_PARAMS, Rng* rng, float3* org, float3* dir, float3* flux)
     *org = *dir = *flux = (float3)(0.0f);
     if (HAS_AREA_LIGHTS && L->type == LIGHT_TRIANGLE) {
         float3 n;
-        float3 p = area_light_point(SCENE_ARGS, L, rng, &n);
+        float3 p = area_light_point(SCENE_ARGS, L, rng, &n, &rad);
         float sides = 1.0f;
         if (L->two_sided) {
             sides = 2.0f;
@@ -52,7 +84,8 @@ void emit_photon(SCENE_PARAMS, Rng* rng, float3* org, float3* dir, float3* flux)
         }
         *dir = sample_cosine_hemisphere(n, rng_float(rng), rng_float(rng));
         *org = offset_origin(SCENE_ARGS, p, n);
-        /* Le cos / (pick * (1/A) * (1/sides) * cos/pi) = Le A pi sides / pick */
+        /* Le cos / (pick * (1/A) * (1/sides) * cos/pi) = Le A pi sides / pick, Le where the
+         * photon starts (for a textured emitter, pick is by the texture's mean: Light.power) */
         *flux = rad * (L->area * PI_F * sides / (pick * info->total_power));
     } else if (HAS_POINT_LIGHTS && L->type == LIGHT_POINT) {
         float z = 1.0f - 2.0f * rng_float(rng);
@@ -82,12 +115,10 @@ void emit_photon(SCENE_PARAMS, Rng* rng, float3* org, float3* dir, float3* flux)
 }
 
 /* The solid-angle density with which sample_light picks a point seen at squared distance d2
- * and cosine cos_y on an emissive triangle of radiance le: pick (power / total power) times
- * d2 / (cos_y A), where power = mean(Le) A pi sides (src/scene/device_scene.cpp), so the area
- * cancels and a triangle hit by a ray needs no light index. The path tracer's MIS weights take
- * both densities from here, so that they sum to 1 exactly. */
-float area_light_pdf(SCENE_PARAMS, float3 le, bool two_sided, float d2, float cos_y) {
-    float power_per_area = (le.x + le.y + le.z) * (1.0f / 3.0f) * PI_F * (two_sided ? 2.0f : 1.0f);
+ * and cosine cos_y on an emissive triangle: pick (power / total power) times d2 / (cos_y A),
+ * from the triangle's power per area (uniform_power_per_area, emitter_power_per_area). The path
+ * tracer's MIS weights take both densities from here, so that they sum to 1 exactly. */
+float area_light_pdf(SCENE_PARAMS, float power_per_area, float d2, float cos_y) {
     return power_per_area / info->total_power * d2 / cos_y;
 }
 
@@ -104,7 +135,7 @@ bool sample_light(SCENE_PARAMS, float3 x, Rng* rng, float3* wi, float* dist, flo
     float3 rad = load3g(L->radiance);
     if (HAS_AREA_LIGHTS && L->type == LIGHT_TRIANGLE) {
         float3 ny;
-        float3 y = area_light_point(SCENE_ARGS, L, rng, &ny);
+        float3 y = area_light_point(SCENE_ARGS, L, rng, &ny, &rad);
         float3 d = y - x;
         float d2 = dot(d, d);
         if (!(d2 > 0.0f)) return false;
@@ -115,7 +146,10 @@ bool sample_light(SCENE_PARAMS, float3 x, Rng* rng, float3* wi, float* dist, flo
         if (cos_y <= 0.0f) return false;
         /* Le cos_y / d^2 / (pick / A): area sampling (Veach 1997, Eq. 8.10) */
         *contrib = rad * (cos_y * L->area / (d2 * pick));
-        *pdf = area_light_pdf(SCENE_ARGS, rad, L->two_sided != 0u, d2, cos_y);
+        bool textured = HAS_TEXTURES && materials[shading[L->prim].material].emissive_tex >= 0;
+        float power_per_area =
+            textured ? L->power / L->area : uniform_power_per_area(load3g(L->radiance), L->two_sided != 0u);
+        *pdf = area_light_pdf(SCENE_ARGS, power_per_area, d2, cos_y);
         /* Stop the shadow ray short of the light's own surface. */
         float m = fmax(fabs(y.x), fmax(fabs(y.y), fabs(y.z)));
         *dist = len - 2.0f * (info->ray_eps + 4e-6f * m);

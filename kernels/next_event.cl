@@ -29,12 +29,11 @@ float3 next_event(SCENE_PARAMS, const Bsdf* b, float3 p, float3 wo, uint mask, R
     return f * contrib * (cos_x * mis);
 }
 
-/* The MIS weight of emission le found at surface sf by a ray along dir that was sampled with
+/* The MIS weight of emission found at surface sf by a ray along dir that was sampled with
  * solid-angle density bsdf_pdf (not a delta lobe, not a camera ray). */
-float emission_mis(SCENE_PARAMS, const Surface* sf, float3 dir, float3 le, float bsdf_pdf) {
-    bool two_sided = (materials[sf->material].flags & MATERIAL_FLAG_DOUBLE_SIDED) != 0u;
-    float light_pdf = area_light_pdf(SCENE_ARGS, le, two_sided, sf->t * sf->t * dot(dir, dir),
-                                     fabs(dot(dir, sf->ng)) / length(dir));
+float emission_mis(SCENE_PARAMS, const Surface* sf, float3 dir, float bsdf_pdf) {
+    float light_pdf = area_light_pdf(SCENE_ARGS, emitter_power_per_area(SCENE_ARGS, sf->prim, sf->material),
+                                     sf->t * sf->t * dot(dir, dir), fabs(dot(dir, sf->ng)) / length(dir));
     return power_heuristic(bsdf_pdf, light_pdf);
 }
 

@@ -26,7 +26,7 @@ __kernel void path_trace(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong
         Surface sf = make_surface(SCENE_ARGS, dir, &hit);
         float3 le = surface_emission(SCENE_ARGS, &sf);
         if (max3(le) > 0.0f) {
-            L += beta * le * (prev_delta ? 1.0f : emission_mis(SCENE_ARGS, &sf, dir, le, prev_pdf));
+            L += beta * le * (prev_delta ? 1.0f : emission_mis(SCENE_ARGS, &sf, dir, prev_pdf));
         }
         Bsdf b = surface_bsdf(SCENE_ARGS, &sf);
         float3 wo = -dir;

@@ -42,6 +42,12 @@ float3 offset_origin(SCENE_PARAMS, float3 p, float3 n_side) {
     return p + n_side * (info->ray_eps + 4e-6f * m);
 }
 
+/* Texture coordinates at barycentrics (b1, b2) of a triangle. */
+float2 triangle_uv(__global const TriShading* sh, float b1, float b2) {
+    return (float2)(sh->uv0[0], sh->uv0[1]) * (1.0f - b1 - b2) + (float2)(sh->uv1[0], sh->uv1[1]) * b1 +
+           (float2)(sh->uv2[0], sh->uv2[1]) * b2;
+}
+
 Surface make_surface(SCENE_PARAMS, float3 dir, const Hit* h) {
     Surface s;
     uint prim = h->prim;
@@ -55,8 +61,7 @@ Surface make_surface(SCENE_PARAMS, float3 dir, const Hit* h) {
     float3 ns = load3g(sh->n0) * b0 + load3g(sh->n1) * b1 + load3g(sh->n2) * b2;
     float len = length(ns);
     ns = (len > 1e-12f && isfinite(len)) ? ns / len : ng;
-    s.uv = (float2)(sh->uv0[0], sh->uv0[1]) * b0 + (float2)(sh->uv1[0], sh->uv1[1]) * b1 +
-           (float2)(sh->uv2[0], sh->uv2[1]) * b2;
+    s.uv = triangle_uv(sh, b1, b2);
     s.material = sh->material;
     s.front = dot(ng, dir) < 0.0f;
     if (!s.front) {
@@ -106,11 +111,19 @@ float3 surface_base_color(SCENE_PARAMS, const Surface* s) {
     return c;
 }
 
+/* Emitted radiance: the emission factor times the emissive texture (sRGB decoded) at uv. */
+float3 material_emission(SCENE_PARAMS, uint material, float2 uv) {
+    __global const Material* m = &materials[material];
+    float3 le = load3g(m->emission);
+    if (HAS_TEXTURES && m->emissive_tex >= 0) le *= texture_lookup(SCENE_ARGS, m->emissive_tex, uv);
+    return le;
+}
+
 /* Emitted radiance towards the ray: from the front face, or both faces when double-sided. */
 float3 surface_emission(SCENE_PARAMS, const Surface* s) {
     __global const Material* m = &materials[s->material];
     if (!s->front && !(m->flags & MATERIAL_FLAG_DOUBLE_SIDED)) return (float3)(0.0f);
-    return load3g(m->emission);
+    return material_emission(SCENE_ARGS, s->material, s->uv);
 }
 
 #endif

@@ -70,8 +70,8 @@ typedef struct {
     i32 base_color_tex;         /* index into Texture array (sRGB decoded), -1 when none */
     u32 flags;                  /* MATERIAL_FLAG_* */
     i32 metallic_roughness_tex; /* linear texture: G scales roughness, B metallic; -1 when none */
-    u32 pad0;
-} Material; /* 80 bytes */
+    i32 emissive_tex;           /* sRGB texture times emission; -1 when none */
+} Material;                     /* 80 bytes */
 
 typedef struct {
     u32 offset; /* first texel in the texel buffer (float4 linear RGBA) */
@@ -93,7 +93,8 @@ typedef struct {
     float power;    /* scalar power (mean over RGB), W: drives photon emission probability */
     float position[4];
     float direction[4]; /* spot, directional: unit direction the light travels */
-    float radiance[4];  /* triangle: Le; point/spot: intensity I; directional: irradiance E */
+    float radiance[4];  /* triangle: Le (times the emissive texture, when any); point/spot:
+                         * intensity I; directional: irradiance E */
     float cos_inner, cos_outer, area, pad0;
 } Light; /* 80 bytes */
 

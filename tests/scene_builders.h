@@ -27,6 +27,7 @@ inline uint32_t add_material(Scene& s, float r, float g, float b, float emission
     m.specular_color[3] = kind == MAT_DIFFUSE ? 0.f : 1.f;
     m.base_color_tex = -1;
     m.metallic_roughness_tex = -1;
+    m.emissive_tex = -1;
     m.flags = double_sided ? MATERIAL_FLAG_DOUBLE_SIDED : 0u;
     s.materials.push_back(m);
     return uint32_t(s.materials.size() - 1);

@@ -26,6 +26,7 @@ CLPPM_CHECK_OFFSET(Material, metallic, 48);
 CLPPM_CHECK_OFFSET(Material, base_color_tex, 64);
 CLPPM_CHECK_OFFSET(Material, flags, 68);
 CLPPM_CHECK_OFFSET(Material, metallic_roughness_tex, 72);
+CLPPM_CHECK_OFFSET(Material, emissive_tex, 76);
 
 CLPPM_CHECK_SIZE(Texture, 16);
 

@@ -63,6 +63,7 @@ std::vector<dev::Light> collect_lights(const Scene& scene, const dev::SceneInfo&
     for (size_t t = 0; t < scene.num_triangles(); ++t) {
         const dev::Material& m = scene.materials[scene.shading[t].material];
         double le = mean_rgb(m.emission);
+        if (le > 0 && m.emissive_tex >= 0) le = textured_emission_mean(scene, t);
         if (!(le > 0)) continue;
         V3 p0 = v3(scene.positions[3 * t]), p1 = v3(scene.positions[3 * t + 1]), p2 = v3(scene.positions[3 * t + 2]);
         double area = 0.5 * length(cross(sub(p1, p0), sub(p2, p0)));

@@ -16,7 +16,7 @@ SceneFeatures scene_features(const Scene& scene, const DeviceScene& ds) {
         if (dielectric > 0.f && m.specular_color[3] > 0.f) f.specular_layer = true;
         if (m.metallic > 0.f) f.metal = true; // a metallicRoughnessTexture only scales it down
         if (m.transmission > 0.f && m.metallic < 1.f) f.glass = true;
-        if (m.base_color_tex >= 0 || m.metallic_roughness_tex >= 0) f.textures = true;
+        if (m.base_color_tex >= 0 || m.metallic_roughness_tex >= 0 || m.emissive_tex >= 0) f.textures = true;
     }
     for (const dev::Light& l : ds.lights) {
         if (l.type == LIGHT_TRIANGLE) f.area_lights = true;

@@ -377,6 +377,40 @@ def gpu_instancing():
     write_doc("gpu_instancing_counts.gltf", doc)
 
 
+def emissive_texture():
+    """A floor lit by a downward-facing emissive square whose emissiveTexture (64x1, clamped) is
+    white on its left half (u < 0.5) and black on its right; and the same scene with only the
+    left half of the square emitting, untextured. With bilinear filtering the texture's edge is a
+    ramp 1/64 wide and symmetric about u = 0.5, so both emit the same power, from (to 0.1%) the
+    same place."""
+    white, black = (255, 255, 255, 255), (0, 0, 0, 255)
+    for name, textured in (("emissive_texture.gltf", True), ("emissive_split.gltf", False)):
+        b = GltfBuilder("clppm tests/data/make_test_gltf.py")
+        floor = b.material("floor", (0.5, 0.5, 0.5), specular=0.0)
+        lamp = b.material("lamp", (0.0, 0.0, 0.0), emissive=(1.0, 1.0, 1.0), emissive_strength=4.0, specular=0.0)
+        dark = b.material("lamp_off", (0.0, 0.0, 0.0), specular=0.0)
+        prims = [b.primitive([(-1.5, 0, -1.5), (-1.5, 0, 1.5), (1.5, 0, 1.5), (1.5, 0, -1.5)], [0, 1, 2, 0, 2, 3],
+                             [(0, 1, 0)] * 4, material=floor)]
+        if textured:
+            png = png_rgba([[white] * 32 + [black] * 32])
+            b.doc["images"] = [{"uri": "data:image/png;base64," + base64.b64encode(png).decode("ascii")}]
+            b.doc["samplers"] = [{"wrapS": 33071, "wrapT": 33071}]
+            b.doc["textures"] = [{"source": 0, "sampler": 0}]
+            b.doc["materials"][lamp]["emissiveTexture"] = {"index": 0}
+            quad = [(-0.5, 1, -0.5), (0.5, 1, -0.5), (0.5, 1, 0.5), (-0.5, 1, 0.5)]
+            uvs = [(0, 0), (1, 0), (1, 1), (0, 1)]
+            prims.append(b.primitive(quad, [0, 1, 2, 0, 2, 3], [(0, -1, 0)] * 4, uvs=uvs, material=lamp))
+        else:
+            left = [(-0.5, 1, -0.5), (0.0, 1, -0.5), (0.0, 1, 0.5), (-0.5, 1, 0.5)]
+            right = [(0.0, 1, -0.5), (0.5, 1, -0.5), (0.5, 1, 0.5), (0.0, 1, 0.5)]
+            prims.append(b.primitive(left, [0, 1, 2, 0, 2, 3], [(0, -1, 0)] * 4, material=lamp))
+            prims.append(b.primitive(right, [0, 1, 2, 0, 2, 3], [(0, -1, 0)] * 4, material=dark))
+        cam = b.camera(1.0)
+        b.scene([b.node(name="room", mesh=b.mesh(prims)),
+                 b.node(name="camera", camera=cam, translation=[0.0, 0.45, 2.2])])
+        b.write_embedded(out(name))
+
+
 # ---- errors -------------------------------------------------------------------------------------
 
 def triangle_doc(**material):
@@ -465,7 +499,7 @@ def errors():
 
 def main():
     for make in (hierarchy, index_types, byte_stride, containers, no_normals, degenerate, mirror, metallic_roughness,
-                 materials, texture, lights, cameras, quantized, sparse, strips_fans, gpu_instancing, errors):
+                 materials, texture, lights, cameras, quantized, sparse, strips_fans, gpu_instancing, emissive_texture, errors):
         make()
 
 

@@ -198,8 +198,12 @@ def accessors():
     edit("accessor_count_u64_max.gltf", lambda d: d["accessors"][0].update(count=u64_max))
     edit("view_stride_too_small.gltf", lambda d: d["bufferViews"][0].update(byteStride=4))
     edit("view_buffer_out_of_range.gltf", lambda d: d["bufferViews"][0].update(buffer=5))
+    # Sparse accessors are read (expanded once); these claim more substitutions than elements,
+    # or values past their bufferView.
     edit("accessor_sparse.gltf", lambda d: d["accessors"][0].update(sparse={
-        "count": 1, "indices": {"bufferView": 2, "componentType": 5123}, "values": {"bufferView": 0}}))
+        "count": 1000, "indices": {"bufferView": 2, "componentType": 5123}, "values": {"bufferView": 0}}))
+    edit("accessor_sparse_values_past_view.gltf", lambda d: d["accessors"][0].update(sparse={
+        "count": 3, "indices": {"bufferView": 2, "componentType": 5123}, "values": {"bufferView": 2}}))
     edit("accessor_type_mat4_position.gltf", lambda d: d["accessors"][0].update(type="MAT4", count=1))
     # A buffer that claims a petabyte around a few bytes of data URI.
     edit("buffer_length_petabyte.gltf", lambda d: d["buffers"][0].update(byteLength=10 ** 15))

@@ -32,6 +32,8 @@ void LightsAndCameras::add_light(const tinygltf::Value& ext, const glm::dmat4& w
     }
     store3(l.position, transform_point(world, {0, 0, 0}));
     l.position[3] = 1.f;
+    if (!std::isfinite(l.position[0]) || !std::isfinite(l.position[1]) || !std::isfinite(l.position[2]))
+        ctx_.fail(node_label + " places " + label + " outside the float range");
     store3(l.direction, dir);
     set_spot_cone(g, label, &l);
     // The renderer weights the lights (scene/light_power.h); one too bright for a float is
@@ -86,6 +88,8 @@ void LightsAndCameras::add_camera(const tinygltf::Node& node, const glm::dmat4& 
     CameraDesc c;
     c.name = g.name.empty() ? node.name : g.name;
     store3(c.position, transform_point(world, {0, 0, 0}));
+    if (!std::isfinite(c.position[0]) || !std::isfinite(c.position[1]) || !std::isfinite(c.position[2]))
+        ctx_.fail(node_label + " places " + label + " outside the float range");
     store3(c.forward, forward);
     store3(c.up, up);
     c.yfov = narrow_to_float(g.perspective.yfov);

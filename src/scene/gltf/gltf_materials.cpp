@@ -41,6 +41,7 @@ dev::Material default_material() {
     for (int c = 0; c < 4; ++c) m.specular_color[c] = 1.f;
     m.base_color_tex = -1;
     m.metallic_roughness_tex = -1;
+    m.emissive_tex = -1;
     return m;
 }
 
@@ -96,7 +97,7 @@ dev::Material MaterialConverter::convert_material(int index) {
     }
     m.base_color_tex = texture_for(pbr.baseColorTexture, label, "baseColorTexture", true);
     m.metallic_roughness_tex = texture_for(pbr.metallicRoughnessTexture, label, "metallicRoughnessTexture", false);
-    if (g.emissiveTexture.index >= 0) ctx_.warn(label + " emissiveTexture is not supported; emission is uniform");
+    m.emissive_tex = texture_for(g.emissiveTexture, label, "emissiveTexture", true);
     convert_specular(g, label, m);
     m.flags = g.doubleSided ? MATERIAL_FLAG_DOUBLE_SIDED : 0u;
     return m;
