@@ -153,9 +153,9 @@ TEST(EmissiveTexture, RendersLikeTheEmitterItsTextureDescribes) {
         const char* files[2] = {"emissive_texture.gltf", "emissive_split.gltf"};
         for (int f = 0; f < 2; ++f) {
             std::string d = make_temp_dir("emtex"), out;
-            const std::string args = data(files[f]) +
-                                     " --width 48 --height 32 --passes 8 --photons 60000 --quiet --no-png --integrator " +
-                                     integrator + " -o " + d + "/i.exr";
+            const std::string args =
+                data(files[f]) + " --width 48 --height 32 --passes 8 --photons 60000 --quiet --no-png --integrator " +
+                integrator + " -o " + d + "/i.exr";
             ASSERT_EQ(run_clppm(args, &out), 0) << out;
             EXPECT_EQ(out.find("warning"), std::string::npos) << out;
             mean[f] = mean_radiance(read_exr(d + "/i.exr"));

@@ -46,8 +46,9 @@ double textured_emission_mean(const Scene& scene, size_t tri) {
                 if (down && i + j + 1 >= n) continue;
                 const double b1 = (i + (down ? 2.0 : 1.0) / 3) / n, b2 = (j + (down ? 2.0 : 1.0) / 3) / n;
                 const double b0 = 1 - b1 - b2;
-                const std::array<double, 3> c = sample_texture(scene, m.emissive_tex, b0 * uv[0][0] + b1 * uv[1][0] + b2 * uv[2][0],
-                                                               b0 * uv[0][1] + b1 * uv[1][1] + b2 * uv[2][1]);
+                const std::array<double, 3> c =
+                    sample_texture(scene, m.emissive_tex, b0 * uv[0][0] + b1 * uv[1][0] + b2 * uv[2][0],
+                                   b0 * uv[0][1] + b1 * uv[1][1] + b2 * uv[2][1]);
                 sum += (m.emission[0] * c[0] + m.emission[1] * c[1] + m.emission[2] * c[2]) / 3;
                 ++count;
             }
