@@ -15,6 +15,8 @@
     X(HAS_METAL, metal, "metal")                                                                                       \
     X(HAS_GLASS, glass, "glass")                                                                                       \
     X(HAS_TEXTURES, textures, "textures")                                                                              \
+    X(HAS_NORMAL_MAPS, normal_maps, "normal maps")                                                                     \
+    X(HAS_VERTEX_COLORS, vertex_colors, "vertex colours")                                                              \
     X(HAS_AREA_LIGHTS, area_lights, "area lights")                                                                     \
     X(HAS_POINT_LIGHTS, point_lights, "point lights")                                                                  \
     X(HAS_SPOT_LIGHTS, spot_lights, "spot lights")                                                                     \
@@ -34,6 +36,12 @@
 #endif
 #ifndef HAS_TEXTURES
 #define HAS_TEXTURES 1
+#endif
+#ifndef HAS_NORMAL_MAPS
+#define HAS_NORMAL_MAPS 1
+#endif
+#ifndef HAS_VERTEX_COLORS
+#define HAS_VERTEX_COLORS 1
 #endif
 #ifndef HAS_AREA_LIGHTS
 #define HAS_AREA_LIGHTS 1

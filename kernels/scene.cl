@@ -12,8 +12,9 @@
     __global const BvhNode *bvh_nodes, __global const float4 *tris,                               \
         __global const TriShading *shading, __global const Material *materials,                   \
         __global const Texture *textures, __global const float4 *texels,                          \
-        __global const Light *lights, __global const float *light_cdf, __constant SceneInfo *info
-#define SCENE_ARGS bvh_nodes, tris, shading, materials, textures, texels, lights, light_cdf, info
+        __global const float4 *tangents, __global const float4 *colors, __global const Light *lights,    \
+        __global const float *light_cdf, __constant SceneInfo *info
+#define SCENE_ARGS bvh_nodes, tris, shading, materials, textures, texels, tangents, colors, lights, light_cdf, info
 
 typedef struct {
     float3 p;
@@ -24,6 +25,7 @@ typedef struct {
     uint prim;
     bool front; /* the ray arrived on the side the winding (glTF counter-clockwise) normal faces */
     float t;
+    float4 color; /* COLOR_0 interpolated (linear RGBA), 1 without vertex colours */
 } Surface;
 
 bool trace_closest(SCENE_PARAMS, float3 org, float3 dir, float tmax, Hit* hit) {
@@ -40,6 +42,25 @@ bool trace_occluded(SCENE_PARAMS, float3 org, float3 dir, float tmax) {
 float3 offset_origin(SCENE_PARAMS, float3 p, float3 n_side) {
     float m = fmax(fabs(p.x), fmax(fabs(p.y), fabs(p.z)));
     return p + n_side * (info->ray_eps + 4e-6f * m);
+}
+
+float3 texture_lookup(SCENE_PARAMS, int index, float2 uv);
+
+/* glTF normalTexture (Sec. 3.9.3): the map's normal, (texel * 2 - 1) with x and y times scale,
+ * in the frame (t, b, n) of triangle prim at barycentrics (b1, b2): n the interpolated shading
+ * normal, t the interpolated tangent made orthogonal to n, b = cross(n, t) w. A corner without
+ * a tangent (zero) leaves n as it is. */
+float3 normal_mapped(SCENE_PARAMS, __global const Material* m, uint prim, float b1, float b2, float3 n, float2 uv) {
+    float4 t4 = tangents[3 * prim] * (1.0f - b1 - b2) + tangents[3 * prim + 1] * b1 + tangents[3 * prim + 2] * b2;
+    float3 t = t4.xyz - n * dot(n, t4.xyz);
+    float len = length(t);
+    if (!(len > 1e-12f)) return n;
+    t /= len;
+    float3 b = cross(n, t) * (t4.w < 0.0f ? -1.0f : 1.0f);
+    float3 c = texture_lookup(SCENE_ARGS, m->normal_tex, uv) * 2.0f - 1.0f;
+    float3 v = t * (c.x * m->normal_scale) + b * (c.y * m->normal_scale) + n * c.z;
+    float l = length(v);
+    return (l > 1e-12f && isfinite(l)) ? v / l : n;
 }
 
 /* Texture coordinates at barycentrics (b1, b2) of a triangle. */
@@ -63,6 +84,11 @@ Surface make_surface(SCENE_PARAMS, float3 dir, const Hit* h) {
     ns = (len > 1e-12f && isfinite(len)) ? ns / len : ng;
     s.uv = triangle_uv(sh, b1, b2);
     s.material = sh->material;
+    s.color = (HAS_VERTEX_COLORS && info->vertex_colors)
+                  ? colors[3 * prim] * b0 + colors[3 * prim + 1] * b1 + colors[3 * prim + 2] * b2
+                  : (float4)(1.0f);
+    if (HAS_NORMAL_MAPS && materials[s.material].normal_tex >= 0)
+        ns = normal_mapped(SCENE_ARGS, &materials[s.material], prim, b1, b2, ns, s.uv);
     s.front = dot(ng, dir) < 0.0f;
     if (!s.front) {
         ng = -ng;
@@ -103,11 +129,12 @@ float3 texture_lookup(SCENE_PARAMS, int index, float2 uv) {
     return acc;
 }
 
-/* Base colour at the surface: factor times texture (linear). */
+/* Base colour at the surface: factor times texture times COLOR_0 (linear). */
 float3 surface_base_color(SCENE_PARAMS, const Surface* s) {
     __global const Material* m = &materials[s->material];
     float3 c = load3g(m->base_color);
     if (HAS_TEXTURES && m->base_color_tex >= 0) c *= texture_lookup(SCENE_ARGS, m->base_color_tex, s->uv);
+    if (HAS_VERTEX_COLORS) c *= s->color.xyz;
     return c;
 }
 

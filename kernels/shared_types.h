@@ -71,7 +71,10 @@ typedef struct {
     u32 flags;                  /* MATERIAL_FLAG_* */
     i32 metallic_roughness_tex; /* linear texture: G scales roughness, B metallic; -1 when none */
     i32 emissive_tex;           /* sRGB texture times emission; -1 when none */
-} Material;                     /* 80 bytes */
+    i32 normal_tex;             /* linear tangent-space normal map; -1 when none */
+    float normal_scale;         /* normalTexture.scale: multiplies the map's x and y */
+    u32 pad0, pad1;
+} Material;                     /* 96 bytes */
 
 typedef struct {
     u32 offset; /* first texel in the texel buffer (float4 linear RGBA) */
@@ -119,7 +122,7 @@ typedef struct {
     u32 num_tris;
     u32 num_emissive_tris;
     u32 max_bounces;     /* eye and photon path depth limit */
-    u32 pad0;
+    u32 vertex_colors;   /* 1: the colors buffer holds COLOR_0 for every triangle; 0: it is empty */
 } SceneInfo; /* 48 bytes */
 
 /* ---- progressive photon mapping -------------------------------------------------------------- */

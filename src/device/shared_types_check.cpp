@@ -19,7 +19,7 @@ CLPPM_CHECK_OFFSET(BvhNode, child, 24 * BVH_WIDTH);
 CLPPM_CHECK_OFFSET(BvhNode, count, 28 * BVH_WIDTH);
 static_assert(BVH_WIDTH == 4 || BVH_WIDTH == 8, "bvh_traverse.cl has float4 and float8 node tests");
 
-CLPPM_CHECK_SIZE(Material, 80);
+CLPPM_CHECK_SIZE(Material, 96);
 CLPPM_CHECK_OFFSET(Material, emission, 16);
 CLPPM_CHECK_OFFSET(Material, specular_color, 32);
 CLPPM_CHECK_OFFSET(Material, metallic, 48);
@@ -27,6 +27,8 @@ CLPPM_CHECK_OFFSET(Material, base_color_tex, 64);
 CLPPM_CHECK_OFFSET(Material, flags, 68);
 CLPPM_CHECK_OFFSET(Material, metallic_roughness_tex, 72);
 CLPPM_CHECK_OFFSET(Material, emissive_tex, 76);
+CLPPM_CHECK_OFFSET(Material, normal_tex, 80);
+CLPPM_CHECK_OFFSET(Material, normal_scale, 84);
 
 CLPPM_CHECK_SIZE(Texture, 16);
 
@@ -44,6 +46,7 @@ CLPPM_CHECK_SIZE(SceneInfo, 48);
 CLPPM_CHECK_OFFSET(SceneInfo, radius, 16);
 CLPPM_CHECK_OFFSET(SceneInfo, num_lights, 28);
 CLPPM_CHECK_OFFSET(SceneInfo, max_bounces, 40);
+CLPPM_CHECK_OFFSET(SceneInfo, vertex_colors, 44);
 
 CLPPM_CHECK_SIZE(HitPoint, 88);
 CLPPM_CHECK_OFFSET(HitPoint, pixel, 12);

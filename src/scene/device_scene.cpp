@@ -1,6 +1,7 @@
 #include "scene/device_scene.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -105,12 +106,19 @@ std::vector<dev::Light> collect_lights(const Scene& scene, const dev::SceneInfo&
 void permute_triangles(Scene& scene, const std::vector<uint32_t>& order) {
     std::vector<Vec3> positions(scene.positions.size());
     std::vector<dev::TriShading> shading(scene.shading.size());
+    std::vector<std::array<float, 4>> tangents(scene.tangents.size()), colors(scene.colors.size());
     for (size_t i = 0; i < order.size(); ++i) {
         for (int k = 0; k < 3; ++k) positions[3 * i + k] = scene.positions[3 * size_t(order[i]) + k];
         shading[i] = scene.shading[order[i]];
+        if (!tangents.empty())
+            for (int k = 0; k < 3; ++k) tangents[3 * i + k] = scene.tangents[3 * size_t(order[i]) + k];
+        if (!colors.empty())
+            for (int k = 0; k < 3; ++k) colors[3 * i + k] = scene.colors[3 * size_t(order[i]) + k];
     }
     scene.positions.swap(positions);
     scene.shading.swap(shading);
+    scene.tangents.swap(tangents);
+    scene.colors.swap(colors);
 }
 
 namespace {
@@ -198,26 +206,26 @@ cl::Buffer copy_buffer(const cl::Buffer& src, const DeviceContext& from, const D
 
 } // namespace
 
+namespace {
+
+// The buffers kernels receive as SCENE_PARAMS (kernels/scene.cl), in its order: the one list
+// both set_scene_args and clone_to go by, so a new scene buffer cannot be left out of either.
+const std::array<cl::Buffer DeviceScene::*, 11> kSceneBuffers = {
+    &DeviceScene::bvh_nodes_buf, &DeviceScene::tris_buf,      &DeviceScene::shading_buf,  &DeviceScene::materials_buf,
+    &DeviceScene::textures_buf,  &DeviceScene::texels_buf,    &DeviceScene::tangents_buf, &DeviceScene::colors_buf,
+    &DeviceScene::lights_buf,    &DeviceScene::light_cdf_buf, &DeviceScene::info_buf};
+
+} // namespace
+
 DeviceScene DeviceScene::clone_to(const DeviceContext& from, const DeviceContext& to) const {
     DeviceScene c = *this; // host-side values
-    for (cl::Buffer DeviceScene::*b :
-         {&DeviceScene::bvh_nodes_buf, &DeviceScene::tris_buf, &DeviceScene::shading_buf, &DeviceScene::materials_buf,
-          &DeviceScene::textures_buf, &DeviceScene::texels_buf, &DeviceScene::lights_buf, &DeviceScene::light_cdf_buf,
-          &DeviceScene::info_buf, &DeviceScene::camera_buf})
-        c.*b = copy_buffer(this->*b, from, to);
+    for (cl::Buffer DeviceScene::*b : kSceneBuffers) c.*b = copy_buffer(this->*b, from, to);
+    c.camera_buf = copy_buffer(camera_buf, from, to);
     return c;
 }
 
 int DeviceScene::set_scene_args(cl::Kernel& k, int a) const {
-    k.setArg(a++, bvh_nodes_buf);
-    k.setArg(a++, tris_buf);
-    k.setArg(a++, shading_buf);
-    k.setArg(a++, materials_buf);
-    k.setArg(a++, textures_buf);
-    k.setArg(a++, texels_buf);
-    k.setArg(a++, lights_buf);
-    k.setArg(a++, light_cdf_buf);
-    k.setArg(a++, info_buf);
+    for (cl::Buffer DeviceScene::*b : kSceneBuffers) k.setArg(a++, this->*b);
     return a;
 }
 
@@ -258,6 +266,7 @@ DeviceScene upload_scene(const DeviceContext& dc, Scene& scene, const SceneSetti
     ds.info.ray_eps = float(radius * 1e-5);
     ds.info.num_tris = uint32_t(scene.num_triangles());
     ds.info.max_bounces = settings.max_bounces;
+    ds.info.vertex_colors = scene.colors.empty() ? 0u : 1u;
 
     std::vector<std::string> dropped;
     ds.lights = collect_lights(scene, ds.info, &dropped);
@@ -296,6 +305,8 @@ DeviceScene upload_scene(const DeviceContext& dc, Scene& scene, const SceneSetti
     ds.materials_buf = upload(dc, scene.materials, &bytes);
     ds.textures_buf = upload(dc, scene.textures, &bytes);
     ds.texels_buf = upload(dc, scene.texels, &bytes);
+    ds.tangents_buf = upload(dc, scene.tangents, &bytes);
+    ds.colors_buf = upload(dc, scene.colors, &bytes);
     ds.lights_buf = upload(dc, ds.lights, &bytes);
     ds.light_cdf_buf = upload(dc, ds.light_cdf, &bytes);
     ds.info_buf = upload(dc, std::vector<dev::SceneInfo>{ds.info}, &bytes);

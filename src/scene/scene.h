@@ -28,6 +28,13 @@ struct Scene {
     // Triangles: three world-space positions each (p[3*i+k]), and shading attributes.
     std::vector<Vec3> positions;          // 3 per triangle
     std::vector<dev::TriShading> shading; // 1 per triangle (material index inside)
+    // Normal mapping's tangent frames, 3 per triangle (one per corner) when some material has a
+    // normalTexture, else empty: world-space tangent (xyz, zero where none could be made) and
+    // the bitangent's sign w (glTF 2.0 Sec. 3.7.2.1: bitangent = cross(normal, tangent) w).
+    std::vector<std::array<float, 4>> tangents;
+    // COLOR_0, 3 per triangle (linear RGBA per corner) when some primitive has it, else empty;
+    // (1, 1, 1, 1) for the corners of primitives without it. It multiplies the base colour.
+    std::vector<std::array<float, 4>> colors;
     std::vector<dev::Material> materials;
     std::vector<dev::Texture> textures;
     std::vector<std::array<float, 4>> texels; // linear RGBA, all textures back to back

@@ -411,6 +411,95 @@ def emissive_texture():
         b.write_embedded(out(name))
 
 
+NORMAL_TEXEL = (200, 128, 220, 255)  # a normal tilted about 38 degrees towards the tangent (+x)
+
+
+def texel_normal(texel):
+    c = [v / 255 * 2 - 1 for v in texel[:3]]
+    n = math.sqrt(sum(v * v for v in c))
+    return tuple(v / n for v in c)
+
+
+def normal_maps():
+    """normal_map.gltf: a +z quad whose uv runs +x and down (glTF's v), with a 2x2 normalTexture
+    (scale 0.8) and no TANGENT; a second quad with TANGENT (0, 1, 0, -1); the first mesh again
+    under a mirroring node (scale x by -1).
+    normal_plate_*.gltf: a lit plate with a uniform normal map, the same plate with that normal as
+    its vertex normals, and the flat plate."""
+    b = GltfBuilder("clppm tests/data/make_test_gltf.py")
+    png = png_rgba([[NORMAL_TEXEL, (128, 128, 255, 255)], [(128, 200, 220, 255), (60, 100, 230, 255)]])
+    b.doc["images"] = [{"uri": "data:image/png;base64," + base64.b64encode(png).decode("ascii")}]
+    b.doc["textures"] = [{"source": 0}]
+    mat = b.material("bumpy", (0.8, 0.8, 0.8))
+    b.doc["materials"][mat]["normalTexture"] = {"index": 0, "scale": 0.8}
+    quad = [(0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0)]
+    uvs = [(0, 1), (1, 1), (1, 0), (0, 0)]
+    generated = b.primitive(quad, [0, 1, 2, 0, 2, 3], [(0, 0, 1)] * 4, uvs=uvs, material=mat)
+    given = b.primitive([(x, y, 1) for x, y, _ in quad], [0, 1, 2, 0, 2, 3], [(0, 0, 1)] * 4, uvs=uvs, material=mat)
+    given["attributes"]["TANGENT"] = b.accessor([0, 1, 0, -1] * 4, FLOAT, "VEC4", ARRAY_BUFFER)
+    m0 = b.mesh([generated], "generated")
+    lamp = b.light({"name": "lamp", "type": "point", "intensity": 1.0})
+    b.scene([b.node(name="generated", mesh=m0), b.node(name="given", mesh=b.mesh([given], "given")),
+             b.node(name="mirrored", mesh=m0, translation=[5, 0, 0], scale=[-1, 1, 1]),
+             b.node(name="lamp", light=lamp, translation=[0.5, 0.5, 3])])
+    b.write_embedded(out("normal_map.gltf"))
+
+    tilted = texel_normal(NORMAL_TEXEL)
+    for name, kind in (("normal_plate_mapped.gltf", "map"), ("normal_plate_geometry.gltf", "geometry"),
+                       ("normal_plate_flat.gltf", "flat")):
+        b = GltfBuilder("clppm tests/data/make_test_gltf.py")
+        plate = b.material("plate", (0.8, 0.8, 0.8), roughness=0.5)
+        if kind == "map":
+            png = png_rgba([[NORMAL_TEXEL] * 2] * 2)
+            b.doc["images"] = [{"uri": "data:image/png;base64," + base64.b64encode(png).decode("ascii")}]
+            b.doc["textures"] = [{"source": 0}]
+            b.doc["materials"][plate]["normalTexture"] = {"index": 0}
+        # The plate lies in y = 0 facing +y; u runs along +x and v along +z (down the image), so
+        # the tangent is +x and the bitangent (the map's +Y) is -z.
+        quad = [(-1.0, 0.0, -1.0), (-1.0, 0.0, 1.0), (1.0, 0.0, 1.0), (1.0, 0.0, -1.0)]
+        uvs = [(0, 0), (0, 1), (1, 1), (1, 0)]
+        # (t, b, n) = (+x, -z, +y): the tilted normal in world space.
+        world = (tilted[0], tilted[2], -tilted[1])
+        normals = [world if kind == "geometry" else (0.0, 1.0, 0.0)] * 4
+        prim = b.primitive(quad, [0, 1, 2, 0, 2, 3], normals, uvs=uvs, material=plate)
+        light = b.light({"name": "lamp", "type": "point", "intensity": 4.0})
+        cam = b.camera(0.9)
+        tilt = quat_axis_angle((1, 0, 0), -math.atan2(1.0, 2.0))
+        b.scene([
+            b.node(name="plate", mesh=b.mesh([prim])),
+            b.node(name="lamp", light=light, translation=[1.6, 0.5, 0.0]),
+            b.node(name="camera", camera=cam, translation=[0.0, 1.0, 2.0], rotation=tilt),
+        ])
+        b.write_embedded(out(name))
+
+
+def vertex_colors():
+    """COLOR_0: a lit plate whose vertex colours (0.5, 0.25, 1) multiply its base colour 0.8, and
+    the same plate with base colour (0.4, 0.2, 0.8); a triangle with normalized UNSIGNED_BYTE RGBA
+    colours next to one without COLOR_0."""
+    for name, colored in (("color_plate_vertex.gltf", True), ("color_plate_factor.gltf", False)):
+        b = GltfBuilder("clppm tests/data/make_test_gltf.py")
+        plate = b.material("plate", (0.8, 0.8, 0.8) if colored else (0.4, 0.2, 0.8), roughness=0.5)
+        quad = [(-1.0, 0.0, -1.0), (-1.0, 0.0, 1.0), (1.0, 0.0, 1.0), (1.0, 0.0, -1.0)]
+        prim = b.primitive(quad, [0, 1, 2, 0, 2, 3], [(0.0, 1.0, 0.0)] * 4, material=plate)
+        if colored:
+            prim["attributes"]["COLOR_0"] = b.accessor([0.5, 0.25, 1.0] * 4, FLOAT, "VEC3", ARRAY_BUFFER)
+        light = b.light({"name": "lamp", "type": "point", "intensity": 4.0})
+        cam = b.camera(0.9)
+        tilt = quat_axis_angle((1, 0, 0), -math.atan2(1.0, 2.0))
+        b.scene([b.node(name="plate", mesh=b.mesh([prim])),
+                 b.node(name="lamp", light=light, translation=[0.0, 0.8, -0.3]),
+                 b.node(name="camera", camera=cam, translation=[0.0, 1.0, 2.0], rotation=tilt)])
+        b.write_embedded(out(name))
+    b = GltfBuilder("clppm tests/data/make_test_gltf.py")
+    first = b.primitive(TRI, [0, 1, 2], TRI_N)
+    first["attributes"]["COLOR_0"] = b.accessor([255, 0, 0, 255, 0, 255, 0, 128, 0, 0, 51, 0], UBYTE, "VEC4",
+                                                ARRAY_BUFFER, normalized=True)
+    second = b.primitive([(x, y, 1.0) for x, y, _ in TRI], [0, 1, 2], TRI_N)
+    b.scene([b.node(name="colored", mesh=b.mesh([first, second]))])
+    b.write_embedded(out("vertex_colors.gltf"))
+
+
 # ---- errors -------------------------------------------------------------------------------------
 
 def triangle_doc(**material):
@@ -499,7 +588,8 @@ def errors():
 
 def main():
     for make in (hierarchy, index_types, byte_stride, containers, no_normals, degenerate, mirror, metallic_roughness,
-                 materials, texture, lights, cameras, quantized, sparse, strips_fans, gpu_instancing, emissive_texture, errors):
+                 materials, texture, lights, cameras, quantized, sparse, strips_fans, gpu_instancing, emissive_texture,
+                 normal_maps, vertex_colors, errors):
         make()
 
 

@@ -42,6 +42,8 @@ dev::Material default_material() {
     m.base_color_tex = -1;
     m.metallic_roughness_tex = -1;
     m.emissive_tex = -1;
+    m.normal_tex = -1;
+    m.normal_scale = 1.f;
     return m;
 }
 
@@ -98,6 +100,8 @@ dev::Material MaterialConverter::convert_material(int index) {
     m.base_color_tex = texture_for(pbr.baseColorTexture, label, "baseColorTexture", true);
     m.metallic_roughness_tex = texture_for(pbr.metallicRoughnessTexture, label, "metallicRoughnessTexture", false);
     m.emissive_tex = texture_for(g.emissiveTexture, label, "emissiveTexture", true);
+    m.normal_tex = normal_texture(g.normalTexture, label);
+    m.normal_scale = finite_factor(g.normalTexture.scale, "normalTexture.scale", label);
     convert_specular(g, label, m);
     m.flags = g.doubleSided ? MATERIAL_FLAG_DOUBLE_SIDED : 0u;
     return m;
@@ -143,22 +147,31 @@ uint32_t MaterialConverter::material_index(int gltf_material, const std::string&
 
 int32_t MaterialConverter::texture_for(const tinygltf::TextureInfo& info, const std::string& label,
                                        const std::string& what, bool srgb) {
-    if (info.index < 0) return -1;
-    if (size_t(info.index) >= m_.textures.size())
-        ctx_.fail(label + " " + what + " " + std::to_string(info.index) + " out of range");
-    if (info.texCoord != 0) {
-        ctx_.warn(label + " " + what + " uses TEXCOORD_" + std::to_string(info.texCoord) +
+    return texture_reference(info.index, info.texCoord, info.extensions, label, what, srgb);
+}
+
+int32_t MaterialConverter::normal_texture(const tinygltf::NormalTextureInfo& info, const std::string& label) {
+    return texture_reference(info.index, info.texCoord, info.extensions, label, "normalTexture", false);
+}
+
+int32_t MaterialConverter::texture_reference(int index, int tex_coord, const tinygltf::ExtensionMap& extensions,
+                                             const std::string& label, const std::string& what, bool srgb) {
+    if (index < 0) return -1;
+    if (size_t(index) >= m_.textures.size())
+        ctx_.fail(label + " " + what + " " + std::to_string(index) + " out of range");
+    if (tex_coord != 0) {
+        ctx_.warn(label + " " + what + " uses TEXCOORD_" + std::to_string(tex_coord) +
                   "; only TEXCOORD_0 is supported, texture ignored");
         return -1;
     }
-    if (info.extensions.count("KHR_texture_transform"))
+    if (extensions.count("KHR_texture_transform"))
         ctx_.warn(label + " KHR_texture_transform is not supported; ignored");
-    // Colour textures are decoded from sRGB, data textures (metallic-roughness) are not: one
-    // image used both ways is stored twice.
-    const std::pair<int, bool> key{info.index, srgb};
+    // Colour textures are decoded from sRGB, data textures (metallic-roughness, normals) are
+    // not: one image used both ways is stored twice.
+    const std::pair<int, bool> key{index, srgb};
     auto cached = texture_cache_.find(key);
     if (cached != texture_cache_.end()) return cached->second;
-    return texture_cache_[key] = convert_texture(info.index, srgb);
+    return texture_cache_[key] = convert_texture(index, srgb);
 }
 
 int32_t MaterialConverter::convert_texture(int index, bool srgb) {

@@ -38,6 +38,10 @@ private:
     // from sRGB for colour (srgb) and kept linear for data.
     int32_t texture_for(const tinygltf::TextureInfo& info, const std::string& label, const std::string& what,
                         bool srgb);
+    // normalTexture (linear).
+    int32_t normal_texture(const tinygltf::NormalTextureInfo& info, const std::string& label);
+    int32_t texture_reference(int index, int tex_coord, const tinygltf::ExtensionMap& extensions,
+                              const std::string& label, const std::string& what, bool srgb);
 
     int32_t convert_texture(int index, bool srgb);
 

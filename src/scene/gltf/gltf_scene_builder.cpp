@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "scene/gltf/gltf_tangents.h"
 #include "scene/gltf/gltf_transform.h"
 
 namespace clppm::gltf {
@@ -10,6 +11,10 @@ namespace clppm::gltf {
 void SceneBuilder::build() {
     warn_unsupported_extensions();
     materials_.convert_materials();
+    for (const dev::Material& m : s_.materials) tangents_needed_ = tangents_needed_ || m.normal_tex >= 0;
+    for (const tinygltf::Mesh& mesh : m_.meshes)
+        for (const tinygltf::Primitive& prim : mesh.primitives)
+            colors_needed_ = colors_needed_ || prim.attributes.count("COLOR_0");
     std::vector<int> roots = root_nodes();
     // Instancing multiplies triangles: a few kilobytes of nodes can name 2^26 of them. A first
     // pass that only counts makes such a file fail before it fills gigabytes.
@@ -250,7 +255,45 @@ WorldVertices SceneBuilder::world_vertices(const tinygltf::Primitive& prim, cons
         v.position[i] = transform_point(world, {pos.get(i, 0), pos.get(i, 1), pos.get(i, 2)});
     if (prim.attributes.count("NORMAL")) read_normals(prim, world, label, &v);
     if (prim.attributes.count("TEXCOORD_0")) read_uvs(prim, label, &v);
+    if (tangents_needed_ && prim.attributes.count("TANGENT")) read_tangents(prim, world, label, &v);
+    if (prim.attributes.count("COLOR_0")) read_colors(prim, label, &v);
     return v;
+}
+
+// COLOR_0 (glTF 2.0 Sec. 3.7.2.1): linear RGB or RGBA, FLOAT or normalized UNSIGNED_BYTE/SHORT.
+void SceneBuilder::read_colors(const tinygltf::Primitive& prim, const std::string& label, WorldVertices* v) {
+    AccessorView c = attribute(prim, "COLOR_0", label);
+    bool unorm = c.normalized && (c.component_type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE ||
+                                  c.component_type == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT);
+    require((c.components == 3 || c.components == 4) && (c.component_type == TINYGLTF_COMPONENT_TYPE_FLOAT || unorm),
+            label + ": COLOR_0 must be a VEC3 or VEC4 of FLOAT or normalized UNSIGNED_BYTE/SHORT");
+    require(c.count >= v->position.size(), label + ": COLOR_0 has fewer elements than POSITION");
+    v->color.resize(v->position.size());
+    for (size_t i = 0; i < v->color.size(); ++i) {
+        glm::vec4 col(1.f);
+        for (int k = 0; k < c.components; ++k) {
+            float x = narrow_to_float(c.get(i, k));
+            col[k] = std::isfinite(x) ? std::clamp(x, 0.f, 1.f) : 1.f;
+        }
+        v->color[i] = col;
+    }
+}
+
+void SceneBuilder::read_tangents(const tinygltf::Primitive& prim, const glm::dmat4& world, const std::string& label,
+                                 WorldVertices* v) {
+    AccessorView t = attribute(prim, "TANGENT", label);
+    bool snorm = t.normalized && (t.component_type == TINYGLTF_COMPONENT_TYPE_BYTE ||
+                                  t.component_type == TINYGLTF_COMPONENT_TYPE_SHORT);
+    require(t.components == 4 && (t.component_type == TINYGLTF_COMPONENT_TYPE_FLOAT || snorm),
+            label + ": TANGENT must be a VEC4 of FLOAT or (KHR_mesh_quantization) normalized BYTE/SHORT");
+    require(t.count >= v->position.size(), label + ": TANGENT has fewer elements than POSITION");
+    glm::dmat3 linear(world);
+    double mirror = glm::determinant(linear) < 0 ? -1.0 : 1.0;
+    v->tangent.resize(v->position.size());
+    for (size_t i = 0; i < v->tangent.size(); ++i) {
+        glm::dvec3 dir = unit_or_zero(linear * glm::dvec3(t.get(i, 0), t.get(i, 1), t.get(i, 2)));
+        v->tangent[i] = glm::dvec4(dir, (t.get(i, 3) < 0 ? -1.0 : 1.0) * mirror);
+    }
 }
 
 // Normals by the inverse transpose, so they stay perpendicular under non-uniform scale.
@@ -372,17 +415,32 @@ void SceneBuilder::add_primitive(const tinygltf::Primitive& prim, const glm::dma
     if (v.uv.empty() && s_.materials[material].base_color_tex >= 0)
         ctx_.warn(label + ": textured material without TEXCOORD_0; every texel lookup uses (0, 0)");
     std::vector<uint32_t> idx = triangle_indices(prim, v.position.size(), label);
+    // Tangents per corner: the file's per vertex, else generated where the material needs them.
+    std::vector<glm::dvec4> corner_tangents;
+    if (tangents_needed_ && s_.materials[material].normal_tex >= 0) {
+        if (!v.tangent.empty()) {
+            corner_tangents.resize(idx.size());
+            for (size_t i = 0; i < idx.size(); ++i) corner_tangents[i] = v.tangent[idx[i]];
+        } else if (v.uv.empty()) {
+            ctx_.warn(label + ": normal-mapped material without TEXCOORD_0; the normal map is ignored");
+        } else {
+            corner_tangents = generate_tangents(idx, v.position, v.normal, v.uv);
+        }
+    }
     // A mirroring transform reverses the winding; swapping two vertices restores the
     // counter-clockwise front face that agrees with the (inverse-transpose) normals.
     bool mirrored = glm::determinant(glm::dmat3(world)) < 0.0;
     for (size_t t = 0; t + 2 < idx.size(); t += 3) {
         std::array<uint32_t, 3> tri = {idx[t], idx[t + 1], idx[t + 2]};
-        if (mirrored) std::swap(tri[1], tri[2]);
-        add_triangle(tri, v, material);
+        std::array<glm::dvec4, 3> tangent{};
+        if (!corner_tangents.empty()) tangent = {corner_tangents[t], corner_tangents[t + 1], corner_tangents[t + 2]};
+        if (mirrored) std::swap(tri[1], tri[2]), std::swap(tangent[1], tangent[2]);
+        add_triangle(tri, v, material, corner_tangents.empty() ? nullptr : &tangent);
     }
 }
 
-void SceneBuilder::add_triangle(const std::array<uint32_t, 3>& tri, const WorldVertices& v, uint32_t material) {
+void SceneBuilder::add_triangle(const std::array<uint32_t, 3>& tri, const WorldVertices& v, uint32_t material,
+                                const std::array<glm::dvec4, 3>* tangent) {
     Vec3 p[3];
     glm::dvec3 q[3]; // the float positions as stored, for the area test
     for (int k = 0; k < 3; ++k) {
@@ -408,6 +466,20 @@ void SceneBuilder::add_triangle(const std::array<uint32_t, 3>& tri, const WorldV
         if (!v.uv.empty()) uv[k][0] = v.uv[tri[size_t(k)]].x, uv[k][1] = v.uv[tri[size_t(k)]].y;
     }
     sh.material = material;
+    if (tangents_needed_)
+        for (int k = 0; k < 3; ++k) {
+            std::array<float, 4> t{0.f, 0.f, 0.f, 1.f};
+            if (tangent) {
+                const glm::dvec4& g = (*tangent)[size_t(k)];
+                t = {float(g.x), float(g.y), float(g.z), float(g.w)};
+            }
+            s_.tangents.push_back(t);
+        }
+    if (colors_needed_)
+        for (int k = 0; k < 3; ++k) {
+            glm::vec4 col = v.color.empty() ? glm::vec4(1.f) : v.color[tri[size_t(k)]];
+            s_.colors.push_back({col.r, col.g, col.b, col.a});
+        }
     s_.positions.insert(s_.positions.end(), p, p + 3);
     s_.shading.push_back(sh);
 }

@@ -23,8 +23,10 @@ namespace clppm::gltf {
 // World-space vertex data of one primitive instance.
 struct WorldVertices {
     std::vector<glm::dvec3> position;
-    std::vector<glm::dvec3> normal; // empty: none in the file; (0,0,0): unusable
-    std::vector<glm::vec2> uv;      // empty: none
+    std::vector<glm::dvec3> normal;  // empty: none in the file; (0,0,0): unusable
+    std::vector<glm::vec2> uv;       // empty: none
+    std::vector<glm::dvec4> tangent; // empty: none (xyz world tangent, w bitangent sign)
+    std::vector<glm::vec4> color;    // COLOR_0, linear RGBA; empty: none
 };
 
 // Primitive modes with area (TRIANGLES, TRIANGLE_STRIP, TRIANGLE_FAN), their names otherwise, and
@@ -81,6 +83,10 @@ private:
 
     void read_uvs(const tinygltf::Primitive& prim, const std::string& label, WorldVertices* v);
 
+    // TANGENT: xyz by the world transform's linear part, w negated by a mirroring transform.
+    void read_tangents(const tinygltf::Primitive& prim, const glm::dmat4& world, const std::string& label,
+                       WorldVertices* v);
+
     // Vertex indices of the primitive, three per triangle, assembled by its mode (TRIANGLES,
     // TRIANGLE_STRIP, TRIANGLE_FAN).
     std::vector<uint32_t> triangle_indices(const tinygltf::Primitive& prim, size_t vertex_count,
@@ -100,7 +106,14 @@ private:
 
     void add_primitive(const tinygltf::Primitive& prim, const glm::dmat4& world, const std::string& label);
 
-    void add_triangle(const std::array<uint32_t, 3>& tri, const WorldVertices& v, uint32_t material);
+    // tangent: the corners' tangent frames (null: none).
+    void add_triangle(const std::array<uint32_t, 3>& tri, const WorldVertices& v, uint32_t material,
+                      const std::array<glm::dvec4, 3>* tangent);
+
+    bool tangents_needed_ = false; // some material has a normalTexture
+    bool colors_needed_ = false;   // some primitive has COLOR_0
+
+    void read_colors(const tinygltf::Primitive& prim, const std::string& label, WorldVertices* v);
 
     const tinygltf::Model& m_;
     LoadContext& ctx_;
