@@ -133,10 +133,20 @@ inline __attribute__((always_inline)) bool intersect_triangle(__global const flo
     return *t_out > 0.0f && *t_out < tmax;
 }
 
+/* The hook for intersections that may not count (alpha.cl): a file included before this one
+ * may define BVH_FILTER(prim, u, v), true when the intersection counts, with the extra parameters
+ * it needs (BVH_FILTER_PARAMS, a list that starts with a comma) and their names (BVH_FILTER_ARGS);
+ * org and dir are in scope. Without it every intersection counts and nothing is added. */
+#ifndef BVH_FILTER
+#define BVH_FILTER_PARAMS
+#define BVH_FILTER_ARGS
+#define BVH_FILTER(prim, u, v) true
+#endif
+
 /* Closest hit in (0, tmax) when !any_hit (fills *hit); any hit in (0, tmax) when any_hit (fills
  * *hit with the one found). Returns whether there was a hit. */
 bool bvh_intersect(__global const BvhNode* nodes, __global const float4* tris, float3 org, float3 dir, float tmax,
-                   bool any_hit, Hit* hit) {
+                   bool any_hit, Hit* hit BVH_FILTER_PARAMS) {
     /* Slab test setup. A zero direction component would give 1/0 = inf and then 0 * inf = NaN on
      * a box face through the origin; a tiny stand-in keeps every product finite and ordered. */
     const float3 safe_dir = select(dir, copysign((float3)(1e-20f), dir), isless(fabs(dir), (float3)(1e-20f)));
@@ -218,7 +228,7 @@ bool bvh_intersect(__global const BvhNode* nodes, __global const float4* tris, f
                 ++hit->tris_tested;
 #endif
                 float t, u, v;
-                if (intersect_triangle(tris, p, org4, &shear, t_best, &t, &u, &v)) {
+                if (intersect_triangle(tris, p, org4, &shear, t_best, &t, &u, &v) && BVH_FILTER(p, u, v)) {
                     found = true;
                     t_best = t;
                     hit->t = t;

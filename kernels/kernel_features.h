@@ -17,6 +17,7 @@
     X(HAS_TEXTURES, textures, "textures")                                                                              \
     X(HAS_NORMAL_MAPS, normal_maps, "normal maps")                                                                     \
     X(HAS_VERTEX_COLORS, vertex_colors, "vertex colours")                                                              \
+    X(HAS_ALPHA, alpha, "alpha mask or blend")                                                                         \
     X(HAS_AREA_LIGHTS, area_lights, "area lights")                                                                     \
     X(HAS_POINT_LIGHTS, point_lights, "point lights")                                                                  \
     X(HAS_SPOT_LIGHTS, spot_lights, "spot lights")                                                                     \
@@ -42,6 +43,9 @@
 #endif
 #ifndef HAS_VERTEX_COLORS
 #define HAS_VERTEX_COLORS 1
+#endif
+#ifndef HAS_ALPHA
+#define HAS_ALPHA 1
 #endif
 #ifndef HAS_AREA_LIGHTS
 #define HAS_AREA_LIGHTS 1

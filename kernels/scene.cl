@@ -5,6 +5,8 @@
 
 #include "shared_types.h"
 #include "sampling.cl"
+#include "texture.cl"
+#include "alpha.cl"
 #include "bvh_traverse.cl"
 
 /* One spelling of the scene arguments for kernels and the functions they call. */
@@ -29,12 +31,12 @@ typedef struct {
 } Surface;
 
 bool trace_closest(SCENE_PARAMS, float3 org, float3 dir, float tmax, Hit* hit) {
-    return bvh_intersect(bvh_nodes, tris, org, dir, tmax, false, hit);
+    return bvh_intersect(bvh_nodes, tris, org, dir, tmax, false, hit BVH_FILTER_ARGS);
 }
 
 bool trace_occluded(SCENE_PARAMS, float3 org, float3 dir, float tmax) {
     Hit hit;
-    return bvh_intersect(bvh_nodes, tris, org, dir, tmax, true, &hit);
+    return bvh_intersect(bvh_nodes, tris, org, dir, tmax, true, &hit BVH_FILTER_ARGS);
 }
 
 /* Offset along the normal on the side the next ray leaves from, scaled with the scene and with
@@ -101,33 +103,7 @@ Surface make_surface(SCENE_PARAMS, float3 dir, const Hit* h) {
     return s;
 }
 
-/* A texture coordinate reduced before it is scaled to texels, so that any value (a huge finite
- * one, or one whose interpolation overflowed) gives texel indices in range: repeat keeps the
- * fraction, clamp-to-edge keeps [-1, 2], beyond which every bilinear tap clamps alike. */
-float wrap_coordinate(float u, bool clamp_to_edge) {
-    if (!isfinite(u)) u = 0.0f;
-    return clamp_to_edge ? clamp(u, -1.0f, 2.0f) : u - floor(u);
-}
-
-float3 texture_lookup(SCENE_PARAMS, int index, float2 uv) {
-    __global const Texture* tex = &textures[index];
-    float w = (float)tex->width, hgt = (float)tex->height;
-    float x = wrap_coordinate(uv.x, tex->wrap & 1u) * w - 0.5f, y = wrap_coordinate(uv.y, tex->wrap & 2u) * hgt - 0.5f;
-    float fx = floor(x), fy = floor(y);
-    float ax = x - fx, ay = y - fy;
-    int ix = (int)fx, iy = (int)fy;
-    float3 acc = (float3)(0.0f);
-    for (int k = 0; k < 4; ++k) {
-        int px = ix + (k & 1), py = iy + (k >> 1);
-        if (tex->wrap & 1u) px = clamp(px, 0, (int)tex->width - 1);
-        else px = ((px % (int)tex->width) + (int)tex->width) % (int)tex->width;
-        if (tex->wrap & 2u) py = clamp(py, 0, (int)tex->height - 1);
-        else py = ((py % (int)tex->height) + (int)tex->height) % (int)tex->height;
-        float wx = (k & 1) ? ax : 1.0f - ax, wy = (k >> 1) ? ay : 1.0f - ay;
-        acc += texels[tex->offset + (uint)py * tex->width + (uint)px].xyz * (wx * wy);
-    }
-    return acc;
-}
+float3 texture_lookup(SCENE_PARAMS, int index, float2 uv) { return texture_rgba(textures, texels, index, uv).xyz; }
 
 /* Base colour at the surface: factor times texture times COLOR_0 (linear). */
 float3 surface_base_color(SCENE_PARAMS, const Surface* s) {

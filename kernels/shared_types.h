@@ -60,6 +60,11 @@ typedef struct {
 
 #define MATERIAL_FLAG_DOUBLE_SIDED 1u
 
+/* glTF alphaMode */
+#define ALPHA_OPAQUE 0u
+#define ALPHA_MASK 1u
+#define ALPHA_BLEND 2u
+
 /* glTF 2.0 metallic-roughness material (Appendix B) with KHR_materials_ior, _specular,
  * _transmission and _emissive_strength; kernels/bsdf.cl is its scattering model. */
 typedef struct {
@@ -73,7 +78,8 @@ typedef struct {
     i32 emissive_tex;           /* sRGB texture times emission; -1 when none */
     i32 normal_tex;             /* linear tangent-space normal map; -1 when none */
     float normal_scale;         /* normalTexture.scale: multiplies the map's x and y */
-    u32 pad0, pad1;
+    float alpha_cutoff;         /* alphaCutoff, for ALPHA_MASK */
+    u32 alpha_mode;             /* ALPHA_OPAQUE, ALPHA_MASK or ALPHA_BLEND (kernels/alpha.cl) */
 } Material;                     /* 96 bytes */
 
 typedef struct {

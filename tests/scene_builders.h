@@ -30,6 +30,8 @@ inline uint32_t add_material(Scene& s, float r, float g, float b, float emission
     m.emissive_tex = -1;
     m.normal_tex = -1;
     m.normal_scale = 1.f;
+    m.alpha_mode = ALPHA_OPAQUE;
+    m.alpha_cutoff = 0.5f;
     m.flags = double_sided ? MATERIAL_FLAG_DOUBLE_SIDED : 0u;
     s.materials.push_back(m);
     return uint32_t(s.materials.size() - 1);

@@ -29,6 +29,7 @@ CLPPM_CHECK_OFFSET(Material, metallic_roughness_tex, 72);
 CLPPM_CHECK_OFFSET(Material, emissive_tex, 76);
 CLPPM_CHECK_OFFSET(Material, normal_tex, 80);
 CLPPM_CHECK_OFFSET(Material, normal_scale, 84);
+CLPPM_CHECK_OFFSET(Material, alpha_mode, 92);
 
 CLPPM_CHECK_SIZE(Texture, 16);
 

@@ -18,6 +18,7 @@ SceneFeatures scene_features(const Scene& scene, const DeviceScene& ds) {
         if (m.transmission > 0.f && m.metallic < 1.f) f.glass = true;
         if (m.base_color_tex >= 0 || m.metallic_roughness_tex >= 0 || m.emissive_tex >= 0) f.textures = true;
         if (m.normal_tex >= 0 && !scene.tangents.empty()) f.textures = f.normal_maps = true;
+        if (m.alpha_mode != ALPHA_OPAQUE) f.alpha = true;
     }
     f.vertex_colors = !scene.colors.empty();
     for (const dev::Light& l : ds.lights) {

@@ -500,6 +500,61 @@ def vertex_colors():
     b.write_embedded(out("vertex_colors.gltf"))
 
 
+def alpha_modes():
+    """alphaMode. alpha_mask_card.gltf: a black card between a point light and a floor whose
+    baseColorTexture (64x1, clamped) is transparent on its left half, alphaMode MASK; it renders
+    (image and shadow) as alpha_mask_half.gltf, the right half of the card alone.
+    alpha_blend_*.gltf: a black vertical card of alpha 0.5 between the camera and the floor, the
+    light beyond it: "blend" (BLEND), "opaque" (OPAQUE) and "none" (no card). No light path
+    crosses the card twice, so blend = (opaque + none) / 2 in expectation."""
+    clear, solid = (0, 0, 0, 0), (0, 0, 0, 255)
+    for name, kind in (("alpha_mask_card.gltf", "card"), ("alpha_mask_half.gltf", "half")):
+        b = GltfBuilder("clppm tests/data/make_test_gltf.py")
+        floor = b.material("floor", (0.5, 0.5, 0.5), specular=0.0)
+        card = b.material("card", (1.0, 1.0, 1.0) if kind == "card" else (0.0, 0.0, 0.0), specular=0.0,
+                          double_sided=True)
+        prims = [b.primitive([(-1.5, 0, -1.5), (-1.5, 0, 1.5), (1.5, 0, 1.5), (1.5, 0, -1.5)], [0, 1, 2, 0, 2, 3],
+                             [(0, 1, 0)] * 4, material=floor)]
+        if kind == "card":
+            png = png_rgba([[clear] * 32 + [solid] * 32])
+            b.doc["images"] = [{"uri": "data:image/png;base64," + base64.b64encode(png).decode("ascii")}]
+            b.doc["samplers"] = [{"wrapS": 33071, "wrapT": 33071}]
+            b.doc["textures"] = [{"source": 0, "sampler": 0}]
+            b.doc["materials"][card]["pbrMetallicRoughness"]["baseColorTexture"] = {"index": 0}
+            b.doc["materials"][card]["alphaMode"] = "MASK"
+            quad = [(-0.5, 1, -0.5), (-0.5, 1, 0.5), (0.5, 1, 0.5), (0.5, 1, -0.5)]
+            uvs = [(0, 0), (0, 1), (1, 1), (1, 0)]
+        else:
+            quad = [(0.0, 1, -0.5), (0.0, 1, 0.5), (0.5, 1, 0.5), (0.5, 1, -0.5)]
+            uvs = None
+        prims.append(b.primitive(quad, [0, 1, 2, 0, 2, 3], [(0, 1, 0)] * 4, uvs=uvs, material=card))
+        light = b.light({"name": "lamp", "type": "point", "intensity": 6.0})
+        cam = b.camera(0.9)
+        tilt = quat_axis_angle((1, 0, 0), -math.atan2(1.4, 2.4))
+        b.scene([b.node(name="room", mesh=b.mesh(prims)),
+                 b.node(name="lamp", light=light, translation=[0.1, 2.0, 0.0]),
+                 b.node(name="camera", camera=cam, translation=[0.0, 1.8, 2.4], rotation=tilt)])
+        b.write_embedded(out(name))
+    for kind in ("blend", "opaque", "none"):
+        b = GltfBuilder("clppm tests/data/make_test_gltf.py")
+        floor = b.material("floor", (0.5, 0.5, 0.5), specular=0.0)
+        card = b.material("card", (0.0, 0.0, 0.0, 0.5), specular=0.0, double_sided=True)
+        if kind == "blend":
+            b.doc["materials"][card]["alphaMode"] = "BLEND"
+        prims = [b.primitive([(-1.5, 0, -1.5), (-1.5, 0, 1.5), (1.5, 0, 1.5), (1.5, 0, -1.5)], [0, 1, 2, 0, 2, 3],
+                             [(0, 1, 0)] * 4, material=floor)]
+        if kind != "none":
+            quad = [(-0.6, 0.2, 1.0), (0.6, 0.2, 1.0), (0.6, 0.8, 1.0), (-0.6, 0.8, 1.0)]
+            prims.append(b.primitive(quad, [0, 1, 2, 0, 2, 3], [(0, 0, 1)] * 4, material=card))
+        light = b.light({"name": "lamp", "type": "point", "intensity": 6.0})
+        cam = b.camera(0.9)
+        tilt = quat_axis_angle((1, 0, 0), -math.atan2(0.7, 3.0))
+        b.scene([b.node(name="room", mesh=b.mesh(prims)),
+                 b.node(name="lamp", light=light, translation=[0.0, 2.0, -1.0]),
+                 b.node(name="camera", camera=cam, translation=[0.0, 1.0, 3.0], rotation=tilt)])
+        b.write_embedded(out("alpha_blend_%s.gltf" % kind))
+
+
 # ---- errors -------------------------------------------------------------------------------------
 
 def triangle_doc(**material):
@@ -589,7 +644,7 @@ def errors():
 def main():
     for make in (hierarchy, index_types, byte_stride, containers, no_normals, degenerate, mirror, metallic_roughness,
                  materials, texture, lights, cameras, quantized, sparse, strips_fans, gpu_instancing, emissive_texture,
-                 normal_maps, vertex_colors, errors):
+                 normal_maps, vertex_colors, alpha_modes, errors):
         make()
 
 

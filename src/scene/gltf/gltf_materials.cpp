@@ -44,6 +44,8 @@ dev::Material default_material() {
     m.emissive_tex = -1;
     m.normal_tex = -1;
     m.normal_scale = 1.f;
+    m.alpha_mode = ALPHA_OPAQUE;
+    m.alpha_cutoff = 0.5f;
     return m;
 }
 
@@ -102,9 +104,20 @@ dev::Material MaterialConverter::convert_material(int index) {
     m.emissive_tex = texture_for(g.emissiveTexture, label, "emissiveTexture", true);
     m.normal_tex = normal_texture(g.normalTexture, label);
     m.normal_scale = finite_factor(g.normalTexture.scale, "normalTexture.scale", label);
+    convert_alpha(g, label, m);
     convert_specular(g, label, m);
     m.flags = g.doubleSided ? MATERIAL_FLAG_DOUBLE_SIDED : 0u;
     return m;
+}
+
+// alphaMode (glTF 2.0 Sec. 3.9.4; kernels/alpha.cl): OPAQUE ignores alpha, MASK cuts out where
+// alpha < alphaCutoff (default 0.5), BLEND makes the surface that transparent, stochastically.
+void MaterialConverter::convert_alpha(const tinygltf::Material& g, const std::string& label, dev::Material& m) {
+    m.alpha_cutoff = finite_factor(g.alphaCutoff, "alphaCutoff", label);
+    if (g.alphaMode == "MASK") m.alpha_mode = ALPHA_MASK;
+    else if (g.alphaMode == "BLEND") m.alpha_mode = ALPHA_BLEND;
+    else if (g.alphaMode == "OPAQUE" || g.alphaMode.empty()) m.alpha_mode = ALPHA_OPAQUE;
+    else ctx_.fail(label + " alphaMode '" + printable(g.alphaMode) + "' is not OPAQUE, MASK or BLEND");
 }
 
 // KHR_materials_specular: specularFactor (default 1) scales the dielectric layer's F0 and F90,
