@@ -36,16 +36,18 @@ float alpha_hash(float3 org, float3 dir, uint prim) {
 /* Whether the intersection at barycentrics (u, v) of triangle prim counts for a ray (org, dir). */
 bool alpha_covers(__global const TriShading* shading, __global const Material* materials,
                   __global const Texture* textures, __global const float4* texels, __global const float4* colors,
-                  __constant SceneInfo* info, uint prim, float u, float v, float3 org, float3 dir) {
+                  __global const float2* uv1, __constant SceneInfo* info, uint prim, float u, float v, float3 org,
+                  float3 dir) {
     __global const TriShading* sh = &shading[prim];
     __global const Material* m = &materials[sh->material];
     if (m->alpha_mode == ALPHA_OPAQUE) return true;
     float w = 1.0f - u - v;
     float a = m->base_color[3];
     if (m->base_color_tex >= 0) {
-        float2 uv = (float2)(sh->uv0[0], sh->uv0[1]) * w + (float2)(sh->uv1[0], sh->uv1[1]) * u +
+        float2 t0 = (float2)(sh->uv0[0], sh->uv0[1]) * w + (float2)(sh->uv1[0], sh->uv1[1]) * u +
                     (float2)(sh->uv2[0], sh->uv2[1]) * v;
-        a *= texture_rgba(textures, texels, m->base_color_tex, uv).w;
+        float2 t1 = info->texcoord1 ? uv1[3 * prim] * w + uv1[3 * prim + 1] * u + uv1[3 * prim + 2] * v : t0;
+        a *= texture_rgba(textures, texels, m->base_color_tex, (float4)(t0, t1)).w;
     }
     if (info->vertex_colors) a *= colors[3 * prim].w * w + colors[3 * prim + 1].w * u + colors[3 * prim + 2].w * v;
     if (m->alpha_mode == ALPHA_MASK) return a >= m->alpha_cutoff;
@@ -54,9 +56,11 @@ bool alpha_covers(__global const TriShading* shading, __global const Material* m
 
 #define BVH_FILTER_PARAMS                                                                                  \
     , __global const TriShading *shading, __global const Material *materials, __global const Texture *textures, \
-        __global const float4 *texels, __global const float4 *colors, __constant SceneInfo *info
-#define BVH_FILTER_ARGS , shading, materials, textures, texels, colors, info
-#define BVH_FILTER(prim, u, v) alpha_covers(shading, materials, textures, texels, colors, info, prim, u, v, org, dir)
+        __global const float4 *texels, __global const float4 *colors, __global const float2 *uv1,          \
+        __constant SceneInfo *info
+#define BVH_FILTER_ARGS , shading, materials, textures, texels, colors, uv1, info
+#define BVH_FILTER(prim, u, v) \
+    alpha_covers(shading, materials, textures, texels, colors, uv1, info, prim, u, v, org, dir)
 
 #endif
 

@@ -34,8 +34,7 @@ float3 area_light_point(SCENE_PARAMS, __global const Light* L, Rng* rng, float3*
     *n = normalize(cross(e1, e2));
     *le = load3g(L->radiance);
     if (HAS_TEXTURES) {
-        __global const TriShading* sh = &shading[L->prim];
-        *le = material_emission(SCENE_ARGS, sh->material, triangle_uv(sh, b.x, b.y));
+        *le = material_emission(SCENE_ARGS, shading[L->prim].material, triangle_uv(SCENE_ARGS, L->prim, b.x, b.y));
     }
     return v0 + e1 * b.x + e2 * b.y;
 }

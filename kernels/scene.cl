@@ -14,15 +14,16 @@
     __global const BvhNode *bvh_nodes, __global const float4 *tris,                               \
         __global const TriShading *shading, __global const Material *materials,                   \
         __global const Texture *textures, __global const float4 *texels,                          \
-        __global const float4 *tangents, __global const float4 *colors, __global const Light *lights,    \
-        __global const float *light_cdf, __constant SceneInfo *info
-#define SCENE_ARGS bvh_nodes, tris, shading, materials, textures, texels, tangents, colors, lights, light_cdf, info
+        __global const float4 *tangents, __global const float4 *colors, __global const float2 *uv1,      \
+        __global const Light *lights, __global const float *light_cdf, __constant SceneInfo *info
+#define SCENE_ARGS                                                                                        \
+    bvh_nodes, tris, shading, materials, textures, texels, tangents, colors, uv1, lights, light_cdf, info
 
 typedef struct {
     float3 p;
     float3 ng;  /* geometric normal, on the side the ray came from */
     float3 ns;  /* shading normal, on the same side */
-    float2 uv;
+    float4 uv; /* xy: TEXCOORD_0, zw: TEXCOORD_1 (= TEXCOORD_0 when the scene has none) */
     uint material;
     uint prim;
     bool front; /* the ray arrived on the side the winding (glTF counter-clockwise) normal faces */
@@ -46,13 +47,13 @@ float3 offset_origin(SCENE_PARAMS, float3 p, float3 n_side) {
     return p + n_side * (info->ray_eps + 4e-6f * m);
 }
 
-float3 texture_lookup(SCENE_PARAMS, int index, float2 uv);
+float3 texture_lookup(SCENE_PARAMS, int index, float4 uv);
 
 /* glTF normalTexture (Sec. 3.9.3): the map's normal, (texel * 2 - 1) with x and y times scale,
  * in the frame (t, b, n) of triangle prim at barycentrics (b1, b2): n the interpolated shading
  * normal, t the interpolated tangent made orthogonal to n, b = cross(n, t) w. A corner without
  * a tangent (zero) leaves n as it is. */
-float3 normal_mapped(SCENE_PARAMS, __global const Material* m, uint prim, float b1, float b2, float3 n, float2 uv) {
+float3 normal_mapped(SCENE_PARAMS, __global const Material* m, uint prim, float b1, float b2, float3 n, float4 uv) {
     float4 t4 = tangents[3 * prim] * (1.0f - b1 - b2) + tangents[3 * prim + 1] * b1 + tangents[3 * prim + 2] * b2;
     float3 t = t4.xyz - n * dot(n, t4.xyz);
     float len = length(t);
@@ -65,10 +66,16 @@ float3 normal_mapped(SCENE_PARAMS, __global const Material* m, uint prim, float 
     return (l > 1e-12f && isfinite(l)) ? v / l : n;
 }
 
-/* Texture coordinates at barycentrics (b1, b2) of a triangle. */
-float2 triangle_uv(__global const TriShading* sh, float b1, float b2) {
-    return (float2)(sh->uv0[0], sh->uv0[1]) * (1.0f - b1 - b2) + (float2)(sh->uv1[0], sh->uv1[1]) * b1 +
-           (float2)(sh->uv2[0], sh->uv2[1]) * b2;
+/* Texture coordinates at barycentrics (b1, b2) of triangle prim: TEXCOORD_0 in xy, TEXCOORD_1
+ * in zw (a copy of TEXCOORD_0 when the scene has no second set). */
+float4 triangle_uv(SCENE_PARAMS, uint prim, float b1, float b2) {
+    __global const TriShading* sh = &shading[prim];
+    float b0 = 1.0f - b1 - b2;
+    float2 t0 = (float2)(sh->uv0[0], sh->uv0[1]) * b0 + (float2)(sh->uv1[0], sh->uv1[1]) * b1 +
+                (float2)(sh->uv2[0], sh->uv2[1]) * b2;
+    float2 t1 = t0;
+    if (HAS_TEXTURES && info->texcoord1) t1 = uv1[3 * prim] * b0 + uv1[3 * prim + 1] * b1 + uv1[3 * prim + 2] * b2;
+    return (float4)(t0, t1);
 }
 
 Surface make_surface(SCENE_PARAMS, float3 dir, const Hit* h) {
@@ -84,7 +91,7 @@ Surface make_surface(SCENE_PARAMS, float3 dir, const Hit* h) {
     float3 ns = load3g(sh->n0) * b0 + load3g(sh->n1) * b1 + load3g(sh->n2) * b2;
     float len = length(ns);
     ns = (len > 1e-12f && isfinite(len)) ? ns / len : ng;
-    s.uv = triangle_uv(sh, b1, b2);
+    s.uv = triangle_uv(SCENE_ARGS, prim, b1, b2);
     s.material = sh->material;
     s.color = (HAS_VERTEX_COLORS && info->vertex_colors)
                   ? colors[3 * prim] * b0 + colors[3 * prim + 1] * b1 + colors[3 * prim + 2] * b2
@@ -103,7 +110,7 @@ Surface make_surface(SCENE_PARAMS, float3 dir, const Hit* h) {
     return s;
 }
 
-float3 texture_lookup(SCENE_PARAMS, int index, float2 uv) { return texture_rgba(textures, texels, index, uv).xyz; }
+float3 texture_lookup(SCENE_PARAMS, int index, float4 uv) { return texture_rgba(textures, texels, index, uv).xyz; }
 
 /* Base colour at the surface: factor times texture times COLOR_0 (linear). */
 float3 surface_base_color(SCENE_PARAMS, const Surface* s) {
@@ -115,7 +122,7 @@ float3 surface_base_color(SCENE_PARAMS, const Surface* s) {
 }
 
 /* Emitted radiance: the emission factor times the emissive texture (sRGB decoded) at uv. */
-float3 material_emission(SCENE_PARAMS, uint material, float2 uv) {
+float3 material_emission(SCENE_PARAMS, uint material, float4 uv) {
     __global const Material* m = &materials[material];
     float3 le = load3g(m->emission);
     if (HAS_TEXTURES && m->emissive_tex >= 0) le *= texture_lookup(SCENE_ARGS, m->emissive_tex, uv);

@@ -82,11 +82,23 @@ typedef struct {
     u32 alpha_mode;             /* ALPHA_OPAQUE, ALPHA_MASK or ALPHA_BLEND (kernels/alpha.cl) */
 } Material;                     /* 96 bytes */
 
+/* Texture wrap bits per axis (glTF sampler wrapS, wrapT): clamp s, clamp t, mirror s, mirror t;
+ * none set is REPEAT. */
+#define TEXTURE_CLAMP_S 1u
+#define TEXTURE_CLAMP_T 2u
+#define TEXTURE_MIRROR_S 4u
+#define TEXTURE_MIRROR_T 8u
+
+/* One texture reference: an image's texels, its sampler's wrap modes, the texture coordinate
+ * set and KHR_texture_transform's affine map of it (identity without the extension). */
 typedef struct {
     u32 offset; /* first texel in the texel buffer (float4 linear RGBA) */
     u32 width, height;
-    u32 wrap; /* bit 0: clamp s, bit 1: clamp t (default repeat) */
-} Texture;    /* 16 bytes */
+    u32 wrap;        /* TEXTURE_* bits */
+    float xform[6];  /* u' = x0 u + x1 v + x2, v' = x3 u + x4 v + x5 */
+    u32 texcoord;    /* 0: TEXCOORD_0, 1: TEXCOORD_1 */
+    u32 pad0;
+} Texture; /* 48 bytes */
 
 /* ---- lights -------------------------------------------------------------------------------- */
 
@@ -129,7 +141,9 @@ typedef struct {
     u32 num_emissive_tris;
     u32 max_bounces;     /* eye and photon path depth limit */
     u32 vertex_colors;   /* 1: the colors buffer holds COLOR_0 for every triangle; 0: it is empty */
-} SceneInfo; /* 48 bytes */
+    u32 texcoord1;       /* 1: the uv1 buffer holds TEXCOORD_1 for every triangle; 0: it is empty */
+    u32 pad1, pad2, pad3;
+} SceneInfo; /* 64 bytes */
 
 /* ---- progressive photon mapping -------------------------------------------------------------- */
 

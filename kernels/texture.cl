@@ -7,27 +7,42 @@
 
 /* A texture coordinate reduced before it is scaled to texels, so that any value (a huge finite
  * one, or one whose interpolation overflowed) gives texel indices in range: repeat keeps the
- * fraction, clamp-to-edge keeps [-1, 2], beyond which every bilinear tap clamps alike. */
-float wrap_coordinate(float u, bool clamp_to_edge) {
+ * fraction, mirrored repeat the position in [0, 2), clamp-to-edge keeps [-1, 2], beyond which
+ * every bilinear tap clamps alike. */
+float wrap_coordinate(float u, bool clamp_to_edge, bool mirror) {
     if (!isfinite(u)) u = 0.0f;
-    return clamp_to_edge ? clamp(u, -1.0f, 2.0f) : u - floor(u);
+    if (clamp_to_edge) return clamp(u, -1.0f, 2.0f);
+    return mirror ? u - 2.0f * floor(0.5f * u) : u - floor(u);
 }
 
-/* Linear RGBA of texture `index` at uv. */
-float4 texture_rgba(__global const Texture* textures, __global const float4* texels, int index, float2 uv) {
+/* A bilinear tap's texel index along an axis of n texels. Mirrored repeat reflects at every
+ * edge: ..., 1, 0 | 0, 1, ..., n-1 | n-1, ... */
+int wrap_texel(int i, int n, bool clamp_to_edge, bool mirror) {
+    if (clamp_to_edge) return clamp(i, 0, n - 1);
+    if (mirror) {
+        int m = ((i % (2 * n)) + 2 * n) % (2 * n);
+        return m < n ? m : 2 * n - 1 - m;
+    }
+    return ((i % n) + n) % n;
+}
+
+/* Linear RGBA of texture `index` at the surface's texture coordinates uv (xy: TEXCOORD_0,
+ * zw: TEXCOORD_1): the texture's set, through its KHR_texture_transform. */
+float4 texture_rgba(__global const Texture* textures, __global const float4* texels, int index, float4 uv) {
     __global const Texture* tex = &textures[index];
-    float w = (float)tex->width, hgt = (float)tex->height;
-    float x = wrap_coordinate(uv.x, tex->wrap & 1u) * w - 0.5f, y = wrap_coordinate(uv.y, tex->wrap & 2u) * hgt - 0.5f;
+    float2 st = tex->texcoord ? uv.zw : uv.xy;
+    __global const float* m = tex->xform;
+    st = (float2)(m[0] * st.x + m[1] * st.y + m[2], m[3] * st.x + m[4] * st.y + m[5]);
+    const bool cs = (tex->wrap & TEXTURE_CLAMP_S) != 0u, ct = (tex->wrap & TEXTURE_CLAMP_T) != 0u;
+    const bool ms = (tex->wrap & TEXTURE_MIRROR_S) != 0u, mt = (tex->wrap & TEXTURE_MIRROR_T) != 0u;
+    const int w = (int)tex->width, h = (int)tex->height;
+    float x = wrap_coordinate(st.x, cs, ms) * (float)w - 0.5f, y = wrap_coordinate(st.y, ct, mt) * (float)h - 0.5f;
     float fx = floor(x), fy = floor(y);
     float ax = x - fx, ay = y - fy;
     int ix = (int)fx, iy = (int)fy;
     float4 acc = (float4)(0.0f);
     for (int k = 0; k < 4; ++k) {
-        int px = ix + (k & 1), py = iy + (k >> 1);
-        if (tex->wrap & 1u) px = clamp(px, 0, (int)tex->width - 1);
-        else px = ((px % (int)tex->width) + (int)tex->width) % (int)tex->width;
-        if (tex->wrap & 2u) py = clamp(py, 0, (int)tex->height - 1);
-        else py = ((py % (int)tex->height) + (int)tex->height) % (int)tex->height;
+        int px = wrap_texel(ix + (k & 1), w, cs, ms), py = wrap_texel(iy + (k >> 1), h, ct, mt);
         float wx = (k & 1) ? ax : 1.0f - ax, wy = (k >> 1) ? ay : 1.0f - ay;
         acc += texels[tex->offset + (uint)py * tex->width + (uint)px] * (wx * wy);
     }

@@ -28,7 +28,7 @@ std::string data(const char* name) { return std::string(CLPPM_TEST_DATA) + "/" +
 const char* kWrappers = R"CL(
 __kernel void lookup_many(SCENE_PARAMS, int tex, __global const float* uv, __global float* out) {
     uint i = get_global_id(0);
-    float3 c = texture_lookup(SCENE_ARGS, tex, (float2)(uv[2 * i], uv[2 * i + 1]));
+    float3 c = texture_lookup(SCENE_ARGS, tex, (float4)(uv[4 * i], uv[4 * i + 1], uv[4 * i + 2], uv[4 * i + 3]));
     out[3 * i] = c.x; out[3 * i + 1] = c.y; out[3 * i + 2] = c.z;
 }
 __kernel void emit_many(SCENE_PARAMS, ulong seed, __global float* out) {
@@ -54,31 +54,42 @@ std::vector<T> read(const DeviceContext& dc, const cl::Buffer& b, size_t n) {
 
 } // namespace
 
-// Bilinear weights, texel centres, REPEAT and CLAMP_TO_EDGE on each axis, coordinates far
-// outside [0, 1] and non-finite ones: the device's texture_lookup against the host's.
+// Bilinear weights, texel centres, REPEAT, MIRRORED_REPEAT and CLAMP_TO_EDGE on each axis, a
+// KHR_texture_transform on TEXCOORD_1, coordinates far outside [0, 1] and non-finite ones: the
+// device's texture_lookup against the host's.
 TEST(TextureSampling, DeviceLookupMatchesTheHostReference) {
     Scene s;
     s.source = "<texture test>";
     add_quad(s, {-1, 0, -1}, {-1, 0, 1}, {1, 0, 1}, {1, 0, -1}, add_material(s, 0.5f, 0.5f, 0.5f, 1.f));
     std::mt19937 gen(7);
     std::uniform_real_distribution<float> texel(0.f, 1.f);
-    for (uint32_t wrap = 0; wrap < 4; ++wrap) {
-        const uint32_t w = 3 + wrap, h = 2 + (wrap & 1);
-        s.textures.push_back(dev::Texture{uint32_t(s.texels.size()), w, h, wrap});
-        for (uint32_t i = 0; i < w * h; ++i) s.texels.push_back({texel(gen), texel(gen), texel(gen), 1.f});
-    }
-    std::vector<float> uv;
+    // Every combination of REPEAT, MIRRORED_REPEAT and CLAMP_TO_EDGE per axis, then a transformed
+    // reference on the second coordinate set.
+    const uint32_t modes[3] = {0, TEXTURE_CLAMP_S, TEXTURE_MIRROR_S};
+    for (uint32_t ms : modes)
+        for (uint32_t mt : modes) {
+            const uint32_t w = 3 + uint32_t(s.textures.size() % 3), h = 2 + uint32_t(s.textures.size() % 2);
+            s.textures.push_back(plain_texture(uint32_t(s.texels.size()), w, h, ms | (mt << 1)));
+            for (uint32_t i = 0; i < w * h; ++i) s.texels.push_back({texel(gen), texel(gen), texel(gen), 1.f});
+        }
+    dev::Texture moved = s.textures[4];
+    const float xform[6] = {0.7f, 0.5f, 0.25f, -0.5f, 0.7f, 1.f};
+    std::copy(xform, xform + 6, moved.xform);
+    moved.texcoord = 1;
+    s.textures.push_back(moved);
+    std::vector<float> uv; // (TEXCOORD_0, TEXCOORD_1) per lookup
     std::uniform_real_distribution<float> coord(-3.f, 3.f);
-    for (int i = 0; i < 4000; ++i) uv.push_back(coord(gen));
-    for (float u : {0.f, 1.f, 0.5f, 1e9f, -1e9f, 3e38f, -3e38f, INFINITY, NAN}) uv.push_back(u), uv.push_back(0.25f);
-    const size_t n = uv.size() / 2;
+    for (int i = 0; i < 8000; ++i) uv.push_back(coord(gen));
+    for (float u : {0.f, 1.f, 0.5f, 1e9f, -1e9f, 3e38f, -3e38f, INFINITY, NAN})
+        uv.insert(uv.end(), {u, 0.25f, 0.25f, u});
+    const size_t n = uv.size() / 4;
     DeviceContext dc(test_device());
     DeviceScene ds = upload_scene(dc, s, RenderSettings{});
     cl::Program program = build(dc);
     cl::Buffer in(dc.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, uv.size() * sizeof(float), uv.data());
     cl::Buffer out(dc.context, CL_MEM_WRITE_ONLY, 3 * n * sizeof(float));
-    for (int tex = 0; tex < 4; ++tex) {
-        SCOPED_TRACE("wrap mode " + std::to_string(tex));
+    for (int tex = 0; tex < int(s.textures.size()); ++tex) {
+        SCOPED_TRACE("texture " + std::to_string(tex));
         cl::Kernel k(program, "lookup_many");
         int a = ds.set_scene_args(k);
         k.setArg(a++, cl_int(tex)), k.setArg(a++, in), k.setArg(a++, out);
@@ -86,7 +97,8 @@ TEST(TextureSampling, DeviceLookupMatchesTheHostReference) {
         std::vector<float> got = read<float>(dc, out, 3 * n);
         double worst = 0;
         for (size_t i = 0; i < n; ++i) {
-            std::array<double, 3> want = sample_texture(s, tex, uv[2 * i], uv[2 * i + 1]);
+            const size_t set = s.textures[size_t(tex)].texcoord ? 2 : 0;
+            std::array<double, 3> want = sample_texture(s, tex, uv[4 * i + set], uv[4 * i + set + 1]);
             for (int c = 0; c < 3; ++c) worst = std::max(worst, std::fabs(got[3 * i + size_t(c)] - want[size_t(c)]));
         }
         // Float coordinates against double: a texel's weight moves by ~|u| w 2^-24.
@@ -149,17 +161,8 @@ TEST(EmissiveTexture, PhotonsLeaveWhereTheTextureIsBrightWithUnbiasedFlux) {
 TEST(EmissiveTexture, RendersLikeTheEmitterItsTextureDescribes) {
     for (const char* integrator : {"sppm", "pt"}) {
         SCOPED_TRACE(integrator);
-        double mean[2];
-        const char* files[2] = {"emissive_texture.gltf", "emissive_split.gltf"};
-        for (int f = 0; f < 2; ++f) {
-            std::string d = make_temp_dir("emtex"), out;
-            const std::string args =
-                data(files[f]) + " --width 48 --height 32 --passes 8 --photons 60000 --quiet --no-png --integrator " +
-                integrator + " -o " + d + "/i.exr";
-            ASSERT_EQ(run_clppm(args, &out), 0) << out;
-            EXPECT_EQ(out.find("warning"), std::string::npos) << out;
-            mean[f] = mean_radiance(read_exr(d + "/i.exr"));
-        }
+        const double mean[2] = {render_test_scene_mean("emissive_texture.gltf", integrator, 8, 60000),
+                                render_test_scene_mean("emissive_split.gltf", integrator, 8, 60000)};
         ASSERT_GT(mean[1], 0);
         // Measured: 1.005 (SPPM) and 1.010 (PT) at 6 passes, differences of noise.
         EXPECT_NEAR(mean[0] / mean[1], 1.0, 0.03);

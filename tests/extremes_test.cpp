@@ -10,6 +10,7 @@
 #include <cmath>
 
 #include "scene/device_scene.h"
+#include "scene/texture_sampling.h"
 #include "scene_builders.h"
 #include "test_util.h"
 
@@ -376,7 +377,7 @@ TEST(Extremes, DegenerateAndNeedleTrianglesRenderFinite) {
 TEST(Extremes, HugeTextureCoordinatesStayFinite) {
     for (uint32_t wrap : {0u, 3u}) {
         Scene scene = plane_under_point_light(0.8f, 10.f, 1.f);
-        scene.textures.push_back(dev::Texture{0, 2, 2, wrap});
+        scene.textures.push_back(plain_texture(0, 2, 2, wrap));
         for (float v : {0.2f, 0.9f, 0.5f, 1.0f}) scene.texels.push_back({v, v, v, 1.f});
         for (dev::Material& m : scene.materials) m.base_color_tex = 0;
         const float coords[][6] = {{3e38f, 3e38f, -3e38f, 3e38f, 3e38f, -3e38f},

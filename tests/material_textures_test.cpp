@@ -20,12 +20,7 @@ namespace {
 std::string data(const char* name) { return std::string(CLPPM_TEST_DATA) + "/" + name; }
 
 double render_mean(const std::string& file, const std::string& integrator) {
-    std::string d = make_temp_dir("mrtex"), out;
-    const std::string args = data(file.c_str()) +
-                             " --width 48 --height 32 --passes 6 --photons 50000 --quiet --no-png" + " --integrator " +
-                             integrator + " -o " + d + "/i.exr";
-    EXPECT_EQ(run_clppm(args, &out), 0) << out;
-    return mean_radiance(read_exr(d + "/i.exr"));
+    return render_test_scene_mean(file, integrator);
 }
 
 } // namespace
@@ -57,4 +52,10 @@ TEST(MaterialTextures, MetallicRoughnessTextureScalesTheFactors) {
         // Roughness 1 instead of 0.5 halves this plate's highlight: ignoring the texture shows.
         EXPECT_GT(std::fabs(ignored / factors - 1.0), 0.2);
     }
+}
+
+// TEXCOORD_1 through a KHR_texture_transform renders as the transformed coordinates written into
+// TEXCOORD_0 (make_surface interpolates the second set, texture_rgba picks and transforms it).
+TEST(MaterialTextures, SecondCoordinateSetThroughATransform) {
+    expect_scenes_render_alike("uv1_plate_set1.gltf", "uv1_plate_set0.gltf", 1e-3);
 }

@@ -28,14 +28,7 @@ void expect_tangent(const std::array<float, 4>& t, double x, double y, double z,
     EXPECT_EQ(t[3], w);
 }
 
-double render_mean(const std::string& file, const char* integrator) {
-    std::string d = make_temp_dir("normalmap"), out;
-    const std::string args = data(file.c_str()) +
-                             " --width 48 --height 32 --passes 6 --photons 50000 --quiet --no-png --integrator " +
-                             integrator + " -o " + d + "/i.exr";
-    EXPECT_EQ(run_clppm(args, &out), 0) << out;
-    return mean_radiance(read_exr(d + "/i.exr"));
-}
+double render_mean(const std::string& file, const char* integrator) { return render_test_scene_mean(file, integrator); }
 
 } // namespace
 

@@ -22,7 +22,7 @@ namespace {
     X(sizeof(BvhNode)) X(offsetof(BvhNode, bmax_x)) X(offsetof(BvhNode, child)) X(offsetof(BvhNode, count)) \
     X(sizeof(Material)) X(offsetof(Material, emission)) X(offsetof(Material, metallic))                \
     X(offsetof(Material, base_color_tex)) X(offsetof(Material, specular_color)) X(offsetof(Material, normal_tex))                                 \
-    X(sizeof(Texture)) X(offsetof(Texture, wrap))                                                     \
+    X(sizeof(Texture)) X(offsetof(Texture, wrap)) X(offsetof(Texture, texcoord))                                                     \
     X(sizeof(Light)) X(offsetof(Light, power)) X(offsetof(Light, position)) X(offsetof(Light, radiance)) \
     X(offsetof(Light, cos_inner)) X(offsetof(Light, area))                                            \
     X(sizeof(Camera)) X(offsetof(Camera, width)) X(offsetof(Camera, focus_distance))                  \

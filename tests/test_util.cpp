@@ -52,6 +52,33 @@ int run_clppm(const std::string& args, std::string* output) { return run_command
 
 } // namespace clppm::test
 
+#include "io/image_io.h"
+
+namespace clppm::test {
+
+double render_test_scene_mean(const std::string& file, const std::string& integrator, int passes, int photons) {
+    std::string d = make_temp_dir("scene_mean"), out;
+    const std::string args = std::string(CLPPM_TEST_DATA) + "/" + file + " --width 48 --height 32 --passes " +
+                             std::to_string(passes) + " --photons " + std::to_string(photons) +
+                             " --quiet --no-png --integrator " + integrator + " -o " + d + "/i.exr";
+    EXPECT_EQ(run_clppm(args, &out), 0) << out;
+    EXPECT_EQ(out.find("warning"), std::string::npos) << out;
+    return mean_radiance(read_exr(d + "/i.exr"));
+}
+
+void expect_scenes_render_alike(const std::string& file, const std::string& reference, double tolerance, int passes,
+                                int photons) {
+    for (const char* integrator : {"sppm", "pt"}) {
+        SCOPED_TRACE(std::string(integrator) + ": " + file + " against " + reference);
+        const double mean = render_test_scene_mean(file, integrator, passes, photons);
+        const double want = render_test_scene_mean(reference, integrator, passes, photons);
+        ASSERT_GT(want, 0);
+        EXPECT_NEAR(mean / want, 1.0, tolerance);
+    }
+}
+
+} // namespace clppm::test
+
 #include "device/kernel_program.h"
 #include "integrators/integrator_factory.h"
 #include "scene/device_scene.h"

@@ -25,6 +25,17 @@ std::string clppm_binary();
 // Runs the clppm executable with `args` (a shell-quoted string); like run_command.
 int run_clppm(const std::string& args, std::string* output);
 
+// The mean radiance of tests/data/<file> rendered by the clppm executable at 48x32 with
+// `integrator` for `passes` passes of `photons` photons (the same seed every time); a failed
+// run is a test failure. The material and geometry tests compare such means of scene pairs.
+double render_test_scene_mean(const std::string& file, const std::string& integrator, int passes = 6,
+                              int photons = 50000);
+
+// For SPPM and the path tracer: the means of tests/data/<file> and <reference> (rendered as
+// render_test_scene_mean does) agree within `tolerance`, relative.
+void expect_scenes_render_alike(const std::string& file, const std::string& reference, double tolerance, int passes = 6,
+                                int photons = 50000);
+
 } // namespace clppm::test
 
 #include <algorithm>

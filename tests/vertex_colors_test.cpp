@@ -3,7 +3,6 @@
 // vertex colours multiply its base colour renders as the plate with the product as its factor.
 #include <gtest/gtest.h>
 
-#include "io/image_io.h"
 #include "scene/gltf/gltf_load.h"
 #include "test_util.h"
 
@@ -13,14 +12,6 @@ using namespace clppm::test;
 namespace {
 
 std::string data(const char* name) { return std::string(CLPPM_TEST_DATA) + "/" + name; }
-
-double render_mean(const char* file, const char* integrator) {
-    std::string d = make_temp_dir("vcolor"), out;
-    const std::string args = data(file) + " --width 48 --height 32 --passes 6 --photons 50000 --quiet --no-png" +
-                             " --integrator " + integrator + " -o " + d + "/i.exr";
-    EXPECT_EQ(run_clppm(args, &out), 0) << out;
-    return mean_radiance(read_exr(d + "/i.exr"));
-}
 
 } // namespace
 
@@ -36,11 +27,6 @@ TEST(VertexColors, ReadPerCornerAndWhiteWhereAPrimitiveHasNone) {
 }
 
 TEST(VertexColors, MultiplyTheBaseColour) {
-    for (const char* integrator : {"sppm", "pt"}) {
-        SCOPED_TRACE(integrator);
-        const double vertex = render_mean("color_plate_vertex.gltf", integrator);
-        const double factor = render_mean("color_plate_factor.gltf", integrator);
-        ASSERT_GT(factor, 0);
-        EXPECT_NEAR(vertex / factor, 1.0, 1e-3); // the same material up to float rounding
-    }
+    // The same material up to float rounding.
+    expect_scenes_render_alike("color_plate_vertex.gltf", "color_plate_factor.gltf", 1e-3);
 }

@@ -31,7 +31,9 @@ CLPPM_CHECK_OFFSET(Material, normal_tex, 80);
 CLPPM_CHECK_OFFSET(Material, normal_scale, 84);
 CLPPM_CHECK_OFFSET(Material, alpha_mode, 92);
 
-CLPPM_CHECK_SIZE(Texture, 16);
+CLPPM_CHECK_SIZE(Texture, 48);
+CLPPM_CHECK_OFFSET(Texture, xform, 16);
+CLPPM_CHECK_OFFSET(Texture, texcoord, 40);
 
 CLPPM_CHECK_SIZE(Light, 80);
 CLPPM_CHECK_OFFSET(Light, power, 12);
@@ -43,11 +45,12 @@ CLPPM_CHECK_SIZE(Camera, 80);
 CLPPM_CHECK_OFFSET(Camera, width, 64);
 CLPPM_CHECK_OFFSET(Camera, focus_distance, 76);
 
-CLPPM_CHECK_SIZE(SceneInfo, 48);
+CLPPM_CHECK_SIZE(SceneInfo, 64);
 CLPPM_CHECK_OFFSET(SceneInfo, radius, 16);
 CLPPM_CHECK_OFFSET(SceneInfo, num_lights, 28);
 CLPPM_CHECK_OFFSET(SceneInfo, max_bounces, 40);
 CLPPM_CHECK_OFFSET(SceneInfo, vertex_colors, 44);
+CLPPM_CHECK_OFFSET(SceneInfo, texcoord1, 48);
 
 CLPPM_CHECK_SIZE(HitPoint, 88);
 CLPPM_CHECK_OFFSET(HitPoint, pixel, 12);

@@ -23,7 +23,7 @@ MemoryEstimate estimate_memory(const Scene& scene, const RenderSettings& setting
     const size_t tris = scene.num_triangles();
     // A wide BVH has about one node per two triangles at most.
     m.scene = tris * (3 * 16 + sizeof(dev::TriShading)) + (tris / 2 + 1) * sizeof(dev::BvhNode) +
-              scene.texels.size() * 16 + scene.tangents.size() * 16 + scene.colors.size() * 16 +
+              scene.texels.size() * 16 + scene.tangents.size() * 16 + scene.colors.size() * 16 + scene.uv1.size() * 8 +
               scene.materials.size() * sizeof(dev::Material) + tris * sizeof(dev::Light);
     const IntegratorMemory own = integrator_memory(settings, width, height, error_estimation);
     m.integrator = own.bytes;

@@ -107,6 +107,7 @@ void permute_triangles(Scene& scene, const std::vector<uint32_t>& order) {
     std::vector<Vec3> positions(scene.positions.size());
     std::vector<dev::TriShading> shading(scene.shading.size());
     std::vector<std::array<float, 4>> tangents(scene.tangents.size()), colors(scene.colors.size());
+    std::vector<std::array<float, 2>> uv1(scene.uv1.size());
     for (size_t i = 0; i < order.size(); ++i) {
         for (int k = 0; k < 3; ++k) positions[3 * i + k] = scene.positions[3 * size_t(order[i]) + k];
         shading[i] = scene.shading[order[i]];
@@ -114,11 +115,14 @@ void permute_triangles(Scene& scene, const std::vector<uint32_t>& order) {
             for (int k = 0; k < 3; ++k) tangents[3 * i + k] = scene.tangents[3 * size_t(order[i]) + k];
         if (!colors.empty())
             for (int k = 0; k < 3; ++k) colors[3 * i + k] = scene.colors[3 * size_t(order[i]) + k];
+        if (!uv1.empty())
+            for (int k = 0; k < 3; ++k) uv1[3 * i + k] = scene.uv1[3 * size_t(order[i]) + k];
     }
     scene.positions.swap(positions);
     scene.shading.swap(shading);
     scene.tangents.swap(tangents);
     scene.colors.swap(colors);
+    scene.uv1.swap(uv1);
 }
 
 namespace {
@@ -210,10 +214,10 @@ namespace {
 
 // The buffers kernels receive as SCENE_PARAMS (kernels/scene.cl), in its order: the one list
 // both set_scene_args and clone_to go by, so a new scene buffer cannot be left out of either.
-const std::array<cl::Buffer DeviceScene::*, 11> kSceneBuffers = {
-    &DeviceScene::bvh_nodes_buf, &DeviceScene::tris_buf,      &DeviceScene::shading_buf,  &DeviceScene::materials_buf,
-    &DeviceScene::textures_buf,  &DeviceScene::texels_buf,    &DeviceScene::tangents_buf, &DeviceScene::colors_buf,
-    &DeviceScene::lights_buf,    &DeviceScene::light_cdf_buf, &DeviceScene::info_buf};
+const std::array<cl::Buffer DeviceScene::*, 12> kSceneBuffers = {
+    &DeviceScene::bvh_nodes_buf, &DeviceScene::tris_buf,   &DeviceScene::shading_buf,   &DeviceScene::materials_buf,
+    &DeviceScene::textures_buf,  &DeviceScene::texels_buf, &DeviceScene::tangents_buf,  &DeviceScene::colors_buf,
+    &DeviceScene::uv1_buf,       &DeviceScene::lights_buf, &DeviceScene::light_cdf_buf, &DeviceScene::info_buf};
 
 } // namespace
 
@@ -267,6 +271,7 @@ DeviceScene upload_scene(const DeviceContext& dc, Scene& scene, const SceneSetti
     ds.info.num_tris = uint32_t(scene.num_triangles());
     ds.info.max_bounces = settings.max_bounces;
     ds.info.vertex_colors = scene.colors.empty() ? 0u : 1u;
+    ds.info.texcoord1 = scene.uv1.empty() ? 0u : 1u;
 
     std::vector<std::string> dropped;
     ds.lights = collect_lights(scene, ds.info, &dropped);
@@ -307,6 +312,7 @@ DeviceScene upload_scene(const DeviceContext& dc, Scene& scene, const SceneSetti
     ds.texels_buf = upload(dc, scene.texels, &bytes);
     ds.tangents_buf = upload(dc, scene.tangents, &bytes);
     ds.colors_buf = upload(dc, scene.colors, &bytes);
+    ds.uv1_buf = upload(dc, scene.uv1, &bytes);
     ds.lights_buf = upload(dc, ds.lights, &bytes);
     ds.light_cdf_buf = upload(dc, ds.light_cdf, &bytes);
     ds.info_buf = upload(dc, std::vector<dev::SceneInfo>{ds.info}, &bytes);

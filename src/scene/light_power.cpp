@@ -27,7 +27,10 @@ double textured_emission_mean(const Scene& scene, size_t tri) {
     const dev::TriShading& sh = scene.shading[tri];
     const dev::Material& m = scene.materials[sh.material];
     const dev::Texture& t = scene.textures[size_t(m.emissive_tex)];
-    const double uv[3][2] = {{sh.uv0[0], sh.uv0[1]}, {sh.uv1[0], sh.uv1[1]}, {sh.uv2[0], sh.uv2[1]}};
+    double uv[3][2] = {{sh.uv0[0], sh.uv0[1]}, {sh.uv1[0], sh.uv1[1]}, {sh.uv2[0], sh.uv2[1]}};
+    if (t.texcoord == 1 && !scene.uv1.empty())
+        for (int k = 0; k < 3; ++k)
+            uv[k][0] = scene.uv1[3 * tri + size_t(k)][0], uv[k][1] = scene.uv1[3 * tri + size_t(k)][1];
     double longest = 0; // in texels
     for (int k = 0; k < 3; ++k) {
         const double* a = uv[k];

@@ -35,6 +35,9 @@ struct Scene {
     // COLOR_0, 3 per triangle (linear RGBA per corner) when some primitive has it, else empty;
     // (1, 1, 1, 1) for the corners of primitives without it. It multiplies the base colour.
     std::vector<std::array<float, 4>> colors;
+    // TEXCOORD_1, 3 per triangle, when some texture reads it, else empty ((0, 0) for the corners
+    // of primitives without it).
+    std::vector<std::array<float, 2>> uv1;
     std::vector<dev::Material> materials;
     std::vector<dev::Texture> textures;
     std::vector<std::array<float, 4>> texels; // linear RGBA, all textures back to back

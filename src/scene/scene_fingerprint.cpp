@@ -15,6 +15,7 @@ uint64_t scene_fingerprint(const Scene& s) {
     h = fnv1a64(s.texels, h);
     h = fnv1a64(s.tangents, h); // empty, and so no change, without normal maps
     h = fnv1a64(s.colors, h);   // likewise without COLOR_0
+    h = fnv1a64(s.uv1, h);      // and without TEXCOORD_1
     h = fnv1a64(s.punctual_lights, h);
     for (const CameraDesc& c : s.cameras) {
         std::vector<float> v(c.position, c.position + 3);

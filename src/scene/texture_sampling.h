@@ -11,7 +11,11 @@
 
 namespace clppm {
 
-// Linear RGB of texture `index` at (u, v); any finite or non-finite coordinate is safe.
+// Linear RGB of texture `index` at (u, v) of its own coordinate set (Texture.texcoord), before
+// its KHR_texture_transform, which is applied here; any finite or non-finite value is safe.
 std::array<double, 3> sample_texture(const Scene& scene, int index, double u, double v);
+
+// A texture reference with the identity transform on TEXCOORD_0.
+dev::Texture plain_texture(uint32_t offset, uint32_t width, uint32_t height, uint32_t wrap);
 
 } // namespace clppm

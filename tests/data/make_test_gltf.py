@@ -46,6 +46,20 @@ def quat_axis_angle(axis, angle):
     return [axis[0] * s, axis[1] * s, axis[2] * s, math.cos(angle / 2)]
 
 
+def write_lit_plate(b, name, prim, lamp):
+    """The plate scenes' rig: `prim` under a point light of 4 W/sr at `lamp`, seen from (0, 1, 2)
+    looking down at the origin; written as `name`."""
+    light = b.light({"name": "lamp", "type": "point", "intensity": 4.0})
+    cam = b.camera(0.9)
+    tilt = quat_axis_angle((1, 0, 0), -math.atan2(1.0, 2.0))
+    b.scene([
+        b.node(name="plate", mesh=b.mesh([prim])),
+        b.node(name="lamp", light=light, translation=lamp),
+        b.node(name="camera", camera=cam, translation=[0.0, 1.0, 2.0], rotation=tilt),
+    ])
+    b.write_embedded(out(name))
+
+
 def png_rgba(rows):
     """A PNG of 8-bit RGBA pixels; rows top first."""
     h, w = len(rows), len(rows[0])
@@ -188,7 +202,7 @@ TEXTURE_PIXELS = [[(0, 0, 0, 255), (255, 255, 255, 255)],
 
 def texture():
     """A 2x2 sRGB PNG as a data URI (sampler: clamp s) and from a bufferView (clamp s and t);
-    a texture on TEXCOORD_1 and one whose image is not an image."""
+    a texture on TEXCOORD_2 (not read) and one whose image is not an image."""
     b = GltfBuilder("clppm tests/data/make_test_gltf.py")
     png = png_rgba(TEXTURE_PIXELS)
     b.doc["images"] = [
@@ -199,7 +213,7 @@ def texture():
     b.doc["samplers"] = [{"wrapS": 33071, "wrapT": 10497}, {"wrapS": 33071, "wrapT": 33071}]
     b.doc["textures"] = [{"source": 0, "sampler": 0}, {"source": 0}, {"source": 1}, {"source": 2, "sampler": 1}]
     b.material("textured", (1, 1, 1), base_color_texture={"index": 0})
-    b.material("second_uv_set", (1, 1, 1), base_color_texture={"index": 1, "texCoord": 1})
+    b.material("third_uv_set", (1, 1, 1), base_color_texture={"index": 1, "texCoord": 2})
     b.material("broken_image", (1, 1, 1), base_color_texture={"index": 2})
     b.material("from_buffer_view", (1, 1, 1), base_color_texture={"index": 3})
     uvs = [(0, 0), (1, 0), (0, 1)]
@@ -236,15 +250,7 @@ def metallic_roughness():
         quad = [(-1.0, 0.0, -1.0), (-1.0, 0.0, 1.0), (1.0, 0.0, 1.0), (1.0, 0.0, -1.0)]
         uvs = [(0, 0), (0, 1), (1, 1), (1, 0)]
         prim = b.primitive(quad, [0, 1, 2, 0, 2, 3], [(0.0, 1.0, 0.0)] * 4, uvs=uvs, material=0)
-        light = b.light({"name": "lamp", "type": "point", "intensity": 4.0})
-        cam = b.camera(0.9)
-        tilt = quat_axis_angle((1, 0, 0), -math.atan2(1.0, 2.0))
-        b.scene([
-            b.node(name="plate", mesh=b.mesh([prim])),
-            b.node(name="lamp", light=light, translation=[0.0, 0.8, -0.6]),
-            b.node(name="camera", camera=cam, translation=[0.0, 1.0, 2.0], rotation=tilt),
-        ])
-        b.write_embedded(out(name))
+        write_lit_plate(b, name, prim, lamp=[0.0, 0.8, -0.6])
 
 
 def lights():
@@ -462,15 +468,7 @@ def normal_maps():
         world = (tilted[0], tilted[2], -tilted[1])
         normals = [world if kind == "geometry" else (0.0, 1.0, 0.0)] * 4
         prim = b.primitive(quad, [0, 1, 2, 0, 2, 3], normals, uvs=uvs, material=plate)
-        light = b.light({"name": "lamp", "type": "point", "intensity": 4.0})
-        cam = b.camera(0.9)
-        tilt = quat_axis_angle((1, 0, 0), -math.atan2(1.0, 2.0))
-        b.scene([
-            b.node(name="plate", mesh=b.mesh([prim])),
-            b.node(name="lamp", light=light, translation=[1.6, 0.5, 0.0]),
-            b.node(name="camera", camera=cam, translation=[0.0, 1.0, 2.0], rotation=tilt),
-        ])
-        b.write_embedded(out(name))
+        write_lit_plate(b, name, prim, lamp=[1.6, 0.5, 0.0])
 
 
 def vertex_colors():
@@ -484,13 +482,7 @@ def vertex_colors():
         prim = b.primitive(quad, [0, 1, 2, 0, 2, 3], [(0.0, 1.0, 0.0)] * 4, material=plate)
         if colored:
             prim["attributes"]["COLOR_0"] = b.accessor([0.5, 0.25, 1.0] * 4, FLOAT, "VEC3", ARRAY_BUFFER)
-        light = b.light({"name": "lamp", "type": "point", "intensity": 4.0})
-        cam = b.camera(0.9)
-        tilt = quat_axis_angle((1, 0, 0), -math.atan2(1.0, 2.0))
-        b.scene([b.node(name="plate", mesh=b.mesh([prim])),
-                 b.node(name="lamp", light=light, translation=[0.0, 0.8, -0.3]),
-                 b.node(name="camera", camera=cam, translation=[0.0, 1.0, 2.0], rotation=tilt)])
-        b.write_embedded(out(name))
+        write_lit_plate(b, name, prim, lamp=[0.0, 0.8, -0.3])
     b = GltfBuilder("clppm tests/data/make_test_gltf.py")
     first = b.primitive(TRI, [0, 1, 2], TRI_N)
     first["attributes"]["COLOR_0"] = b.accessor([255, 0, 0, 255, 0, 255, 0, 128, 0, 0, 51, 0], UBYTE, "VEC4",
@@ -555,6 +547,59 @@ def alpha_modes():
         b.write_embedded(out("alpha_blend_%s.gltf" % kind))
 
 
+def texture_transform():
+    """KHR_texture_transform and TEXCOORD_1: the extension's own example (offset (0, 1), rotation
+    pi/2, scale 0.5: the lower left quadrant turned clockwise) on TEXCOORD_0; a second reference
+    to the same texture moved to TEXCOORD_1 by the extension's texCoord; a MIRRORED_REPEAT
+    sampler. The triangle's TEXCOORD_1 is (2, 0), (3, 0), (2, 1)."""
+    b = GltfBuilder("clppm tests/data/make_test_gltf.py")
+    png = png_rgba(TEXTURE_PIXELS)
+    b.doc["images"] = [{"uri": "data:image/png;base64," + base64.b64encode(png).decode("ascii")}]
+    b.doc["samplers"] = [{"wrapS": 33648, "wrapT": 10497}]
+    b.doc["textures"] = [{"source": 0, "sampler": 0}]
+    example = {"KHR_texture_transform": {"offset": [0, 1], "rotation": math.pi / 2, "scale": [0.5, 0.5]}}
+    b.material("example", (1, 1, 1), base_color_texture={"index": 0, "extensions": example})
+    b.material("second_set", (1, 1, 1), base_color_texture={
+        "index": 0, "extensions": {"KHR_texture_transform": {"texCoord": 1, "offset": [0.25, 0]}}})
+    prims = []
+    for i in range(2):
+        prim = b.primitive([(x, y, float(i)) for x, y, _ in TRI], [0, 1, 2], TRI_N, uvs=[(0, 0), (1, 0), (0, 1)],
+                           material=i)
+        prim["attributes"]["TEXCOORD_1"] = b.accessor([2, 0, 3, 0, 2, 1], FLOAT, "VEC2", ARRAY_BUFFER)
+        prims.append(prim)
+    b.scene([b.node(name="transformed", mesh=b.mesh(prims))])
+    b.doc["extensionsUsed"] = ["KHR_texture_transform"]
+    b.write_embedded(out("texture_transform.gltf"))
+
+
+def uv1_plates():
+    """A lit plate textured through TEXCOORD_1 and a KHR_texture_transform (scale 0.5, offset
+    (0.25, 0.25), rotation 0.3), its TEXCOORD_0 all zeros; and the same plate whose TEXCOORD_0
+    holds the transformed coordinates, untransformed. They render alike."""
+    c, s_ = math.cos(0.3), math.sin(0.3)
+
+    def xf(u, v):
+        return (0.5 * c * u + 0.5 * s_ * v + 0.25, -0.5 * s_ * u + 0.5 * c * v + 0.25)
+    uvs = [(0, 0), (0, 1), (1, 1), (1, 0)]
+    for name, via_set1 in (("uv1_plate_set1.gltf", True), ("uv1_plate_set0.gltf", False)):
+        b = GltfBuilder("clppm tests/data/make_test_gltf.py")
+        png = png_rgba(TEXTURE_PIXELS)
+        b.doc["images"] = [{"uri": "data:image/png;base64," + base64.b64encode(png).decode("ascii")}]
+        b.doc["textures"] = [{"source": 0}]
+        ref = {"index": 0}
+        if via_set1:
+            ref["extensions"] = {"KHR_texture_transform": {"texCoord": 1, "offset": [0.25, 0.25], "rotation": 0.3,
+                                                           "scale": [0.5, 0.5]}}
+            b.doc["extensionsUsed"] = ["KHR_texture_transform"]
+        plate = b.material("plate", (1, 1, 1), roughness=0.6, base_color_texture=ref)
+        quad = [(-1.0, 0.0, -1.0), (-1.0, 0.0, 1.0), (1.0, 0.0, 1.0), (1.0, 0.0, -1.0)]
+        prim = b.primitive(quad, [0, 1, 2, 0, 2, 3], [(0.0, 1.0, 0.0)] * 4,
+                           uvs=[(0, 0)] * 4 if via_set1 else [xf(u, v) for u, v in uvs], material=plate)
+        if via_set1:
+            prim["attributes"]["TEXCOORD_1"] = b.accessor([x for uv in uvs for x in uv], FLOAT, "VEC2", ARRAY_BUFFER)
+        write_lit_plate(b, name, prim, lamp=[0.0, 0.8, -0.3])
+
+
 # ---- errors -------------------------------------------------------------------------------------
 
 def triangle_doc(**material):
@@ -567,7 +612,7 @@ def errors():
     write_text(out("not_gltf.gltf"), '{"hello": 1}\n')
 
     _, doc = triangle_doc()
-    doc["extensionsRequired"] = ["KHR_lights_punctual", "KHR_texture_transform"]
+    doc["extensionsRequired"] = ["KHR_lights_punctual", "EXT_meshopt_compression"]
     doc["extensionsUsed"] = doc["extensionsRequired"]
     write_doc("ext_required.gltf", doc)
 
@@ -644,7 +689,8 @@ def errors():
 def main():
     for make in (hierarchy, index_types, byte_stride, containers, no_normals, degenerate, mirror, metallic_roughness,
                  materials, texture, lights, cameras, quantized, sparse, strips_fans, gpu_instancing, emissive_texture,
-                 normal_maps, vertex_colors, alpha_modes, errors):
+                 normal_maps, vertex_colors, alpha_modes,
+                 texture_transform, uv1_plates, errors):
         make()
 
 

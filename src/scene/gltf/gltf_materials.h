@@ -2,9 +2,12 @@
 // factors checked finite and clamped, the material kind from metallic, roughness and
 // transmission, base colour textures decoded from sRGB, metallic-roughness textures linear.
 #pragma once
+#include <array>
 #include <cstdint>
 #include <map>
+#include <optional>
 #include <string>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -44,17 +47,27 @@ private:
     int32_t texture_reference(int index, int tex_coord, const tinygltf::ExtensionMap& extensions,
                               const std::string& label, const std::string& what, bool srgb);
 
-    int32_t convert_texture(int index, bool srgb);
+    // The texels of glTF texture `index` appended to the scene; nullopt (with a warning) when
+    // its image is unusable.
+    std::optional<dev::Texture> convert_texture(int index, bool srgb);
+    std::array<float, 6> texture_transform(const tinygltf::Value& ext, const std::string& what, int* tex_coord);
 
     void append_texels(const tinygltf::Image& img, bool srgb);
 
-    uint32_t wrap_bits(int sampler, const std::string& label);
+    uint32_t wrap_bits(int sampler);
 
     const tinygltf::Model& m_;
     LoadContext& ctx_;
     Scene& s_;
     int default_material_ = -1;
-    std::map<std::pair<int, bool>, int32_t> texture_cache_; // (glTF texture, sRGB) -> scene texture
+    std::map<std::pair<int, bool>, std::optional<dev::Texture>> image_cache_; // (glTF texture, sRGB) -> texels
+    using TextureKey = std::tuple<int, bool, int, std::array<float, 6>>;      // + texCoord, transform
+    std::map<TextureKey, int32_t> texture_cache_;                             // -> scene texture
+    bool uses_texcoord1_ = false;
+
+public:
+    // Some texture reference reads TEXCOORD_1 (known once convert_materials has run).
+    bool uses_texcoord1() const { return uses_texcoord1_; }
 };
 
 } // namespace clppm::gltf

@@ -254,7 +254,9 @@ WorldVertices SceneBuilder::world_vertices(const tinygltf::Primitive& prim, cons
     for (size_t i = 0; i < pos.count; ++i)
         v.position[i] = transform_point(world, {pos.get(i, 0), pos.get(i, 1), pos.get(i, 2)});
     if (prim.attributes.count("NORMAL")) read_normals(prim, world, label, &v);
-    if (prim.attributes.count("TEXCOORD_0")) read_uvs(prim, label, &v);
+    if (prim.attributes.count("TEXCOORD_0")) read_uvs(prim, label, "TEXCOORD_0", &v.uv, v.position.size());
+    if (materials_.uses_texcoord1() && prim.attributes.count("TEXCOORD_1"))
+        read_uvs(prim, label, "TEXCOORD_1", &v.uv1, v.position.size());
     if (tangents_needed_ && prim.attributes.count("TANGENT")) read_tangents(prim, world, label, &v);
     if (prim.attributes.count("COLOR_0")) read_colors(prim, label, &v);
     return v;
@@ -313,18 +315,19 @@ void SceneBuilder::read_normals(const tinygltf::Primitive& prim, const glm::dmat
         v->normal[i] = unit_or_zero(normal_matrix * glm::dvec3(n.get(i, 0), n.get(i, 1), n.get(i, 2)));
 }
 
-void SceneBuilder::read_uvs(const tinygltf::Primitive& prim, const std::string& label, WorldVertices* v) {
-    AccessorView t = attribute(prim, "TEXCOORD_0", label);
+void SceneBuilder::read_uvs(const tinygltf::Primitive& prim, const std::string& label, const char* name,
+                            std::vector<glm::vec2>* out, size_t vertices) {
+    AccessorView t = attribute(prim, name, label);
     // Core glTF: FLOAT or normalized UNSIGNED_BYTE/SHORT; KHR_mesh_quantization adds the signed
     // and the unnormalized 8- and 16-bit integers (scaled by KHR_texture_transform in practice).
     require(t.components == 2 && t.component_type != TINYGLTF_COMPONENT_TYPE_INT &&
                 t.component_type != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT,
-            label + ": TEXCOORD_0 must be a VEC2 of FLOAT or 8- or 16-bit integers");
-    require(t.count >= v->position.size(), label + ": TEXCOORD_0 has fewer elements than POSITION");
-    v->uv.resize(v->position.size());
-    for (size_t i = 0; i < v->uv.size(); ++i) {
-        v->uv[i] = {narrow_to_float(t.get(i, 0)), narrow_to_float(t.get(i, 1))};
-        if (!std::isfinite(v->uv[i].x) || !std::isfinite(v->uv[i].y)) v->uv[i] = {0.f, 0.f};
+            label + ": " + name + " must be a VEC2 of FLOAT or 8- or 16-bit integers");
+    require(t.count >= vertices, label + ": " + name + " has fewer elements than POSITION");
+    out->resize(vertices);
+    for (size_t i = 0; i < vertices; ++i) {
+        (*out)[i] = {narrow_to_float(t.get(i, 0)), narrow_to_float(t.get(i, 1))};
+        if (!std::isfinite((*out)[i].x) || !std::isfinite((*out)[i].y)) (*out)[i] = {0.f, 0.f};
     }
 }
 
@@ -412,8 +415,14 @@ void SceneBuilder::reserve_triangles(size_t count) {
 void SceneBuilder::add_primitive(const tinygltf::Primitive& prim, const glm::dmat4& world, const std::string& label) {
     uint32_t material = materials_.material_index(prim.material, label);
     WorldVertices v = world_vertices(prim, world, label);
-    if (v.uv.empty() && s_.materials[material].base_color_tex >= 0)
+    const dev::Material& mat = s_.materials[material];
+    bool set[2] = {false, false}; // the coordinate sets the material's textures read
+    for (int32_t tex : {mat.base_color_tex, mat.metallic_roughness_tex, mat.emissive_tex, mat.normal_tex})
+        if (tex >= 0) set[s_.textures[size_t(tex)].texcoord ? 1 : 0] = true;
+    if (v.uv.empty() && set[0])
         ctx_.warn(label + ": textured material without TEXCOORD_0; every texel lookup uses (0, 0)");
+    if (v.uv1.empty() && set[1])
+        ctx_.warn(label + ": a texture reads TEXCOORD_1, which the primitive lacks; its lookups use (0, 0)");
     std::vector<uint32_t> idx = triangle_indices(prim, v.position.size(), label);
     // Tangents per corner: the file's per vertex, else generated where the material needs them.
     std::vector<glm::dvec4> corner_tangents;
@@ -474,6 +483,11 @@ void SceneBuilder::add_triangle(const std::array<uint32_t, 3>& tri, const WorldV
                 t = {float(g.x), float(g.y), float(g.z), float(g.w)};
             }
             s_.tangents.push_back(t);
+        }
+    if (materials_.uses_texcoord1())
+        for (int k = 0; k < 3; ++k) {
+            glm::vec2 t = v.uv1.empty() ? glm::vec2(0.f) : v.uv1[tri[size_t(k)]];
+            s_.uv1.push_back({t.x, t.y});
         }
     if (colors_needed_)
         for (int k = 0; k < 3; ++k) {

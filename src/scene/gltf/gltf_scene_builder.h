@@ -25,6 +25,7 @@ struct WorldVertices {
     std::vector<glm::dvec3> position;
     std::vector<glm::dvec3> normal;  // empty: none in the file; (0,0,0): unusable
     std::vector<glm::vec2> uv;       // empty: none
+    std::vector<glm::vec2> uv1;      // TEXCOORD_1 where a texture reads it; empty: none
     std::vector<glm::dvec4> tangent; // empty: none (xyz world tangent, w bitangent sign)
     std::vector<glm::vec4> color;    // COLOR_0, linear RGBA; empty: none
 };
@@ -81,7 +82,8 @@ private:
     void read_normals(const tinygltf::Primitive& prim, const glm::dmat4& world, const std::string& label,
                       WorldVertices* v);
 
-    void read_uvs(const tinygltf::Primitive& prim, const std::string& label, WorldVertices* v);
+    void read_uvs(const tinygltf::Primitive& prim, const std::string& label, const char* name,
+                  std::vector<glm::vec2>* out, size_t vertices);
 
     // TANGENT: xyz by the world transform's linear part, w negated by a mirroring transform.
     void read_tangents(const tinygltf::Primitive& prim, const glm::dmat4& world, const std::string& label,
