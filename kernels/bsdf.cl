@@ -357,6 +357,7 @@ Bsdf surface_bsdf(SCENE_PARAMS, const Surface* s) {
         metallic *= mr.z;
     }
     float t = HAS_GLASS ? m->transmission : 0.0f;
+    if (HAS_GLASS && HAS_TEXTURES && m->transmission_tex >= 0) t *= texture_lookup(SCENE_ARGS, m->transmission_tex, s->uv).x;
     b.metal = metallic;
     b.glass = (1.0f - metallic) * t;
     b.dielectric = (1.0f - metallic) * (1.0f - t);

@@ -18,6 +18,7 @@
     X(HAS_NORMAL_MAPS, normal_maps, "normal maps")                                                                     \
     X(HAS_VERTEX_COLORS, vertex_colors, "vertex colours")                                                              \
     X(HAS_ALPHA, alpha, "alpha mask or blend")                                                                         \
+    X(HAS_VOLUME, volume, "absorbing volumes")                                                                         \
     X(HAS_AREA_LIGHTS, area_lights, "area lights")                                                                     \
     X(HAS_POINT_LIGHTS, point_lights, "point lights")                                                                  \
     X(HAS_SPOT_LIGHTS, spot_lights, "spot lights")                                                                     \
@@ -46,6 +47,9 @@
 #endif
 #ifndef HAS_ALPHA
 #define HAS_ALPHA 1
+#endif
+#ifndef HAS_VOLUME
+#define HAS_VOLUME 1
 #endif
 #ifndef HAS_AREA_LIGHTS
 #define HAS_AREA_LIGHTS 1

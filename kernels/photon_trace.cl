@@ -33,6 +33,10 @@ __kernel void photon_trace(SCENE_PARAMS, ulong seed, ulong pass, uint first_phot
         Hit hit;
         if (!trace_closest(SCENE_ARGS, org, dir, INFINITY, &hit)) return;
         Surface sf = make_surface(SCENE_ARGS, dir, &hit);
+        if (HAS_VOLUME) {
+            flux *= volume_transmittance(SCENE_ARGS, &sf, sf.t * length(dir));
+            if (!(max3(flux) > 0.0f)) return;
+        }
         Bsdf bsdf = surface_bsdf(SCENE_ARGS, &sf);
         float3 wo = -dir;
         /* Stored where the eye pass puts hit points: on surfaces with lobes the gather keeps. */

@@ -121,6 +121,16 @@ float3 surface_base_color(SCENE_PARAMS, const Surface* s) {
     return c;
 }
 
+/* KHR_materials_volume: the fraction of light that survives the segment of length dist a ray
+ * travelled to reach s from inside (s's back face) a mesh of an absorbing material, by
+ * Beer-Lambert's law exp(-sigma dist). 1 elsewhere. Meshes are taken as closed and not nested. */
+float3 volume_transmittance(SCENE_PARAMS, const Surface* s, float dist) {
+    if (!HAS_VOLUME || s->front) return (float3)(1.0f);
+    float3 sigma = load3g(materials[s->material].attenuation);
+    if (!(max3(sigma) > 0.0f)) return (float3)(1.0f);
+    return exp(-sigma * dist);
+}
+
 /* Emitted radiance: the emission factor times the emissive texture (sRGB decoded) at uv. */
 float3 material_emission(SCENE_PARAMS, uint material, float4 uv) {
     __global const Material* m = &materials[material];

@@ -80,7 +80,10 @@ typedef struct {
     float normal_scale;         /* normalTexture.scale: multiplies the map's x and y */
     float alpha_cutoff;         /* alphaCutoff, for ALPHA_MASK */
     u32 alpha_mode;             /* ALPHA_OPAQUE, ALPHA_MASK or ALPHA_BLEND (kernels/alpha.cl) */
-} Material;                     /* 96 bytes */
+    float attenuation[4];       /* KHR_materials_volume: absorption coefficient per unit length (RGB) */
+    i32 transmission_tex;       /* transmissionTexture (linear, R scales transmission); -1 when none */
+    u32 pad0, pad1, pad2;
+} Material;                     /* 128 bytes */
 
 /* Texture wrap bits per axis (glTF sampler wrapS, wrapT): clamp s, clamp t, mirror s, mirror t;
  * none set is REPEAT. */

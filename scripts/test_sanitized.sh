@@ -18,4 +18,8 @@ export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 # Debug code under ASan runs several times slower: hang guards in the tests stretch by this.
 export CLPPM_TEST_TIME_SCALE=10
 slow='^(ppm_test|sppm_test|extremes_test|cli_test|error_estimate_test|specialization_test|multi_device_test|material_textures_test|smooth_lobe_lights_test)\.'
+# The feature tests' render comparisons (their loader and kernel-reference tests still run).
+slow+='|^(alpha_mode_test\.AlphaMode\.(Masked|Blended)|normal_map_test\.NormalMap\.MappedPlate'
+slow+='|vertex_colors_test\.VertexColors\.Multiply|volume_test\.Volume\.(BeerLambert|TransmissionTexture)'
+slow+='|emissive_texture_test\.EmissiveTexture\.RendersLike)'
 exec ctest --test-dir build-sanitize --output-on-failure -j "$jobs" --timeout 1800 -E "$slow"

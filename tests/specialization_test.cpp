@@ -29,6 +29,21 @@ TEST(Specialization, SameImageAsGenericKernelsOnEveryShippedScene) {
     }
 }
 
+// The material and geometry features' test scenes, where a texture can bring back a lobe the
+// factors alone leave out (a transmissionTexture gives the dielectric base its specular layer).
+TEST(Specialization, SameImageAsGenericKernelsOnTheFeatureScenes) {
+    for (const char* file : {"transmission_texture.gltf", "mr_texture.gltf", "alpha_mask_card.gltf",
+                             "alpha_blend_blend.gltf", "normal_plate_mapped.gltf", "emissive_texture.gltf",
+                             "color_plate_vertex.gltf", "uv1_plate_set1.gltf", "volume_slab.gltf"}) {
+        std::string d = make_temp_dir("spec_features"), out;
+        const std::string args = std::string(CLPPM_TEST_DATA) + "/" + file +
+                                 " --width 32 --height 24 --passes 2 --photons 20000 --quiet --no-png --integrator ppm";
+        ASSERT_EQ(run_clppm(args + " -o " + d + "/s.exr", &out), 0) << out;
+        ASSERT_EQ(run_clppm(args + " -o " + d + "/g.exr --generic-kernels", &out), 0) << out;
+        EXPECT_EQ(read_exr(d + "/s.exr").rgb, read_exr(d + "/g.exr").rgb) << file;
+    }
+}
+
 TEST(Specialization, BuildOptionsRemoveWhatTheSceneDoesNotUse) {
     Scene box = load_default_scene();
     Scene furnace = load_gltf(std::string(CLPPM_SCENES_DIR) + "/furnace.gltf");
@@ -43,7 +58,8 @@ TEST(Specialization, BuildOptionsRemoveWhatTheSceneDoesNotUse) {
     EXPECT_FALSE(fb.specular_layer || fb.textures || fb.spot_lights || fb.point_lights || fb.thin_lens);
     EXPECT_EQ(feature_build_options(ff),
               "-DHAS_SPECULAR_LAYER=0 -DHAS_METAL=0 -DHAS_GLASS=0 -DHAS_TEXTURES=0 -DHAS_NORMAL_MAPS=0 "
-              "-DHAS_VERTEX_COLORS=0 -DHAS_ALPHA=0 -DHAS_POINT_LIGHTS=0 -DHAS_SPOT_LIGHTS=0 -DHAS_DIRECTIONAL_LIGHTS=0 "
+              "-DHAS_VERTEX_COLORS=0 -DHAS_ALPHA=0 -DHAS_VOLUME=0 -DHAS_POINT_LIGHTS=0 -DHAS_SPOT_LIGHTS=0 "
+              "-DHAS_DIRECTIONAL_LIGHTS=0 "
               "-DHAS_THIN_LENS=0");
     EXPECT_EQ(feature_build_options(SceneFeatures::all()), "");
 }

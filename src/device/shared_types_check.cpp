@@ -19,7 +19,7 @@ CLPPM_CHECK_OFFSET(BvhNode, child, 24 * BVH_WIDTH);
 CLPPM_CHECK_OFFSET(BvhNode, count, 28 * BVH_WIDTH);
 static_assert(BVH_WIDTH == 4 || BVH_WIDTH == 8, "bvh_traverse.cl has float4 and float8 node tests");
 
-CLPPM_CHECK_SIZE(Material, 96);
+CLPPM_CHECK_SIZE(Material, 128);
 CLPPM_CHECK_OFFSET(Material, emission, 16);
 CLPPM_CHECK_OFFSET(Material, specular_color, 32);
 CLPPM_CHECK_OFFSET(Material, metallic, 48);
@@ -30,6 +30,8 @@ CLPPM_CHECK_OFFSET(Material, emissive_tex, 76);
 CLPPM_CHECK_OFFSET(Material, normal_tex, 80);
 CLPPM_CHECK_OFFSET(Material, normal_scale, 84);
 CLPPM_CHECK_OFFSET(Material, alpha_mode, 92);
+CLPPM_CHECK_OFFSET(Material, attenuation, 96);
+CLPPM_CHECK_OFFSET(Material, transmission_tex, 112);
 
 CLPPM_CHECK_SIZE(Texture, 48);
 CLPPM_CHECK_OFFSET(Texture, xform, 16);

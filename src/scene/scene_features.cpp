@@ -11,14 +11,21 @@ SceneFeatures scene_features(const Scene& scene, const DeviceScene& ds) {
     for (size_t i = 0; i < scene.materials.size(); ++i) {
         if (!used[i]) continue;
         const dev::Material& m = scene.materials[i];
-        // The lobes of kernels/bsdf.cl this material gives weight to.
-        const float dielectric = (1.f - m.metallic) * (1.f - m.transmission);
+        // The lobes of kernels/bsdf.cl this material gives weight to somewhere: textures only
+        // scale metallic (metallicRoughnessTexture B) and transmission (transmissionTexture R)
+        // down, so with one they may reach 0 and the dielectric base its full weight.
+        const float metallic_min = m.metallic_roughness_tex >= 0 ? 0.f : m.metallic;
+        const float transmission_min = m.transmission_tex >= 0 ? 0.f : m.transmission;
+        const float dielectric = (1.f - metallic_min) * (1.f - transmission_min);
         if (dielectric > 0.f && m.specular_color[3] > 0.f) f.specular_layer = true;
-        if (m.metallic > 0.f) f.metal = true; // a metallicRoughnessTexture only scales it down
-        if (m.transmission > 0.f && m.metallic < 1.f) f.glass = true;
+        if (m.metallic > 0.f) f.metal = true;
+        if (m.transmission > 0.f && metallic_min < 1.f) f.glass = true;
         if (m.base_color_tex >= 0 || m.metallic_roughness_tex >= 0 || m.emissive_tex >= 0) f.textures = true;
         if (m.normal_tex >= 0 && !scene.tangents.empty()) f.textures = f.normal_maps = true;
         if (m.alpha_mode != ALPHA_OPAQUE) f.alpha = true;
+        if (m.transmission > 0.f && (m.attenuation[0] > 0.f || m.attenuation[1] > 0.f || m.attenuation[2] > 0.f))
+            f.volume = true;
+        if (m.transmission_tex >= 0) f.textures = true;
     }
     f.vertex_colors = !scene.colors.empty();
     for (const dev::Light& l : ds.lights) {

@@ -600,6 +600,62 @@ def uv1_plates():
         write_lit_plate(b, name, prim, lamp=[0.0, 0.8, -0.3])
 
 
+def box_primitive(b, lo, hi, material):
+    """A closed box from lo to hi, each face its own 4 vertices with outward normals."""
+    prims_pos, normals, idx = [], [], []
+    for axis in range(3):
+        for side in (0, 1):
+            n = [0.0, 0.0, 0.0]
+            n[axis] = 1.0 if side else -1.0
+            u, v = (axis + 1) % 3, (axis + 2) % 3
+            corners = []
+            for a, c in ((0, 0), (1, 0), (1, 1), (0, 1)):
+                p = [0.0, 0.0, 0.0]
+                p[axis] = hi[axis] if side else lo[axis]
+                p[u] = hi[u] if a else lo[u]
+                p[v] = hi[v] if c else lo[v]
+                corners.append(tuple(p))
+            if not side:  # keep the winding counter-clockwise seen from outside
+                corners = [corners[0], corners[3], corners[2], corners[1]]
+            base = len(prims_pos)
+            prims_pos += corners
+            normals += [tuple(n)] * 4
+            idx += [base, base + 1, base + 2, base + 0, base + 2, base + 3]
+    return b.primitive(prims_pos, idx, normals, material=material)
+
+
+def volumes():
+    """KHR_materials_volume: a smooth glass slab 0.5 thick between the camera and an emitter,
+    attenuationColor (0.5, 0.25, 1) at attenuationDistance 0.5, so exp(-sigma d) = (0.5, 0.25, 1);
+    the same slab without the extension; and transmissionTexture: the slab at transmission 1 with
+    a uniform texture of R = 51 against transmissionFactor 0.2."""
+    variants = (("volume_slab.gltf", "volume"), ("volume_clear.gltf", "clear"),
+                ("transmission_texture.gltf", "texture"), ("transmission_factor.gltf", "factor"))
+    for name, kind in variants:
+        b = GltfBuilder("clppm tests/data/make_test_gltf.py")
+        glass = b.material("glass", (1.0, 1.0, 1.0), roughness=0.0,
+                           transmission=0.2 if kind == "factor" else 1.0, ior=1.5)
+        if kind == "volume":
+            b.doc["materials"][glass].setdefault("extensions", {})["KHR_materials_volume"] = {
+                "thicknessFactor": 0.5, "attenuationDistance": 0.5, "attenuationColor": [0.5, 0.25, 1.0]}
+            b.extensions_used.add("KHR_materials_volume")
+        if kind == "texture":
+            png = png_rgba([[(51, 0, 0, 255)] * 2] * 2)  # 51 / 255 = 0.2, the same float
+            b.doc["images"] = [{"uri": "data:image/png;base64," + base64.b64encode(png).decode("ascii")}]
+            b.doc["textures"] = [{"source": 0}]
+            b.doc["materials"][glass]["extensions"]["KHR_materials_transmission"]["transmissionTexture"] = {"index": 0}
+        lamp = b.material("lamp", (0.0, 0.0, 0.0), emissive=(1.0, 1.0, 1.0), specular=0.0)
+        slab = box_primitive(b, (-3.0, -3.0, -0.25), (3.0, 3.0, 0.25), glass)
+        if kind in ("texture", "factor"):
+            slab["attributes"]["TEXCOORD_0"] = b.accessor([0.5] * (2 * 24), FLOAT, "VEC2", ARRAY_BUFFER)
+        emitter = b.primitive([(-5, -5, -1), (5, -5, -1), (5, 5, -1), (-5, 5, -1)], [0, 1, 2, 0, 2, 3],
+                              [(0, 0, 1)] * 4, material=lamp)
+        cam = b.camera(0.1)
+        b.scene([b.node(name="slab", mesh=b.mesh([slab, emitter])),
+                 b.node(name="camera", camera=cam, translation=[0.0, 0.0, 2.0])])
+        b.write_embedded(out(name))
+
+
 # ---- errors -------------------------------------------------------------------------------------
 
 def triangle_doc(**material):
@@ -690,7 +746,7 @@ def main():
     for make in (hierarchy, index_types, byte_stride, containers, no_normals, degenerate, mirror, metallic_roughness,
                  materials, texture, lights, cameras, quantized, sparse, strips_fans, gpu_instancing, emissive_texture,
                  normal_maps, vertex_colors, alpha_modes,
-                 texture_transform, uv1_plates, errors):
+                 texture_transform, uv1_plates, volumes, errors):
         make()
 
 

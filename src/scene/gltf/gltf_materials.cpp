@@ -48,6 +48,7 @@ dev::Material default_material() {
     m.normal_scale = 1.f;
     m.alpha_mode = ALPHA_OPAQUE;
     m.alpha_cutoff = 0.5f;
+    m.transmission_tex = -1;
     return m;
 }
 
@@ -107,9 +108,55 @@ dev::Material MaterialConverter::convert_material(int index) {
     m.normal_tex = normal_texture(g.normalTexture, label);
     m.normal_scale = finite_factor(g.normalTexture.scale, "normalTexture.scale", label);
     convert_alpha(g, label, m);
+    convert_volume(g, label, m);
     convert_specular(g, label, m);
     m.flags = g.doubleSided ? MATERIAL_FLAG_DOUBLE_SIDED : 0u;
     return m;
+}
+
+// KHR_materials_transmission's transmissionTexture (R scales transmissionFactor) and
+// KHR_materials_volume: inside a mesh whose thicknessFactor is above 0, light is absorbed by
+// Beer-Lambert's law with sigma = -ln(attenuationColor) / attenuationDistance per channel
+// (kernels/scene.cl volume_transmittance). thicknessTexture only approximates the geometry's
+// thickness for rasterisers: a path tracer measures the real one, so it is not read. With
+// thicknessFactor 0 (or no extension) nothing is absorbed.
+void MaterialConverter::convert_volume(const tinygltf::Material& g, const std::string& label, dev::Material& m) {
+    m.transmission_tex = -1;
+    auto tr = g.extensions.find("KHR_materials_transmission");
+    if (tr != g.extensions.end() && tr->second.IsObject() && tr->second.Has("transmissionTexture")) {
+        const tinygltf::Value& ti = tr->second.Get("transmissionTexture");
+        if (!ti.IsObject() || !ti.Has("index") || !ti.Get("index").IsInt())
+            ctx_.fail(label + " transmissionTexture has no texture index");
+        int tex_coord = ti.Has("texCoord") && ti.Get("texCoord").IsInt() ? ti.Get("texCoord").GetNumberAsInt() : 0;
+        tinygltf::ExtensionMap ext;
+        if (ti.Has("extensions") && ti.Get("extensions").IsObject() &&
+            ti.Get("extensions").Has("KHR_texture_transform"))
+            ext["KHR_texture_transform"] = ti.Get("extensions").Get("KHR_texture_transform");
+        m.transmission_tex =
+            texture_reference(ti.Get("index").GetNumberAsInt(), tex_coord, ext, label, "transmissionTexture", false);
+    }
+    for (int c = 0; c < 4; ++c) m.attenuation[c] = 0.f;
+    auto it = g.extensions.find("KHR_materials_volume");
+    if (it == g.extensions.end() || !it->second.IsObject()) return;
+    const tinygltf::Value& v = it->second;
+    const double thickness = extension_number(g.extensions, "KHR_materials_volume", "thicknessFactor", 0.0);
+    double distance = extension_number(g.extensions, "KHR_materials_volume", "attenuationDistance", INFINITY);
+    if (!(distance > 0.0)) ctx_.fail(label + " KHR_materials_volume attenuationDistance must be positive");
+    double color[3] = {1, 1, 1};
+    if (v.Has("attenuationColor")) {
+        const tinygltf::Value& c = v.Get("attenuationColor");
+        if (!c.IsArray() || c.ArrayLen() != 3) ctx_.fail(label + " attenuationColor must have 3 components");
+        for (int k = 0; k < 3; ++k) {
+            if (!c.Get(k).IsNumber()) ctx_.fail(label + " attenuationColor must have 3 numbers");
+            color[k] = std::clamp(c.Get(k).GetNumberAsDouble(), 0.0, 1.0);
+        }
+    }
+    if (!(thickness > 0.0) || std::isinf(distance)) return;
+    for (int k = 0; k < 3; ++k) {
+        // A colour of 0 absorbs everything: the largest coefficient a float holds.
+        const double sigma = color[k] > 0 ? -std::log(color[k]) / distance : 3e38;
+        m.attenuation[k] = finite_factor(std::min(sigma, 3e38), "volume attenuation", label);
+    }
 }
 
 // alphaMode (glTF 2.0 Sec. 3.9.4; kernels/alpha.cl): OPAQUE ignores alpha, MASK cuts out where

@@ -33,6 +33,7 @@ private:
     float finite_factor(double v, const std::string& what, const std::string& label);
     void convert_specular(const tinygltf::Material& g, const std::string& label, dev::Material& m);
     void convert_alpha(const tinygltf::Material& g, const std::string& label, dev::Material& m);
+    void convert_volume(const tinygltf::Material& g, const std::string& label, dev::Material& m);
 
     dev::Material convert_material(int index);
 

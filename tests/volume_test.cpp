@@ -1,0 +1,65 @@
+// KHR_materials_volume and transmissionTexture. Inside a mesh of an absorbing material light
+// falls off by Beer-Lambert's law: an emitter seen through a glass slab 0.5 thick of
+// attenuationColor (0.5, 0.25, 1) at attenuationDistance 0.5 is that colour times the clear
+// slab's image, channel by channel (the near-normal rays cross the slab once, up to internal
+// reflections of F^2 = 0.0016), for photon mapping and the path tracer. A transmissionTexture
+// scales transmissionFactor.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "io/image_io.h"
+#include "scene/gltf/gltf_load.h"
+#include "test_util.h"
+
+using namespace clppm;
+using namespace clppm::test;
+
+namespace {
+
+std::string data(const char* name) { return std::string(CLPPM_TEST_DATA) + "/" + name; }
+
+std::array<double, 3> channel_means(const std::string& file, const char* integrator) {
+    std::string d = make_temp_dir("volume"), out;
+    const std::string args = data(file.c_str()) + " --width 16 --height 16 --passes 4 --quiet --no-png --integrator " +
+                             integrator + " -o " + d + "/i.exr";
+    EXPECT_EQ(run_clppm(args, &out), 0) << out;
+    Image img = read_exr(d + "/i.exr");
+    std::array<double, 3> m{0, 0, 0};
+    for (size_t i = 0; i < img.rgb.size(); ++i) m[i % 3] += img.rgb[i];
+    for (double& v : m) v /= double(img.rgb.size() / 3);
+    return m;
+}
+
+} // namespace
+
+TEST(Volume, AttenuationCoefficientsAreMinusLogColourOverDistance) {
+    Scene s = load_gltf(data("volume_slab.gltf"));
+    const dev::Material& glass = s.materials[0];
+    EXPECT_NEAR(glass.attenuation[0], std::log(2.0) / 0.5, 1e-6);
+    EXPECT_NEAR(glass.attenuation[1], std::log(4.0) / 0.5, 1e-6);
+    EXPECT_EQ(glass.attenuation[2], 0.f);
+    EXPECT_EQ(load_gltf(data("volume_clear.gltf")).materials[0].attenuation[0], 0.f);
+    EXPECT_TRUE(s.warnings.empty()) << s.warnings[0];
+    Scene t = load_gltf(data("transmission_texture.gltf"));
+    ASSERT_GE(t.materials[0].transmission_tex, 0);
+    EXPECT_FLOAT_EQ(t.texels[0][0], 0.2f) << "transmissionTexture is linear (51 / 255)";
+}
+
+TEST(Volume, BeerLambertThroughASlab) {
+    const double T[3] = {0.5, 0.25, 1.0}; // exp(-sigma d) per channel
+    for (const char* integrator : {"sppm", "pt"}) {
+        SCOPED_TRACE(integrator);
+        std::array<double, 3> tinted = channel_means("volume_slab.gltf", integrator);
+        std::array<double, 3> clear = channel_means("volume_clear.gltf", integrator);
+        for (int c = 0; c < 3; ++c) {
+            ASSERT_GT(clear[size_t(c)], 0.8) << "the clear slab passes (1 - F)^2 of the light";
+            // Internal reflections scale the ratio by (1 - F^2) / (1 - F^2 T^2), within 0.2%.
+            EXPECT_NEAR(tinted[size_t(c)] / clear[size_t(c)], T[c], 0.005 * T[c]) << "channel " << c;
+        }
+    }
+}
+
+TEST(Volume, TransmissionTextureScalesTheFactor) {
+    expect_scenes_render_alike("transmission_texture.gltf", "transmission_factor.gltf", 1e-3);
+}
