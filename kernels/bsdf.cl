@@ -366,7 +366,12 @@ Bsdf surface_bsdf(SCENE_PARAMS, const Surface* s) {
      * specular colour, at most 1, both F0 and F90 times the specular factor. */
     float q = (m->ior - 1.0f) / (m->ior + 1.0f);
     float spec = HAS_SPECULAR_LAYER ? m->specular_color[3] : 0.0f;
-    b.f0 = fmin(q * q * load3g(m->specular_color), (float3)(1.0f)) * spec;
+    float3 spec_color = load3g(m->specular_color);
+    if (HAS_SPECULAR_LAYER && HAS_TEXTURES && m->specular_tex >= 0)
+        spec *= texture_rgba(textures, texels, m->specular_tex, s->uv).w;
+    if (HAS_SPECULAR_LAYER && HAS_TEXTURES && m->specular_color_tex >= 0)
+        spec_color *= texture_lookup(SCENE_ARGS, m->specular_color_tex, s->uv);
+    b.f0 = fmin(q * q * spec_color, (float3)(1.0f)) * spec;
     b.f90 = spec;
     b.eta = s->front ? m->ior : 1.0f / m->ior;
     return b;

@@ -82,7 +82,9 @@ typedef struct {
     u32 alpha_mode;             /* ALPHA_OPAQUE, ALPHA_MASK or ALPHA_BLEND (kernels/alpha.cl) */
     float attenuation[4];       /* KHR_materials_volume: absorption coefficient per unit length (RGB) */
     i32 transmission_tex;       /* transmissionTexture (linear, R scales transmission); -1 when none */
-    u32 pad0, pad1, pad2;
+    i32 specular_tex;           /* KHR_materials_specular specularTexture (linear, A); -1 when none */
+    i32 specular_color_tex;     /* specularColorTexture (sRGB, RGB); -1 when none */
+    u32 pad0;
 } Material;                     /* 128 bytes */
 
 /* Texture wrap bits per axis (glTF sampler wrapS, wrapT): clamp s, clamp t, mirror s, mirror t;

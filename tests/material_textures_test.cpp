@@ -59,3 +59,14 @@ TEST(MaterialTextures, MetallicRoughnessTextureScalesTheFactors) {
 TEST(MaterialTextures, SecondCoordinateSetThroughATransform) {
     expect_scenes_render_alike("uv1_plate_set1.gltf", "uv1_plate_set0.gltf", 1e-3);
 }
+
+// KHR_materials_specular's textures scale its factors: specularTexture's alpha the
+// specularFactor, specularColorTexture (sRGB) the specularColorFactor.
+TEST(MaterialTextures, SpecularTexturesScaleTheFactors) {
+    expect_scenes_render_alike("specular_texture.gltf", "specular_factor.gltf", 1e-3);
+    for (const char* integrator : {"sppm", "pt"}) // and ignoring them (factors 1) would show
+        EXPECT_GT(std::fabs(render_test_scene_mean("specular_untextured.gltf", integrator) /
+                                render_test_scene_mean("specular_texture.gltf", integrator) -
+                            1.0),
+                  0.05);
+}

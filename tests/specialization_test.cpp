@@ -32,9 +32,10 @@ TEST(Specialization, SameImageAsGenericKernelsOnEveryShippedScene) {
 // The material and geometry features' test scenes, where a texture can bring back a lobe the
 // factors alone leave out (a transmissionTexture gives the dielectric base its specular layer).
 TEST(Specialization, SameImageAsGenericKernelsOnTheFeatureScenes) {
-    for (const char* file : {"transmission_texture.gltf", "mr_texture.gltf", "alpha_mask_card.gltf",
-                             "alpha_blend_blend.gltf", "normal_plate_mapped.gltf", "emissive_texture.gltf",
-                             "color_plate_vertex.gltf", "uv1_plate_set1.gltf", "volume_slab.gltf"}) {
+    for (const char* file :
+         {"transmission_texture.gltf", "mr_texture.gltf", "alpha_mask_card.gltf", "alpha_blend_blend.gltf",
+          "normal_plate_mapped.gltf", "emissive_texture.gltf", "color_plate_vertex.gltf", "uv1_plate_set1.gltf",
+          "volume_slab.gltf", "specular_texture.gltf"}) {
         std::string d = make_temp_dir("spec_features"), out;
         const std::string args = std::string(CLPPM_TEST_DATA) + "/" + file +
                                  " --width 32 --height 24 --passes 2 --photons 20000 --quiet --no-png --integrator ppm";

@@ -32,6 +32,7 @@ CLPPM_CHECK_OFFSET(Material, normal_scale, 84);
 CLPPM_CHECK_OFFSET(Material, alpha_mode, 92);
 CLPPM_CHECK_OFFSET(Material, attenuation, 96);
 CLPPM_CHECK_OFFSET(Material, transmission_tex, 112);
+CLPPM_CHECK_OFFSET(Material, specular_color_tex, 120);
 
 CLPPM_CHECK_SIZE(Texture, 48);
 CLPPM_CHECK_OFFSET(Texture, xform, 16);

@@ -656,6 +656,28 @@ def volumes():
         b.write_embedded(out(name))
 
 
+def specular_textures():
+    """KHR_materials_specular textures: a plate whose uniform specularTexture (A = 51: 0.2) and
+    specularColorTexture (sRGB (255, 0, 255)) scale factors of 1, against the plate with factors
+    0.2 and (1, 0, 1), and the plate with factors 1 (what ignoring the textures would give)."""
+    for name, textured in (("specular_texture.gltf", True), ("specular_factor.gltf", False),
+                           ("specular_untextured.gltf", None)):
+        b = GltfBuilder("clppm tests/data/make_test_gltf.py")
+        plate = b.material("plate", (0.3, 0.5, 0.7), roughness=0.4, specular=0.2 if textured is False else 1.0,
+                           specular_color=(1.0, 0.0, 1.0) if textured is False else (1.0, 1.0, 1.0))
+        if textured:
+            pngs = [png_rgba([[(0, 0, 0, 51)] * 2] * 2), png_rgba([[(255, 0, 255, 255)] * 2] * 2)]
+            b.doc["images"] = [{"uri": "data:image/png;base64," + base64.b64encode(p).decode("ascii")} for p in pngs]
+            b.doc["textures"] = [{"source": 0}, {"source": 1}]
+            spec = b.doc["materials"][plate]["extensions"]["KHR_materials_specular"]
+            spec["specularTexture"] = {"index": 0}
+            spec["specularColorTexture"] = {"index": 1}
+        quad = [(-1.0, 0.0, -1.0), (-1.0, 0.0, 1.0), (1.0, 0.0, 1.0), (1.0, 0.0, -1.0)]
+        prim = b.primitive(quad, [0, 1, 2, 0, 2, 3], [(0.0, 1.0, 0.0)] * 4, uvs=[(0, 0), (0, 1), (1, 1), (1, 0)],
+                           material=plate)
+        write_lit_plate(b, name, prim, lamp=[0.0, 0.8, -0.6])
+
+
 # ---- errors -------------------------------------------------------------------------------------
 
 def triangle_doc(**material):
@@ -746,7 +768,8 @@ def main():
     for make in (hierarchy, index_types, byte_stride, containers, no_normals, degenerate, mirror, metallic_roughness,
                  materials, texture, lights, cameras, quantized, sparse, strips_fans, gpu_instancing, emissive_texture,
                  normal_maps, vertex_colors, alpha_modes,
-                 texture_transform, uv1_plates, volumes, errors):
+                 texture_transform, uv1_plates, volumes,
+                 specular_textures, errors):
         make()
 
 

@@ -49,6 +49,7 @@ dev::Material default_material() {
     m.alpha_mode = ALPHA_OPAQUE;
     m.alpha_cutoff = 0.5f;
     m.transmission_tex = -1;
+    m.specular_tex = m.specular_color_tex = -1;
     return m;
 }
 
@@ -114,6 +115,21 @@ dev::Material MaterialConverter::convert_material(int index) {
     return m;
 }
 
+// A textureInfo inside a material extension (tinygltf leaves those as JSON values): -1 without it.
+int32_t MaterialConverter::extension_texture(const tinygltf::Material& g, const char* extension, const char* key,
+                                             const std::string& label, bool srgb) {
+    auto it = g.extensions.find(extension);
+    if (it == g.extensions.end() || !it->second.IsObject() || !it->second.Has(key)) return -1;
+    const tinygltf::Value& ti = it->second.Get(key);
+    if (!ti.IsObject() || !ti.Has("index") || !ti.Get("index").IsInt())
+        ctx_.fail(label + " " + key + " has no texture index");
+    int tex_coord = ti.Has("texCoord") && ti.Get("texCoord").IsInt() ? ti.Get("texCoord").GetNumberAsInt() : 0;
+    tinygltf::ExtensionMap ext;
+    if (ti.Has("extensions") && ti.Get("extensions").IsObject() && ti.Get("extensions").Has("KHR_texture_transform"))
+        ext["KHR_texture_transform"] = ti.Get("extensions").Get("KHR_texture_transform");
+    return texture_reference(ti.Get("index").GetNumberAsInt(), tex_coord, ext, label, key, srgb);
+}
+
 // KHR_materials_transmission's transmissionTexture (R scales transmissionFactor) and
 // KHR_materials_volume: inside a mesh whose thicknessFactor is above 0, light is absorbed by
 // Beer-Lambert's law with sigma = -ln(attenuationColor) / attenuationDistance per channel
@@ -121,20 +137,7 @@ dev::Material MaterialConverter::convert_material(int index) {
 // thickness for rasterisers: a path tracer measures the real one, so it is not read. With
 // thicknessFactor 0 (or no extension) nothing is absorbed.
 void MaterialConverter::convert_volume(const tinygltf::Material& g, const std::string& label, dev::Material& m) {
-    m.transmission_tex = -1;
-    auto tr = g.extensions.find("KHR_materials_transmission");
-    if (tr != g.extensions.end() && tr->second.IsObject() && tr->second.Has("transmissionTexture")) {
-        const tinygltf::Value& ti = tr->second.Get("transmissionTexture");
-        if (!ti.IsObject() || !ti.Has("index") || !ti.Get("index").IsInt())
-            ctx_.fail(label + " transmissionTexture has no texture index");
-        int tex_coord = ti.Has("texCoord") && ti.Get("texCoord").IsInt() ? ti.Get("texCoord").GetNumberAsInt() : 0;
-        tinygltf::ExtensionMap ext;
-        if (ti.Has("extensions") && ti.Get("extensions").IsObject() &&
-            ti.Get("extensions").Has("KHR_texture_transform"))
-            ext["KHR_texture_transform"] = ti.Get("extensions").Get("KHR_texture_transform");
-        m.transmission_tex =
-            texture_reference(ti.Get("index").GetNumberAsInt(), tex_coord, ext, label, "transmissionTexture", false);
-    }
+    m.transmission_tex = extension_texture(g, "KHR_materials_transmission", "transmissionTexture", label, false);
     for (int c = 0; c < 4; ++c) m.attenuation[c] = 0.f;
     auto it = g.extensions.find("KHR_materials_volume");
     if (it == g.extensions.end() || !it->second.IsObject()) return;
@@ -174,6 +177,7 @@ void MaterialConverter::convert_alpha(const tinygltf::Material& g, const std::st
 void MaterialConverter::convert_specular(const tinygltf::Material& g, const std::string& label, dev::Material& m) {
     for (int c = 0; c < 3; ++c) m.specular_color[c] = 1.f;
     m.specular_color[3] = 1.f;
+    m.specular_tex = m.specular_color_tex = -1;
     auto it = g.extensions.find("KHR_materials_specular");
     if (it == g.extensions.end() || !it->second.IsObject()) return;
     const tinygltf::Value& ext = it->second;
@@ -193,8 +197,9 @@ void MaterialConverter::convert_specular(const tinygltf::Material& g, const std:
         ctx_.warn(label + " specularFactor " + std::to_string(m.specular_color[3]) + " is above 1; using 1");
         m.specular_color[3] = 1.f;
     }
-    if (ext.Has("specularTexture") || ext.Has("specularColorTexture"))
-        ctx_.warn(label + " KHR_materials_specular textures are not supported; factors only");
+    // specularTexture's A scales specularFactor, specularColorTexture (sRGB) the colour factor.
+    m.specular_tex = extension_texture(g, "KHR_materials_specular", "specularTexture", label, false);
+    m.specular_color_tex = extension_texture(g, "KHR_materials_specular", "specularColorTexture", label, true);
 }
 
 uint32_t MaterialConverter::material_index(int gltf_material, const std::string& owner) {
