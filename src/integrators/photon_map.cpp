@@ -114,6 +114,13 @@ bool PhotonMap::trace(uint64_t pass, uint32_t first, uint32_t count) {
     return stored <= capacity_;
 }
 
+PhotonMap::~PhotonMap() {
+    try {
+        dc_.queue.finish();
+    } catch (const cl::Error&) { // a lost device: nothing left to wait for
+    }
+}
+
 void PhotonMap::build_grid(double typical_radius, double max_radius) {
     const uint32_t n = stored_;
     // A member, not a local: the non-blocking write below reads it after this function returns.

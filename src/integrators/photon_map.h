@@ -28,6 +28,11 @@ public:
     // budget allows; CLPPM_PHOTON_BATCH overrides it, for tests).
     PhotonMap(const DeviceContext& dc, const DeviceScene& scene, const RenderSettings& settings,
               const cl::Program& program, IntegratorStats& stats, uint64_t max_batch_photons = 0);
+    // Waits for the device queue: a non-blocking write still reads grid_host_ (an interrupted
+    // pass destroys the map while its commands run).
+    ~PhotonMap();
+    PhotonMap(const PhotonMap&) = delete;
+    PhotonMap& operator=(const PhotonMap&) = delete;
 
     // Pass `pass` (1-based: the RNG streams): traces photons [first, first + count) of the pass's
     // settings.photons, in batches when needed, and for each batch builds the grid (cells sized
