@@ -15,8 +15,17 @@
  *    base colour, scaled by (1 - E(cos_o))(1 - E(cos_i)) / (1 - E_avg), where E is the layer's
  *    directional albedo (kernels/ggx_albedo.h). That scaling keeps the pair reciprocal and makes
  *    its albedo exactly E(cos_o) + base (1 - E(cos_o)) (Kelemen and Szirmay-Kalos 2001).
- *  - LOBE_GLASS, weight (1 - metallic) transmission: a smooth dielectric with exact Fresnel and
- *    refraction by the ior, the transmitted light tinted by the base colour.
+ *  - LOBE_GLASS, weight (1 - metallic) transmission: a dielectric interface with exact Fresnel,
+ *    the transmitted light tinted by the base colour. Smooth (alpha below MIRROR_ALPHA) it is a
+ *    delta pair, mirror and refraction by the ior; rough, it is the GGX dielectric of Walter et
+ *    al. 2007 (reflection Eq. 20, transmission Eq. 21 with the generalised half vector, Eq. 16),
+ *    sampled by visible normals and then reflect-or-refract by F(wo.h). A thin-walled material
+ *    (glTF without KHR_materials_volume, or thicknessFactor 0) does not bend light: its
+ *    transmission is the reflection lobe mirrored through the surface (-wo when smooth).
+ *    The transmission is written in flux form: f(wo, wi) carries eta_i^2 of wi's side, so a
+ *    sample's weight is (1 - F) G2 / G1 whichever way light goes and photons and eye paths share
+ *    one function; eye paths thereby carry radiance times (eta_light / eta_eye)^2, which is 1
+ *    whenever the camera and the lights are both outside every dielectric (README.md).
  * Reflection lobes with alpha below MIRROR_ALPHA are mirrors (delta lobes): the same Fresnel at
  * the view angle, so the model is continuous in roughness down to 0.
  * All directions point away from the surface; wo is on the side of the shading normal. */
@@ -48,6 +57,7 @@ typedef struct {
     float alpha;   /* GGX alpha of both reflection lobes */
     float dielectric, glass, metal; /* lobe weights */
     float eta;     /* LOBE_GLASS: relative index n_t / n_i for light crossing from the ns side */
+    bool thin;     /* LOBE_GLASS: thin-walled, transmission does not bend */
 } Bsdf;
 
 typedef struct {
@@ -133,6 +143,77 @@ float3 layer_albedo_avg(const Bsdf* b) {
 
 /* ---- lobes ------------------------------------------------------------------------------------ */
 
+/* The glass lobe is a rough dielectric (not a delta pair). An interface of index 1 does not
+ * refract at any roughness: it stays a delta (straight through), where the rough lobe's
+ * Jacobian would be singular. */
+bool glass_is_rough(const Bsdf* b) {
+    return HAS_GLASS && HAS_ROUGH_GLASS && b->alpha >= MIRROR_ALPHA && (b->thin || fabs(b->eta - 1.0f) > 1e-3f);
+}
+
+/* The rough glass lobe at (wo, wi), unweighted: f, with the transmission tinted by the base
+ * colour, and in *pdf the density glass_sample draws wi with. wi below the surface is
+ * transmission. Walter et al. 2007: D G2 F / (4 |cos_o cos_i|) for reflection and, for
+ * refraction through h = +-normalize(wo + eta wi) (Eq. 16), (1 - F) D G2 |wo.h| |wi.h| eta^2 /
+ * (|cos_o cos_i| (wo.h + eta wi.h)^2) (Eq. 21 in flux form, see above), whose last factor
+ * eta^2 |wi.h| / (wo.h + eta wi.h)^2 is the Jacobian dh / dwi (Eq. 17). */
+float3 glass_eval(const Bsdf* b, float3 wo, float3 wi, float* pdf) {
+    *pdf = 0.0f;
+    float3 n = b->ns;
+    float cos_o = dot(n, wo), cos_i = dot(n, wi);
+    if (!(cos_o > 0.0f) || cos_i == 0.0f) return (float3)(0.0f);
+    bool reflect = cos_i > 0.0f;
+    float3 h;
+    if (reflect) h = wo + wi;
+    else if (b->thin) h = wo + (wi - 2.0f * cos_i * n); /* wi mirrored back above the surface */
+    else h = wo + b->eta * wi;
+    float hl = length(h);
+    if (!(hl > 0.0f)) return (float3)(0.0f);
+    h /= hl;
+    if (dot(h, n) < 0.0f) h = -h;
+    float o_h = dot(wo, h);
+    if (!(o_h > 0.0f)) return (float3)(0.0f);
+    float F = fresnel_dielectric(o_h, b->eta);
+    float d = ggx_d(dot(n, h), b->alpha);
+    float g1 = ggx_g1(cos_o, b->alpha), g2 = ggx_g2(cos_o, fabs(cos_i), b->alpha);
+    if (reflect || b->thin) {
+        float k = reflect ? F : 1.0f - F;
+        *pdf = k * g1 * d / (4.0f * cos_o);
+        float f = k * d * g2 / (4.0f * cos_o * fabs(cos_i));
+        return reflect ? (float3)(f) : b->base * f;
+    }
+    float i_h = dot(wi, h);
+    if (!(i_h < 0.0f) || !(F < 1.0f)) return (float3)(0.0f);
+    float denom = o_h + b->eta * i_h;
+    float jacobian = b->eta * b->eta * -i_h / (denom * denom);
+    *pdf = (1.0f - F) * g1 * d * o_h / cos_o * jacobian;
+    return b->base * ((1.0f - F) * d * g2 * o_h / (cos_o * -cos_i) * jacobian);
+}
+
+/* Samples the rough glass lobe: h by the visible normals from wo, then reflection with
+ * probability F(wo.h), else refraction through h (or, thin-walled, the reflection mirrored
+ * through the surface). False when the direction falls on the wrong side. */
+bool glass_sample(const Bsdf* b, float3 wo, float u_in, float u1, float u2, float3* wi, bool* below) {
+    float3 n = b->ns;
+    float3 h = ggx_sample_h(n, wo, b->alpha, u1, u2);
+    float o_h = dot(wo, h);
+    if (!(o_h > 0.0f)) return false;
+    float F = fresnel_dielectric(o_h, b->eta);
+    float3 r = normalize(2.0f * o_h * h - wo);
+    if (u_in < F) {
+        *wi = r;
+        *below = false;
+        return dot(n, r) > 0.0f;
+    }
+    *below = true;
+    if (b->thin) {
+        float c = dot(n, r);
+        *wi = r - 2.0f * c * n;
+        return c > 0.0f;
+    }
+    *wi = refract_dir(-wo, h, b->eta);
+    return dot(n, *wi) < 0.0f;
+}
+
 bool has_layer(const Bsdf* b) { return HAS_SPECULAR_LAYER && b->dielectric > 0.0f && b->f90 > 0.0f; }
 
 /* Nothing but the Lambertian lobe (no layer, metal or glass): the fast paths below. */
@@ -204,9 +285,13 @@ LobeWeights lobe_weights(const Bsdf* b, float cos_o, uint mask) {
 /* f(wo, wi) of the non-delta part of the lobes in mask; zero for wi below the surface. */
 float3 bsdf_eval(const Bsdf* b, float3 wo, float3 wi, uint mask) {
     float cos_o = dot(b->ns, wo), cos_i = dot(b->ns, wi);
-    if (cos_o <= 0.0f || cos_i <= 0.0f) return (float3)(0.0f);
-    if (bsdf_plain_lambert(b)) return (mask & LOBE_DIFFUSE) ? b->base * (b->dielectric * INV_PI_F) : (float3)(0.0f);
     float3 f = (float3)(0.0f);
+    if (HAS_ROUGH_GLASS && (mask & LOBE_GLASS) && b->glass > 0.0f && glass_is_rough(b)) {
+        float pdf;
+        f = glass_eval(b, wo, wi, &pdf) * b->glass;
+    }
+    if (cos_o <= 0.0f || cos_i <= 0.0f) return f;
+    if (bsdf_plain_lambert(b)) return (mask & LOBE_DIFFUSE) ? b->base * (b->dielectric * INV_PI_F) : (float3)(0.0f);
     if (mask & LOBE_DIFFUSE) f += diffuse_eval(b, cos_o, cos_i);
     if (!HAS_NON_DIFFUSE || bsdf_is_mirror(b)) return f;
     bool layer = has_layer(b) && (mask & LOBE_SPECULAR);
@@ -224,8 +309,14 @@ float3 bsdf_eval(const Bsdf* b, float3 wo, float3 wi, uint mask) {
 /* The density bsdf_sample draws a non-delta wi with, given the selection weights w. */
 float bsdf_pdf_weighted(const Bsdf* b, float3 wo, float3 wi, const LobeWeights* w) {
     float cos_o = dot(b->ns, wo), cos_i = dot(b->ns, wi);
-    if (cos_o <= 0.0f || cos_i <= 0.0f || !(w->total > 0.0f)) return 0.0f;
-    float p = (w->diffuse + w->metal_ms) * cos_i * INV_PI_F;
+    if (cos_o <= 0.0f || !(w->total > 0.0f)) return 0.0f;
+    float p = 0.0f;
+    if (HAS_ROUGH_GLASS && w->glass > 0.0f && glass_is_rough(b)) {
+        glass_eval(b, wo, wi, &p);
+        p *= w->glass;
+    }
+    if (cos_i <= 0.0f) return p / w->total;
+    p += (w->diffuse + w->metal_ms) * cos_i * INV_PI_F;
     if (!bsdf_is_mirror(b) && w->layer + w->metal > 0.0f) p += (w->layer + w->metal) * ggx_pdf(b->ns, wo, wi, b->alpha);
     return p / w->total;
 }
@@ -283,7 +374,8 @@ bool bsdf_sample(const Bsdf* b, float3 wo, uint mask, float u_lobe, float u1, fl
     float u_in = clamp((u - acc) / wt, 0.0f, 0.99999994f);
     float p_tech = wt / total;
     bool mirror = bsdf_is_mirror(b);
-    if (HAS_GLASS && tech == TECH_GLASS) {
+    bool rough_glass = HAS_GLASS && tech == TECH_GLASS && glass_is_rough(b);
+    if (HAS_GLASS && tech == TECH_GLASS && !rough_glass) {
         /* Reflect with probability F: the Fresnel weights cancel the probabilities. */
         float F = fresnel_dielectric(cos_o, b->eta);
         s->delta = true;
@@ -292,7 +384,7 @@ bool bsdf_sample(const Bsdf* b, float3 wo, uint mask, float u_lobe, float u1, fl
             s->weight = (float3)(b->glass / p_tech);
             return true;
         }
-        s->wi = refract_dir(-wo, b->ns, b->eta);
+        s->wi = b->thin ? -wo : refract_dir(-wo, b->ns, b->eta);
         if (dot(s->wi, b->ng) >= 0.0f) return false;
         s->below = true;
         s->weight = b->base * (b->glass / p_tech);
@@ -306,7 +398,17 @@ bool bsdf_sample(const Bsdf* b, float3 wo, uint mask, float u_lobe, float u1, fl
         s->weight = F / p_tech;
         return true;
     }
-    if (tech == TECH_DIFFUSE || tech == TECH_METAL_MS) {
+    if (rough_glass) {
+        if (!glass_sample(b, wo, u_in, u1, u2, &s->wi, &s->below)) return false;
+        if (s->below) { /* transmission: only the glass lobe reaches below */
+            float cos_t = dot(b->ns, s->wi);
+            if (dot(s->wi, b->ng) >= 0.0f) return false;
+            s->pdf = bsdf_pdf_weighted(b, wo, s->wi, &w);
+            if (!(s->pdf > 0.0f)) return false;
+            s->weight = bsdf_eval(b, wo, s->wi, mask) * (-cos_t / s->pdf);
+            return true;
+        }
+    } else if (tech == TECH_DIFFUSE || tech == TECH_METAL_MS) {
         s->wi = sample_cosine_hemisphere(b->ns, u1, u2);
     } else {
         float3 h = ggx_sample_h(b->ns, wo, b->alpha, u1, u2);
@@ -373,7 +475,8 @@ Bsdf surface_bsdf(SCENE_PARAMS, const Surface* s) {
         spec_color *= texture_lookup(SCENE_ARGS, m->specular_color_tex, s->uv);
     b.f0 = fmin(q * q * spec_color, (float3)(1.0f)) * spec;
     b.f90 = spec;
-    b.eta = s->front ? m->ior : 1.0f / m->ior;
+    b.thin = (m->flags & MATERIAL_FLAG_THIN_WALLED) != 0u;
+    b.eta = s->front || b.thin ? m->ior : 1.0f / m->ior;
     return b;
 }
 

@@ -1,8 +1,8 @@
 /* eye_pass.cl: the first pass of progressive photon mapping (Hachisuka et al. 2008, Sec. 4.1).
  * Each pixel sample follows specular chains from the camera and stores a hit point wherever a
  * surface has lobes the gather can estimate (diffuse, and reflection at least
- * GLOSSY_HITPOINT_ALPHA rough: bsdf_gathered_lobes in kernels/bsdf.cl); smoother lobes and glass
- * are sampled through. Where a surface splits the path (a hit point and a smooth reflection,
+ * GLOSSY_HITPOINT_ALPHA rough: bsdf_gathered_lobes in kernels/bsdf.cl); smoother lobes and glass,
+ * rough or smooth, are sampled through. Where a surface splits the path (a hit point and a smooth reflection,
  * glass's reflection and refraction), the branches are followed with their weights while slots
  * remain (EYE_SLOTS per sample), so the stored
  * set of hit points carries no sampling noise from those choices; beyond that one branch is
@@ -66,6 +66,13 @@ Branch ray_branch(float3 weight, float3 dir, bool below) {
 
 #define MAX_BRANCHES 4
 
+/* The lobes the eye path samples through with one ray (and lights by next-event estimation):
+ * the reflection lobes hit points do not keep, and rough glass; smooth glass branches apart. */
+uint eye_followed_lobes(const Bsdf* bsdf) {
+    uint followed = LOBE_ALL & ~bsdf_gathered_lobes(bsdf->alpha);
+    return glass_is_rough(bsdf) ? followed : followed & ~LOBE_GLASS;
+}
+
 /* The continuations of an eye path at a surface (kernels/bsdf.cl decides which lobes are whose):
  * a hit point for the lobes it keeps; one sampled ray for the other reflection lobes; and, at
  * glass, its reflection and its refraction with their Fresnel weights. Returns how many. */
@@ -91,21 +98,21 @@ uint surface_branches(const Bsdf* bsdf, float3 wo, float3 weight, Rng* rng, Bran
         br[n++] = b;
     }
     if (!HAS_NON_DIFFUSE) return n;
-    uint followed = LOBE_ALL & ~gathered & ~LOBE_GLASS;
+    uint followed = eye_followed_lobes(bsdf);
     if (lobe_weights(bsdf, cos_o, followed).total > 0.0f) {
         BsdfSample s;
         float u0 = rng_float(rng), u1 = rng_float(rng), u2 = rng_float(rng);
         if (bsdf_sample(bsdf, wo, followed, u0, u1, u2, &s)) {
-            br[n] = ray_branch(weight * s.weight, s.wi, false);
+            br[n] = ray_branch(weight * s.weight, s.wi, s.below);
             br[n].pdf = s.pdf;
             br[n++].delta = s.delta;
         }
     }
-    if (HAS_GLASS && bsdf->glass > 0.0f) {
+    if (HAS_GLASS && bsdf->glass > 0.0f && !glass_is_rough(bsdf)) {
         float F = fresnel_dielectric(cos_o, bsdf->eta);
         br[n++] = ray_branch(weight * (bsdf->glass * F), bsdf_mirror(bsdf, wo), false);
         if (F < 1.0f) {
-            float3 t = refract_dir(-wo, bsdf->ns, bsdf->eta);
+            float3 t = bsdf->thin ? -wo : refract_dir(-wo, bsdf->ns, bsdf->eta);
             if (dot(t, bsdf->ng) < 0.0f) br[n++] = ray_branch(weight * bsdf->base * (bsdf->glass * (1.0f - F)), t, true);
         }
     }
@@ -154,7 +161,7 @@ __kernel void eye_pass(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong p
         /* The lobes the eye path samples through see the lights directly too (with MIS): no hit
          * point gathers their direct light, and a sampled ray never finds a punctual light. */
         if (!bsdf_plain_lambert(&bsdf) && !bsdf_is_mirror(&bsdf)) {
-            uint followed = LOBE_ALL & ~bsdf_gathered_lobes(bsdf.alpha) & ~LOBE_GLASS;
+            uint followed = eye_followed_lobes(&bsdf);
             if (lobe_weights(&bsdf, dot(bsdf.ns, -r.dir), followed).total > 0.0f)
                 emitted += r.weight * next_event(SCENE_ARGS, &bsdf, sf.p, -r.dir, followed, &rng);
         }

@@ -38,6 +38,7 @@ Bsdf hitpoint_bsdf(__global const HitPoint* hp, float3 n) {
     b.metal = hp->metal;
     b.glass = 0.0f;
     b.eta = 1.0f;
+    b.thin = false;
     return b;
 }
 

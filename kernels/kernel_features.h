@@ -14,6 +14,7 @@
     X(HAS_SPECULAR_LAYER, specular_layer, "specular layer")                                                            \
     X(HAS_METAL, metal, "metal")                                                                                       \
     X(HAS_GLASS, glass, "glass")                                                                                       \
+    X(HAS_ROUGH_GLASS, rough_glass, "rough glass")                                                                     \
     X(HAS_TEXTURES, textures, "textures")                                                                              \
     X(HAS_NORMAL_MAPS, normal_maps, "normal maps")                                                                     \
     X(HAS_VERTEX_COLORS, vertex_colors, "vertex colours")                                                              \
@@ -35,6 +36,9 @@
 #endif
 #ifndef HAS_GLASS
 #define HAS_GLASS 1
+#endif
+#ifndef HAS_ROUGH_GLASS
+#define HAS_ROUGH_GLASS 1
 #endif
 #ifndef HAS_TEXTURES
 #define HAS_TEXTURES 1

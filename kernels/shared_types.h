@@ -59,6 +59,8 @@ typedef struct {
 /* ---- materials and textures ---------------------------------------------------------------- */
 
 #define MATERIAL_FLAG_DOUBLE_SIDED 1u
+/* transmission through a thin wall (no KHR_materials_volume, or thicknessFactor 0): no refraction */
+#define MATERIAL_FLAG_THIN_WALLED 2u
 
 /* glTF alphaMode */
 #define ALPHA_OPAQUE 0u

@@ -105,7 +105,7 @@ class GltfBuilder:
     def material(self, name, base_color=(0.8, 0.8, 0.8), metallic=0.0, roughness=1.0,
                  emissive=None, emissive_strength=None, transmission=None, ior=None,
                  double_sided=False, base_color_texture=None, specular=None, specular_color=None,
-                 metallic_roughness_texture=None):
+                 metallic_roughness_texture=None, thickness=None):
         pbr = {"baseColorFactor": list(base_color) + [1.0] * (4 - len(base_color)),
                "metallicFactor": metallic, "roughnessFactor": roughness}
         if base_color_texture is not None:
@@ -122,6 +122,8 @@ class GltfBuilder:
             ext["KHR_materials_transmission"] = {"transmissionFactor": transmission}
         if ior is not None:
             ext["KHR_materials_ior"] = {"ior": ior}
+        if thickness is not None:  # a solid dielectric, not a thin wall (KHR_materials_volume)
+            ext["KHR_materials_volume"] = {"thicknessFactor": thickness}
         if specular is not None or specular_color is not None:
             spec = {}
             if specular is not None:
@@ -366,7 +368,8 @@ def cornell_camera(b):
 def cornell_box(out_dir):
     b = GltfBuilder()
     walls, light = cornell_walls(b)
-    glass = b.material("glass", (1.0, 1.0, 1.0), metallic=0.0, roughness=0.0, transmission=1.0, ior=1.5)
+    glass = b.material("glass", (1.0, 1.0, 1.0), metallic=0.0, roughness=0.0, transmission=1.0, ior=1.5,
+                       thickness=1.0)
     mirror = b.material("mirror", (0.95, 0.95, 0.95), metallic=1.0, roughness=0.0)
     pos, nrm, idx = uv_sphere(48, 32)
     check_front_faces(pos, nrm, idx)
@@ -390,7 +393,8 @@ def caustic(out_dir):
     b = GltfBuilder()
     floor = b.material("floor", (0.8, 0.8, 0.8), specular=0.0)
     wall = b.material("wall", (0.6, 0.6, 0.6), specular=0.0)
-    glass = b.material("glass", (1.0, 1.0, 1.0), metallic=0.0, roughness=0.0, transmission=1.0, ior=1.5)
+    glass = b.material("glass", (1.0, 1.0, 1.0), metallic=0.0, roughness=0.0, transmission=1.0, ior=1.5,
+                       thickness=1.0)
     fpos, fnrm, fidx = quad((0, 0, 0), (0, 0, 4), (4, 0, 0))
     wpos, wnrm, widx = quad((0, 2, -3), (4, 0, 0), (0, 2, 0))
     spos, snrm, sidx = uv_sphere(64, 48, radius=0.5, center=(0.0, 0.5, 0.0))

@@ -4,6 +4,7 @@
 #pragma once
 #include <cmath>
 #include <random>
+#include <string>
 #include <vector>
 
 #include "device/kernel_program.h"
@@ -60,6 +61,7 @@ Bsdf test_bsdf(__global const float* p, float3 n) {
     b.glass = p[9];
     b.metal = p[10];
     b.eta = p[11];
+    b.thin = p[12] != 0.0f;
     return b;
 }
 /* bsdf_eval (rgb) and bsdf_pdf at (wo, wi[i]) over the lobes in mask. */
@@ -156,6 +158,68 @@ inline std::vector<float> uniforms(size_t n, uint64_t seed) {
     return u;
 }
 
+// ---- the whole model (kernels/bsdf.cl) through the wrappers above ----
+
+constexpr unsigned kDiffuse = 1, kSpecular = 2, kGlass = 4, kMetal = 8, kAll = 15;
+
+struct Params {
+    D3 base{1, 1, 1}, f0{0.04, 0.04, 0.04};
+    double f90 = 1, alpha = 0.25, dielectric = 1, glass = 0, metal = 0, eta = 1.5;
+    bool thin = false;
+    std::vector<float> pack() const {
+        return {float(base.x), float(base.y), float(base.z),     float(f0.x),  float(f0.y),  float(f0.z),
+                float(f90),    float(alpha),  float(dielectric), float(glass), float(metal), float(eta),
+                thin ? 1.f : 0.f};
+    }
+    std::string name() const {
+        return "base (" + std::to_string(base.x) + "," + std::to_string(base.y) + "," + std::to_string(base.z) +
+               ") alpha " + std::to_string(alpha) + " dielectric " + std::to_string(dielectric) + " metal " +
+               std::to_string(metal) + " glass " + std::to_string(glass) + " eta " + std::to_string(eta) +
+               (thin ? " thin" : "") + " f90 " + std::to_string(f90);
+    }
+};
+
+// Per wi: f.rgb and pdf.
+inline std::vector<float> model_eval(const Params& p, D3 n, D3 wo, const std::vector<float>& wi, unsigned mask) {
+    const Device& d = device();
+    const size_t m = wi.size() / 3;
+    cl::Buffer pb = d.input(p.pack()), ib = d.input(wi), out = d.output(4 * m * sizeof(float));
+    cl::Kernel k(d.program, "model_eval_pdf");
+    k.setArg(0, pb), k.setArg(1, float(n.x)), k.setArg(2, float(n.y)), k.setArg(3, float(n.z));
+    k.setArg(4, float(wo.x)), k.setArg(5, float(wo.y)), k.setArg(6, float(wo.z)), k.setArg(7, cl_uint(mask));
+    k.setArg(8, ib), k.setArg(9, out);
+    d.run(k, m);
+    return d.read<float>(out, 4 * m);
+}
+
+// Per sample: wi, weight, pdf, flags (1 sampled, 2 delta, 4 below).
+inline std::vector<float> model_sample(const Params& p, D3 n, D3 wo, size_t m, unsigned mask, uint64_t seed) {
+    const Device& d = device();
+    cl::Buffer pb = d.input(p.pack()), ub = d.input(uniforms(3 * m, seed)), out = d.output(8 * m * sizeof(float));
+    cl::Kernel k(d.program, "model_sample");
+    k.setArg(0, pb), k.setArg(1, float(n.x)), k.setArg(2, float(n.y)), k.setArg(3, float(n.z));
+    k.setArg(4, float(wo.x)), k.setArg(5, float(wo.y)), k.setArg(6, float(wo.z)), k.setArg(7, cl_uint(mask));
+    k.setArg(8, ub), k.setArg(9, out);
+    d.run(k, m);
+    return d.read<float>(out, 8 * m);
+}
+
+// Random unit directions, a quarter of them below the surface.
+inline std::vector<float> random_directions(D3 n, size_t m, uint64_t seed) {
+    std::mt19937_64 g(seed);
+    std::uniform_real_distribution<double> u(-1, 1);
+    std::vector<float> v;
+    while (v.size() < 3 * m) {
+        D3 w{u(g), u(g), u(g)};
+        double l = length(w);
+        if (l < 0.1 || l > 1) continue;
+        w = (1 / l) * w;
+        if (dot(w, n) < 0 && (v.size() / 3) % 4 != 0) w = w - (2 * dot(w, n)) * n;
+        push3(v, w);
+    }
+    return v;
+}
+
 inline const D3 kNormal = normalized({0.3, -0.5, 0.8}); // tilted: ggx_sample's frame is exercised too
 
 // wo at angle acos(cos_o) from kNormal, in the host frame; rounded to float as the device sees it.
@@ -195,6 +259,43 @@ inline double ref_pdf(D3 n, D3 wo, D3 wi, double a) {
     if (co <= 0 || ci <= 0) return 0;
     D3 h = normalized(wo + wi);
     return ref_d(dot(n, h), a) / (1 + ref_lambda(co, a)) / (4 * co);
+}
+
+// Fresnel for unpolarised light from the Fresnel equations in Hecht's form (Optics, Eq. 4.42-4.43):
+// Rs = sin^2(ti - tt) / sin^2(ti + tt), Rp = tan^2(ti - tt) / tan^2(ti + tt); 1 under TIR.
+inline double ref_fresnel_hecht(double cos_i, double eta) {
+    if (cos_i >= 1) return std::pow((eta - 1) / (eta + 1), 2);
+    double ti = std::acos(cos_i), s = std::sin(ti) / eta;
+    if (s >= 1) return 1;
+    double tt = std::asin(s);
+    double rs = std::sin(ti - tt) / std::sin(ti + tt), rp = std::tan(ti - tt) / std::tan(ti + tt);
+    return 0.5 * (rs * rs + rp * rp);
+}
+
+// The rough dielectric of Walter et al. 2007 as the renderer defines it (kernels/bsdf.cl's
+// header): wo above n, eta the relative index of wi's side below. Reflection F D G2 / (4 cos_o
+// cos_i) (Eq. 20); transmission through the generalised half vector h_t = -(wo + eta wi) (Eq. 16)
+// with (1 - F) D G2 |wo.h| |wi.h| eta^2 / (|cos_o cos_i| (wo.h + eta wi.h)^2) (Eq. 21, with eta^2
+// of the side of wi: flux form); thin-walled, the reflection lobe mirrored below. `tint` scales
+// the transmission. Written from the paper, not from the kernel.
+inline double ref_rough_glass(D3 n, D3 wo, D3 wi, double alpha, double eta, bool thin, double tint) {
+    const double co = dot(n, wo), ci = dot(n, wi);
+    if (co <= 0 || ci == 0) return 0;
+    const auto g2 = [&](double a, double b) { return 1 / (1 + ref_lambda(a, alpha) + ref_lambda(b, alpha)); };
+    if (ci > 0 || thin) {
+        const D3 wr = ci > 0 ? wi : wi - (2 * ci) * n;
+        const D3 h = normalized(wo + wr);
+        const double F = ref_fresnel_hecht(dot(wo, h), eta);
+        const double r = ref_d(dot(n, h), alpha) * g2(co, std::fabs(ci)) / (4 * co * std::fabs(ci));
+        return ci > 0 ? F * r : tint * (1 - F) * r;
+    }
+    D3 h = normalized(-1.0 * (wo + eta * wi));
+    if (dot(h, n) < 0) h = -1.0 * h;
+    const double oh = dot(wo, h), ih = dot(wi, h);
+    if (oh <= 0 || ih >= 0) return 0;
+    const double F = ref_fresnel_hecht(oh, eta);
+    return tint * (1 - F) * ref_d(dot(n, h), alpha) * g2(co, -ci) * oh * -ih * eta * eta /
+           (co * -ci * std::pow(oh + eta * ih, 2));
 }
 
 // Directions wi parameterised by their half vector h about n: tan^2(theta_h) = alpha^2 u / (1 - u)
@@ -258,7 +359,7 @@ inline void quadrature_cell(const HalfVectorGrid& g, double u0, double u1, doubl
         for (int c = 0; c < 4; ++c) {
             double u = u0 + kGlX[a] * du, phi = p0 + kGlX[c] * dp;
             D3 h = g.half(u, phi);
-            if (dot(g.wo, h) <= 0) continue;
+            if (dot(g.wo, h) <= 0 || dot(g.wi(h), g.n) <= 0) continue; // below: not reflection's to count
             push3(q.wi, normalized(g.wi(h)));
             q.weight.push_back(kGlW[a] * kGlW[c] * du * dp * g.jacobian(h));
             q.cell.push_back(id);

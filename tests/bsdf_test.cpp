@@ -16,20 +16,6 @@ using namespace clppm;
 using namespace clppm::test;
 using namespace clppm::test::bsdf;
 
-namespace {
-
-// Fresnel for unpolarised light from the Fresnel equations in Hecht's form (Optics, Eq. 4.42-4.43):
-// Rs = sin^2(ti - tt) / sin^2(ti + tt), Rp = tan^2(ti - tt) / tan^2(ti + tt); 1 under TIR.
-double ref_fresnel_hecht(double cos_i, double eta) {
-    double ti = std::acos(cos_i), s = std::sin(ti) / eta;
-    if (s >= 1) return 1;
-    double tt = std::asin(s);
-    double rs = std::sin(ti - tt) / std::sin(ti + tt), rp = std::tan(ti - tt) / std::tan(ti + tt);
-    return 0.5 * (rs * rs + rp * rp);
-}
-
-} // namespace
-
 // Closed forms: ((eta - 1) / (eta + 1))^2 at normal incidence; 1 at grazing incidence; at
 // Brewster's angle (tan theta = eta) the p term vanishes and F = rs^2 / 2 with
 // rs = (1 - eta^2) / (1 + eta^2); exactly 1 beyond the critical angle. Tolerance 1e-6: float

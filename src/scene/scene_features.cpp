@@ -20,6 +20,8 @@ SceneFeatures scene_features(const Scene& scene, const DeviceScene& ds) {
         if (dielectric > 0.f && m.specular_color[3] > 0.f) f.specular_layer = true;
         if (m.metallic > 0.f) f.metal = true;
         if (m.transmission > 0.f && metallic_min < 1.f) f.glass = true;
+        // Textures only lower roughness: a factor of 0 keeps every glass surface smooth.
+        if (m.transmission > 0.f && metallic_min < 1.f && m.roughness > 0.f) f.rough_glass = true;
         if (m.base_color_tex >= 0 || m.metallic_roughness_tex >= 0 || m.emissive_tex >= 0) f.textures = true;
         if (m.normal_tex >= 0 && !scene.tangents.empty()) f.textures = f.normal_maps = true;
         if (m.alpha_mode != ALPHA_OPAQUE) f.alpha = true;

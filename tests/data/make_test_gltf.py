@@ -17,7 +17,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 sys.dont_write_bytecode = True  # keep scripts/ free of __pycache__
 sys.path.insert(0, os.path.join(HERE, "..", "..", "scripts"))
 from make_scenes import (ARRAY_BUFFER, BYTE, FLOAT, SHORT, UBYTE, UINT, USHORT, GltfBuilder,  # noqa: E402
-                         rounded, write_text)
+                         quad, rounded, write_text)
 
 NAN, INF = float("nan"), float("inf")
 TRI = [(0.0, 0.0, 0.0), (1.0, 0.0, 0.0), (0.0, 1.0, 0.0)]
@@ -627,18 +627,18 @@ def box_primitive(b, lo, hi, material):
 def volumes():
     """KHR_materials_volume: a smooth glass slab 0.5 thick between the camera and an emitter,
     attenuationColor (0.5, 0.25, 1) at attenuationDistance 0.5, so exp(-sigma d) = (0.5, 0.25, 1);
-    the same slab without the extension; and transmissionTexture: the slab at transmission 1 with
+    the same slab without attenuation; and transmissionTexture: the slab at transmission 1 with
     a uniform texture of R = 51 against transmissionFactor 0.2."""
     variants = (("volume_slab.gltf", "volume"), ("volume_clear.gltf", "clear"),
                 ("transmission_texture.gltf", "texture"), ("transmission_factor.gltf", "factor"))
     for name, kind in variants:
         b = GltfBuilder("clppm tests/data/make_test_gltf.py")
+        # A solid slab in every variant (thicknessFactor 0.5); only "volume" absorbs.
         glass = b.material("glass", (1.0, 1.0, 1.0), roughness=0.0,
-                           transmission=0.2 if kind == "factor" else 1.0, ior=1.5)
+                           transmission=0.2 if kind == "factor" else 1.0, ior=1.5, thickness=0.5)
         if kind == "volume":
-            b.doc["materials"][glass].setdefault("extensions", {})["KHR_materials_volume"] = {
-                "thicknessFactor": 0.5, "attenuationDistance": 0.5, "attenuationColor": [0.5, 0.25, 1.0]}
-            b.extensions_used.add("KHR_materials_volume")
+            b.doc["materials"][glass]["extensions"]["KHR_materials_volume"].update(
+                {"attenuationDistance": 0.5, "attenuationColor": [0.5, 0.25, 1.0]})
         if kind == "texture":
             png = png_rgba([[(51, 0, 0, 255)] * 2] * 2)  # 51 / 255 = 0.2, the same float
             b.doc["images"] = [{"uri": "data:image/png;base64," + base64.b64encode(png).decode("ascii")}]
@@ -653,6 +653,41 @@ def volumes():
         cam = b.camera(0.1)
         b.scene([b.node(name="slab", mesh=b.mesh([slab, emitter])),
                  b.node(name="camera", camera=cam, translation=[0.0, 0.0, 2.0])])
+        b.write_embedded(out(name))
+
+
+def reference_scenes():
+    """Scenes with images from an independent renderer (tests/references/make_references.py,
+    Mitsuba 3): a glass block on a floor before a wall, a red box half behind it, under a 1 x 1
+    ceiling lamp of Le = 12 facing down. ref_rough_glass: the block is rough glass (roughness 0.3,
+    ior 1.5, solid through KHR_materials_volume); ref_tinted_volume: smooth glass absorbing to
+    attenuationColor (0.9, 0.5, 0.2) per 0.5 units. Diffuse surfaces have specularFactor 0 (plain
+    Lambertian, as Mitsuba's diffuse)."""
+    for name, roughness, attenuation in (("ref_rough_glass.gltf", 0.3, None),
+                                         ("ref_tinted_volume.gltf", 0.0, (0.9, 0.5, 0.2))):
+        b = GltfBuilder("clppm tests/data/make_test_gltf.py")
+        floor = b.material("floor", (0.8, 0.8, 0.8), specular=0.0)
+        wall = b.material("wall", (0.6, 0.6, 0.6), specular=0.0)
+        red = b.material("red", (0.7, 0.15, 0.1), specular=0.0)
+        glass = b.material("glass", (1.0, 1.0, 1.0), roughness=roughness, transmission=1.0, ior=1.5,
+                           thickness=1.0)
+        if attenuation is not None:
+            b.doc["materials"][glass]["extensions"]["KHR_materials_volume"].update(
+                {"attenuationDistance": 0.5, "attenuationColor": list(attenuation)})
+        lamp = b.material("lamp", (0.0, 0.0, 0.0), emissive=(1.0, 1.0, 1.0), emissive_strength=12.0, specular=0.0)
+        fpos, fnrm, fidx = quad((0.0, 0.0, 0.0), (0.0, 0.0, 3.0), (3.0, 0.0, 0.0))
+        wpos, wnrm, widx = quad((0.0, 1.5, -1.5), (3.0, 0.0, 0.0), (0.0, 1.5, 0.0))
+        lpos, lnrm, lidx = quad((0.3, 2.4, 0.6), (0.5, 0.0, 0.0), (0.0, 0.0, 0.5))
+        prims = [b.primitive(fpos, fidx, fnrm, material=floor), b.primitive(wpos, widx, wnrm, material=wall),
+                 b.primitive(lpos, lidx, lnrm, material=lamp),
+                 box_primitive(b, (-0.9, 0.0, -1.0), (-0.3, 0.5, -0.4), red),
+                 # Lifted off the floor: a face coplanar with the floor would leave which one a ray
+                 # meets first to each renderer's rounding.
+                 box_primitive(b, (-0.4, 0.005, -0.3), (0.6, 0.705, 0.5), glass)]
+        cam = b.camera(0.75)
+        tilt = quat_axis_angle((1, 0, 0), -math.atan2(1.3 - 0.35, 3.0))
+        b.scene([b.node(name="set", mesh=b.mesh(prims)),
+                 b.node(name="camera", camera=cam, translation=[0.0, 1.3, 3.0], rotation=tilt)])
         b.write_embedded(out(name))
 
 
@@ -769,7 +804,7 @@ def main():
                  materials, texture, lights, cameras, quantized, sparse, strips_fans, gpu_instancing, emissive_texture,
                  normal_maps, vertex_colors, alpha_modes,
                  texture_transform, uv1_plates, volumes,
-                 specular_textures, errors):
+                 specular_textures, reference_scenes, errors):
         make()
 
 

@@ -111,7 +111,7 @@ dev::Material MaterialConverter::convert_material(int index) {
     convert_alpha(g, label, m);
     convert_volume(g, label, m);
     convert_specular(g, label, m);
-    m.flags = g.doubleSided ? MATERIAL_FLAG_DOUBLE_SIDED : 0u;
+    if (g.doubleSided) m.flags |= MATERIAL_FLAG_DOUBLE_SIDED;
     return m;
 }
 
@@ -135,14 +135,18 @@ int32_t MaterialConverter::extension_texture(const tinygltf::Material& g, const 
 // Beer-Lambert's law with sigma = -ln(attenuationColor) / attenuationDistance per channel
 // (kernels/scene.cl volume_transmittance). thicknessTexture only approximates the geometry's
 // thickness for rasterisers: a path tracer measures the real one, so it is not read. With
-// thicknessFactor 0 (or no extension) nothing is absorbed.
+// thicknessFactor 0, or without the extension, the material is thin-walled (the extension's
+// definition): nothing is absorbed and transmitted light is not bent (kernels/bsdf.cl).
 void MaterialConverter::convert_volume(const tinygltf::Material& g, const std::string& label, dev::Material& m) {
     m.transmission_tex = extension_texture(g, "KHR_materials_transmission", "transmissionTexture", label, false);
     for (int c = 0; c < 4; ++c) m.attenuation[c] = 0.f;
     auto it = g.extensions.find("KHR_materials_volume");
-    if (it == g.extensions.end() || !it->second.IsObject()) return;
+    const bool has_volume = it != g.extensions.end() && it->second.IsObject();
+    const double thickness =
+        has_volume ? extension_number(g.extensions, "KHR_materials_volume", "thicknessFactor", 0.0) : 0.0;
+    if (m.transmission > 0.f && !(thickness > 0.0)) m.flags |= MATERIAL_FLAG_THIN_WALLED;
+    if (!has_volume) return;
     const tinygltf::Value& v = it->second;
-    const double thickness = extension_number(g.extensions, "KHR_materials_volume", "thicknessFactor", 0.0);
     double distance = extension_number(g.extensions, "KHR_materials_volume", "attenuationDistance", INFINITY);
     if (!(distance > 0.0)) ctx_.fail(label + " KHR_materials_volume attenuationDistance must be positive");
     double color[3] = {1, 1, 1};

@@ -1,0 +1,139 @@
+#!/usr/bin/env python3
+"""Renders the reference images under tests/references/ with Mitsuba 3, an independent renderer,
+from the glTF scenes tests/data/make_test_gltf.py writes (reference_scenes). Run offline, not in
+CI:
+    python3 -m venv /tmp/mi && /tmp/mi/bin/pip install mitsuba numpy
+    /tmp/mi/bin/python tests/references/make_references.py [spp]
+The scenes are read from the glTF files themselves (the small subset those files use: one mesh
+of float positions and 16-bit indices, node translation and rotation, a perspective camera), so
+both renderers see the same triangles. Mapping to Mitsuba: a material with
+KHR_materials_transmission is `roughdielectric` (GGX, alpha = roughness^2, visible-normal
+sampling) or `dielectric` at roughness 0, of the glTF ior against 1.0; KHR_materials_volume's
+attenuation becomes an interior `homogeneous` medium of albedo 0 and sigma_t = -ln(colour) /
+distance (integrator `volpath`); everything else is `diffuse` with the base colour (these scenes
+give diffuse surfaces specularFactor 0) and emissive surfaces are one-sided `area` emitters of
+radiance emissiveFactor times emissiveStrength. Box pixel filter, as clppm's uniform jitter;
+unbounded path length with Russian roulette.
+"""
+import base64
+import json
+import math
+import os
+import struct
+import sys
+import tempfile
+
+import mitsuba as mi
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+DATA = os.path.join(HERE, "..", "data")
+SCENES = ("ref_rough_glass", "ref_tinted_volume")
+SIZE = 64
+
+
+def quat_rotate(q, v):
+    x, y, z, w = q
+    # v + 2 w (q x v) + 2 q x (q x v)
+    cx = (y * v[2] - z * v[1], z * v[0] - x * v[2], x * v[1] - y * v[0])
+    ccx = (y * cx[2] - z * cx[1], z * cx[0] - x * cx[2], x * cx[1] - y * cx[0])
+    return tuple(v[i] + 2 * w * cx[i] + 2 * ccx[i] for i in range(3))
+
+
+def read_accessor(doc, blob, index):
+    acc = doc["accessors"][index]
+    view = doc["bufferViews"][acc["bufferView"]]
+    comps = {"SCALAR": 1, "VEC2": 2, "VEC3": 3}[acc["type"]]
+    fmt = {5126: "f", 5123: "H", 5125: "I"}[acc["componentType"]]
+    start = view.get("byteOffset", 0) + acc.get("byteOffset", 0)
+    n = acc["count"] * comps
+    vals = struct.unpack_from("<%d%s" % (n, fmt), blob, start)
+    return [vals[i:i + comps] for i in range(0, n, comps)] if comps > 1 else list(vals)
+
+
+def write_ply(path, tris):
+    with open(path, "wb") as f:
+        f.write(("ply\nformat binary_little_endian 1.0\nelement vertex %d\nproperty float x\n"
+                 "property float y\nproperty float z\nelement face %d\nproperty list uchar int vertex_indices\n"
+                 "end_header\n" % (3 * len(tris), len(tris))).encode())
+        for t in tris:
+            for p in t:
+                f.write(struct.pack("<3f", *p))
+        for i in range(len(tris)):
+            f.write(struct.pack("<B3i", 3, 3 * i, 3 * i + 1, 3 * i + 2))
+
+
+def mitsuba_scene(name, tmp):
+    doc = json.load(open(os.path.join(DATA, name + ".gltf")))
+    uri = doc["buffers"][0]["uri"]
+    blob = base64.b64decode(uri[uri.index(",") + 1:])
+    scene = {"type": "scene", "integrator": {"type": "path", "max_depth": -1}}
+    has_medium = False
+    for node in doc["nodes"]:
+        t = node.get("translation", [0, 0, 0])
+        if "camera" in node:
+            q = node.get("rotation", [0, 0, 0, 1])
+            fwd, up = quat_rotate(q, (0, 0, -1)), quat_rotate(q, (0, 1, 0))
+            yfov = doc["cameras"][node["camera"]]["perspective"]["yfov"]
+            scene["sensor"] = {
+                "type": "perspective", "fov_axis": "y", "fov": math.degrees(yfov),
+                "to_world": mi.ScalarTransform4f().look_at(origin=t, target=[t[i] + fwd[i] for i in range(3)], up=up),
+                "film": {"type": "hdrfilm", "width": SIZE, "height": SIZE, "rfilter": {"type": "box"},
+                         "pixel_format": "rgb"},
+                "sampler": {"type": "independent"}}
+            continue
+        if "mesh" not in node:
+            continue
+        assert "rotation" not in node and "scale" not in node, "mesh nodes are translated only"
+        for k, prim in enumerate(doc["meshes"][node["mesh"]]["primitives"]):
+            pos = read_accessor(doc, blob, prim["attributes"]["POSITION"])
+            idx = read_accessor(doc, blob, prim["indices"])
+            tris = [tuple(tuple(pos[idx[i + j]][c] + t[c] for c in range(3)) for j in range(3))
+                    for i in range(0, len(idx), 3)]
+            path = os.path.join(tmp, "%s_%d.ply" % (name, k))
+            write_ply(path, tris)
+            m = doc["materials"][prim["material"]]
+            ext = m.get("extensions", {})
+            pbr = m["pbrMetallicRoughness"]
+            shape = {"type": "ply", "filename": path, "face_normals": True}
+            if "KHR_materials_transmission" in ext:
+                ior = ext.get("KHR_materials_ior", {}).get("ior", 1.5)
+                r = pbr.get("roughnessFactor", 1.0)
+                if r > 0:
+                    shape["bsdf"] = {"type": "roughdielectric", "distribution": "ggx", "alpha": r * r,
+                                     "sample_visible": True, "int_ior": ior, "ext_ior": 1.0}
+                else:
+                    shape["bsdf"] = {"type": "dielectric", "int_ior": ior, "ext_ior": 1.0}
+                vol = ext.get("KHR_materials_volume", {})
+                if "attenuationDistance" in vol:
+                    sigma = [-math.log(c) / vol["attenuationDistance"] for c in vol["attenuationColor"]]
+                    top = max(sigma)  # Mitsuba's RGB values are at most 1: scaled
+                    shape["interior"] = {"type": "homogeneous", "albedo": 0.0, "scale": top,
+                                         "sigma_t": {"type": "rgb", "value": [x / top for x in sigma]}}
+                    has_medium = True
+            else:
+                c = pbr.get("baseColorFactor", [1, 1, 1, 1])[:3]
+                shape["bsdf"] = {"type": "diffuse", "reflectance": {"type": "rgb", "value": c}}
+            if "emissiveFactor" in m:
+                s = ext.get("KHR_materials_emissive_strength", {}).get("emissiveStrength", 1.0)
+                shape["emitter"] = {"type": "area",
+                                    "radiance": {"type": "rgb", "value": [e * s for e in m["emissiveFactor"]]}}
+            scene["%s_%d" % (name, k)] = shape
+    if has_medium:
+        scene["integrator"] = {"type": "volpath", "max_depth": -1}
+    return scene
+
+
+def main():
+    spp = int(sys.argv[1]) if len(sys.argv) > 1 else 65536
+    mi.set_variant("scalar_rgb")
+    with tempfile.TemporaryDirectory() as tmp:
+        for name in SCENES:
+            scene = mi.load_dict(mitsuba_scene(name, tmp))
+            img = mi.render(scene, spp=spp)
+            out = os.path.join(HERE, name + ".exr")
+            mi.Bitmap(img).write(out)
+            print(out, spp, "spp")
+
+
+if __name__ == "__main__":
+    main()
