@@ -5,6 +5,8 @@
 #include <fstream>
 #include <sys/stat.h>
 
+#include <nlohmann/json.hpp>
+
 #include "io/image_io.h"
 #include "test_util.h"
 
@@ -149,4 +151,27 @@ TEST(Cli, KernelBuildFailurePrintsTheBuildLog) {
     EXPECT_EQ(run_clppm("--kernel-dir " + dir + " -o " + dir + "/x.exr --passes 1", &out), 1);
     EXPECT_NE(out.find("kernel build failed"), std::string::npos) << out;
     EXPECT_NE(out.find("this_is_not_opencl_c"), std::string::npos) << "no build log:\n" << out;
+}
+
+// `clppm compare --box K`: a checkerboard of 0.5 and 1.5 against a flat 1 has pixel relative MSE
+// 0.25 / 1.01 but none box-filtered over 2 x 2 (each block averages to 1); a bad K is refused.
+TEST(Cli, CompareBoxFilteredRelativeMse) {
+    const std::string d = make_temp_dir("compare");
+    Image a, b;
+    a.width = b.width = 8, a.height = b.height = 8;
+    for (int y = 0; y < 8; ++y)
+        for (int x = 0; x < 8; ++x) {
+            a.rgb.insert(a.rgb.end(), 3, (x + y) % 2 ? 1.5f : 0.5f);
+            b.rgb.insert(b.rgb.end(), 3, 1.f);
+        }
+    write_exr(d + "/a.exr", a);
+    write_exr(d + "/b.exr", b);
+    std::string out;
+    ASSERT_EQ(run_clppm("compare " + d + "/a.exr " + d + "/b.exr --box 2", &out), 0) << out;
+    const nlohmann::json j = nlohmann::json::parse(out.substr(out.find('{')));
+    EXPECT_NEAR(j["rel_mse"].get<double>(), 0.25 / 1.01, 1e-6);
+    EXPECT_NEAR(j["box_rel_mse"].get<double>(), 0.0, 1e-12);
+    EXPECT_EQ(j["box"].get<int>(), 2);
+    EXPECT_EQ(run_clppm("compare " + d + "/a.exr " + d + "/b.exr --box 0", &out), 1);
+    expect_one_line_error(out, "--box 0: must be an integer in 1..1024");
 }

@@ -19,20 +19,6 @@ using namespace clppm::test;
 
 namespace {
 
-// Mean over k x k blocks (the image's size a multiple of k).
-Image box_filter(const Image& a, int k) {
-    Image b;
-    b.width = a.width / k;
-    b.height = a.height / k;
-    b.rgb.assign(size_t(b.width) * b.height * 3, 0.f);
-    for (int y = 0; y < b.height * k; ++y)
-        for (int x = 0; x < b.width * k; ++x)
-            for (int c = 0; c < 3; ++c)
-                b.rgb[(size_t(y / k) * b.width + x / k) * 3 + c] +=
-                    a.rgb[(size_t(y) * a.width + x) * 3 + c] / float(k * k);
-    return b;
-}
-
 struct Agreement {
     double mean_ratio, box4_rel_mse;
 };

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <string>
 
 #include "io/stats_json.h"
@@ -83,25 +84,47 @@ Image difference_image(const Image& a, const Image& b, double scale) {
     return out;
 }
 
+Image box_filter(const Image& a, int k) {
+    Image b;
+    b.width = a.width / k;
+    b.height = a.height / k;
+    b.rgb.assign(size_t(b.width) * size_t(b.height) * 3, 0.f);
+    for (int y = 0; y < b.height * k; ++y)
+        for (int x = 0; x < b.width * k; ++x)
+            for (int c = 0; c < 3; ++c)
+                b.rgb[(size_t(y / k) * size_t(b.width) + size_t(x / k)) * 3 + size_t(c)] +=
+                    a.rgb[(size_t(y) * size_t(a.width) + size_t(x)) * 3 + size_t(c)] / float(k * k);
+    return b;
+}
+
 int compare_command(int argc, char** argv) {
+    const char* usage = " (usage: clppm compare A.exr REFERENCE.exr [--diff OUT.png] [--box K])";
     std::vector<std::string> files;
     std::string diff_png;
+    int box = 0;
     for (int i = 0; i < argc; ++i) {
         std::string s = argv[i];
         if (s == "--diff") {
             if (i + 1 >= argc) throw Error("compare --diff: missing value OUT.png");
             diff_png = argv[++i];
+        } else if (s == "--box") {
+            const std::string v = i + 1 < argc ? argv[++i] : "";
+            char* end = nullptr;
+            const long k = std::strtol(v.c_str(), &end, 10);
+            if (v.empty() || *end != '\0' || k < 1 || k > 1024)
+                throw Error("compare --box " + (v.empty() ? std::string("''") : v) + ": must be an integer in 1..1024");
+            box = int(k);
         } else if (s.rfind("--", 0) == 0) {
-            throw Error("compare: unknown option " + s +
-                        " (usage: clppm compare A.exr REFERENCE.exr [--diff OUT.png])");
+            throw Error("compare: unknown option " + s + usage);
         } else {
             files.push_back(s);
         }
     }
-    if (files.size() != 2)
-        throw Error("compare: expected two EXR files (usage: clppm compare A.exr REFERENCE.exr [--diff OUT.png])");
+    if (files.size() != 2) throw Error(std::string("compare: expected two EXR files") + usage);
     Image a = read_exr(files[0]), b = read_exr(files[1]);
     ImageDifference d = compare_images(a, b);
+    if (box > 0 && (a.width < box || a.height < box))
+        throw Error("compare --box " + std::to_string(box) + ": larger than the images");
     if (!diff_png.empty()) write_png(diff_png, difference_image(a, b));
     Json j;
     j["image"] = files[0];
@@ -116,6 +139,10 @@ int compare_command(int argc, char** argv) {
     j["rmse"] = d.rmse;
     j["rel_rmse"] = d.rel_rmse;
     j["rmse_srgb"] = d.rmse_srgb;
+    if (box > 0) {
+        j["box"] = box;
+        j["box_rel_mse"] = compare_images(box_filter(a, box), box_filter(b, box)).rel_mse;
+    }
     std::fputs(to_json_text(j).c_str(), stdout);
     return 0;
 }

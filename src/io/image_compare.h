@@ -26,8 +26,13 @@ ImageDifference compare_images(const Image& a, const Image& b);
 // the colour ramp (black, blue, green, yellow, red); 0 picks the 99th percentile.
 Image difference_image(const Image& a, const Image& b, double scale = 0);
 
-// The compare command: args are [A.exr, B.exr, optional --diff OUT.png]; prints the metrics as
-// JSON on stdout; returns the exit status.
+// The mean over k x k blocks of pixels (a remainder of fewer than k rows or columns is left out):
+// compared with a reference, it measures bias rather than pixel noise.
+Image box_filter(const Image& a, int k);
+
+// The compare command: args are [A.exr, B.exr, optional --diff OUT.png, optional --box K];
+// prints the metrics as JSON on stdout (with --box also box_rel_mse, the relative MSE of the
+// images box-filtered over K x K pixels); returns the exit status.
 int compare_command(int argc, char** argv);
 
 } // namespace clppm
