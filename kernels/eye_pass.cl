@@ -149,7 +149,11 @@ __kernel void eye_pass(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong p
     while (top > 0) {
         EyeRay r = stack[--top];
         Hit hit;
-        if (!trace_closest(SCENE_ARGS, r.org, r.dir, INFINITY, &hit)) continue;
+        if (!trace_closest(SCENE_ARGS, r.org, r.dir, INFINITY, &hit)) {
+            if (HAS_ENV_LIGHT)
+                emitted += r.weight * escaped_radiance(SCENE_ARGS, normalize(r.dir), r.depth == 0, r.delta, r.pdf);
+            continue;
+        }
         Surface sf = make_surface(SCENE_ARGS, r.dir, &hit);
         if (HAS_VOLUME) r.weight *= volume_transmittance(SCENE_ARGS, &sf, sf.t * length(r.dir));
         float3 le = surface_emission(SCENE_ARGS, &sf);

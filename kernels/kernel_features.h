@@ -24,6 +24,7 @@
     X(HAS_POINT_LIGHTS, point_lights, "point lights")                                                                  \
     X(HAS_SPOT_LIGHTS, spot_lights, "spot lights")                                                                     \
     X(HAS_DIRECTIONAL_LIGHTS, directional_lights, "directional lights")                                                \
+    X(HAS_ENV_LIGHT, env_light, "environment light")                                                                   \
     X(HAS_THIN_LENS, thin_lens, "thin lens")
 
 #ifdef __OPENCL_VERSION__
@@ -66,6 +67,9 @@
 #endif
 #ifndef HAS_DIRECTIONAL_LIGHTS
 #define HAS_DIRECTIONAL_LIGHTS 1
+#endif
+#ifndef HAS_ENV_LIGHT
+#define HAS_ENV_LIGHT 1
 #endif
 #ifndef HAS_THIN_LENS
 #define HAS_THIN_LENS 1

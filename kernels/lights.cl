@@ -5,6 +5,7 @@
 #define CLPPM_LIGHTS_CL
 
 #include "scene.cl"
+#include "environment.cl"
 
 /* light_cdf holds num_lights + 1 increasing values from 0 to 1. */
 uint pick_light(SCENE_PARAMS, float u) {
@@ -99,6 +100,19 @@ void emit_photon(SCENE_PARAMS, Rng* rng, float3* org, float3* dir, float3* flux)
         *dir = sample_cone(axis, L->cos_outer, rng_float(rng), rng_float(rng));
         float solid_angle = 2.0f * PI_F * (1.0f - L->cos_outer);
         *flux = rad * (spot_falloff(L, dot(*dir, axis)) * solid_angle / (pick * info->total_power));
+    } else if (HAS_ENV_LIGHT && L->type == LIGHT_ENVIRONMENT) {
+        /* Towards the scene from direction w, through a disc of the bounding sphere's radius R
+         * facing it: L(w) pi R^2 / (pick pdf(w)). */
+        float pdf;
+        float3 w = env_sample(L, textures, light_cdf, rng_float(rng), rng_float(rng), &pdf);
+        if (!(pdf > 0.0f)) return;
+        float3 t, b;
+        make_frame(w, &t, &b);
+        float r = sqrt(rng_float(rng)) * info->radius, phi = 2.0f * PI_F * rng_float(rng);
+        *org = load3c(info->center) + w * (1.01f * info->radius) + t * (r * cos(phi)) + b * (r * sin(phi));
+        *dir = -w;
+        float area = PI_F * info->radius * info->radius;
+        *flux = env_radiance(L, textures, texels, w) * (area / (pdf * pick * info->total_power));
     } else if (HAS_DIRECTIONAL_LIGHTS) { /* a disc covering the scene's bounding sphere, outside it */
         float3 d = load3g(L->direction);
         float3 t, b;
@@ -123,10 +137,11 @@ float area_light_pdf(SCENE_PARAMS, float power_per_area, float d2, float cos_y) 
 
 /* One light sample for direct lighting at x (normal n on the side of interest): the direction
  * to the light, the distance to shadow-test, Le G / pdf without the cosine at x, and the
- * sample's solid-angle density (0 for punctual and directional lights, which no ray can hit).
+ * sample's solid-angle density (0 for punctual and directional lights, which no ray can hit;
+ * for the environment, the same density env_light_pdf gives a ray that escapes).
  * Returns false when the sample contributes nothing. */
-bool sample_light(SCENE_PARAMS, float3 x, Rng* rng, float3* wi, float* dist, float3* contrib, float* pdf) {
-    *pdf = 0.0f;
+bool sample_light(SCENE_PARAMS, float3 x, Rng* rng, float3* wi, float* dist, float3* contrib, float* pdf_out) {
+    *pdf_out = 0.0f;
     if (info->num_lights == 0) return false;
     uint l = pick_light(SCENE_ARGS, rng_float(rng));
     __global const Light* L = &lights[l];
@@ -148,11 +163,20 @@ bool sample_light(SCENE_PARAMS, float3 x, Rng* rng, float3* wi, float* dist, flo
         bool textured = HAS_TEXTURES && materials[shading[L->prim].material].emissive_tex >= 0;
         float power_per_area =
             textured ? L->power / L->area : uniform_power_per_area(load3g(L->radiance), L->two_sided != 0u);
-        *pdf = area_light_pdf(SCENE_ARGS, power_per_area, d2, cos_y);
+        *pdf_out = area_light_pdf(SCENE_ARGS, power_per_area, d2, cos_y);
         /* Stop the shadow ray short of the light's own surface. */
         float m = fmax(fabs(y.x), fmax(fabs(y.y), fabs(y.z)));
         *dist = len - 2.0f * (info->ray_eps + 4e-6f * m);
         return *dist > 0.0f;
+    }
+    if (HAS_ENV_LIGHT && L->type == LIGHT_ENVIRONMENT) {
+        float pdf;
+        *wi = env_sample(L, textures, light_cdf, rng_float(rng), rng_float(rng), &pdf);
+        if (!(pdf > 0.0f)) return false;
+        *dist = 4.0f * info->radius + length(x - load3c(info->center));
+        *contrib = env_radiance(L, textures, texels, *wi) / (pick * pdf);
+        *pdf_out = pick * pdf;
+        return max3(*contrib) > 0.0f;
     }
     if (HAS_DIRECTIONAL_LIGHTS && L->type == LIGHT_DIRECTIONAL) {
         *wi = -load3g(L->direction);
@@ -172,6 +196,13 @@ bool sample_light(SCENE_PARAMS, float3 x, Rng* rng, float3* wi, float* dist, flo
     *dist = len;
     *contrib = rad * (falloff / (d2 * pick)); /* I / d^2 */
     return true;
+}
+
+/* The density with which sample_light draws direction w towards the environment (MIS weights of
+ * rays that escape). */
+float env_light_pdf(SCENE_PARAMS, float3 w) {
+    __global const Light* L = &lights[info->env_light];
+    return light_pick_pdf(SCENE_ARGS, info->env_light) * env_pdf(L, textures, light_cdf, w);
 }
 
 #endif

@@ -45,4 +45,16 @@ float emission_mis(SCENE_PARAMS, const Surface* sf, float3 dir, float bsdf_pdf) 
     return power_heuristic(bsdf_pdf, light_pdf);
 }
 
+/* What a ray along unit dir that leaves the scene sees: the environment, weighted by MIS
+ * against light sampling unless it came from a camera or a delta lobe (bsdf_pdf 0), nothing
+ * for a camera ray when the environment is hidden. */
+float3 escaped_radiance(SCENE_PARAMS, float3 dir, bool camera_ray, bool delta, float bsdf_pdf) {
+    if (!HAS_ENV_LIGHT || info->env_light == ENV_UNIFORM) return (float3)(0.0f);
+    __global const Light* L = &lights[info->env_light];
+    if (camera_ray && L->position[2] != 0.0f) return (float3)(0.0f);
+    float3 le = env_radiance(L, textures, texels, dir);
+    if (delta) return le;
+    return le * power_heuristic(bsdf_pdf, env_light_pdf(SCENE_ARGS, dir));
+}
+
 #endif

@@ -113,6 +113,9 @@ typedef struct {
 #define LIGHT_POINT 1u       /* KHR_lights_punctual point: intensity in W/sr */
 #define LIGHT_SPOT 2u        /* KHR_lights_punctual spot */
 #define LIGHT_DIRECTIONAL 3u /* KHR_lights_punctual directional: irradiance in W/m^2 */
+#define LIGHT_ENVIRONMENT 4u /* radiance from every direction (--env, --env-color, the default light):
+                              * kernels/environment.cl */
+#define ENV_UNIFORM 0xffffffffu /* LIGHT_ENVIRONMENT.prim without a map */
 
 typedef struct {
     u32 type;
@@ -122,7 +125,11 @@ typedef struct {
     float position[4];
     float direction[4]; /* spot, directional: unit direction the light travels */
     float radiance[4];  /* triangle: Le (times the emissive texture, when any); point/spot:
-                         * intensity I; directional: irradiance E */
+                         * intensity I; directional: irradiance E; environment: the factor on
+                         * its map (or its uniform radiance) */
+    /* LIGHT_ENVIRONMENT: prim is the map's texture (ENV_UNIFORM: none), two_sided the offset of
+     * its sampling distribution in light_cdf, position (cos, sin) of its turn about +Y and
+     * position[2] 1 when camera rays do not see it (--env-hidden). */
     float cos_inner, cos_outer, area, pad0;
 } Light; /* 80 bytes */
 
@@ -149,7 +156,8 @@ typedef struct {
     u32 max_bounces;     /* eye and photon path depth limit */
     u32 vertex_colors;   /* 1: the colors buffer holds COLOR_0 for every triangle; 0: it is empty */
     u32 texcoord1;       /* 1: the uv1 buffer holds TEXCOORD_1 for every triangle; 0: it is empty */
-    u32 pad1, pad2, pad3;
+    u32 env_light;       /* index of the LIGHT_ENVIRONMENT light; ENV_UNIFORM (~0) when there is none */
+    u32 pad2, pad3;
 } SceneInfo; /* 64 bytes */
 
 /* ---- progressive photon mapping -------------------------------------------------------------- */

@@ -102,29 +102,39 @@ TEST(Cli, ListDevicesShowsTheDevice) {
 
 TEST(Cli, MissingSceneIsAOneLineErrorNamingTheFile) {
     std::string out;
-    EXPECT_EQ(run_clppm("/nonexistent/scene.gltf -o /tmp/x.exr", &out), 1);
+    EXPECT_EQ(run_clppm("/nonexistent/scene.gltf -o " + make_temp_dir("out") + "/x.exr", &out), 1);
     expect_one_line_error(out, "/nonexistent/scene.gltf");
 }
 
 TEST(Cli, MalformedGltfIsAOneLineError) {
     std::string out;
-    EXPECT_EQ(run_clppm(data("malformed.gltf") + " -o /tmp/x.exr", &out), 1);
+    EXPECT_EQ(run_clppm(data("malformed.gltf") + " -o " + make_temp_dir("out") + "/x.exr", &out), 1);
     expect_one_line_error(out, "malformed.gltf");
 }
 
-TEST(Cli, SceneWithoutLightsIsAnError) {
+// A scene without lights is lit by the default white environment, and says so in one line; with
+// --no-default-light it is refused as before.
+TEST(Cli, SceneWithoutLightsGetsTheDefaultEnvironmentOrIsRefused) {
     std::string dir = make_temp_dir("cli"), out;
-    EXPECT_EQ(run_clppm(data("embedded.gltf") + " -o " + dir + "/x.exr", &out), 1);
+    EXPECT_EQ(run_clppm(data("embedded.gltf") + " --no-default-light -o " + dir + "/x.exr", &out), 1);
     expect_one_line_error(out, "no lights");
     EXPECT_FALSE(exists(dir + "/x.exr"));
+    EXPECT_EQ(run_clppm(data("embedded.gltf") + " --width 8 --height 8 --passes 1 --no-png -o " + dir + "/x.exr", &out),
+              0)
+        << out;
+    EXPECT_NE(out.find("no lights in the scene: lit by a uniform white environment of radiance 1 (as a Blender world "
+                       "of strength 1); --no-default-light refuses such scenes"),
+              std::string::npos)
+        << out;
+    EXPECT_TRUE(exists(dir + "/x.exr"));
 }
 
 TEST(Cli, UnknownDeviceListsWhatExists) {
     std::string out;
-    EXPECT_EQ(run_clppm("--device no-such-device -o /tmp/x.exr", &out), 1);
+    EXPECT_EQ(run_clppm("--device no-such-device -o " + make_temp_dir("out") + "/x.exr", &out), 1);
     expect_one_line_error(out, "--device no-such-device");
     EXPECT_NE(out.find("[0]"), std::string::npos) << out;
-    EXPECT_EQ(run_clppm("--device 99 -o /tmp/x.exr", &out), 1);
+    EXPECT_EQ(run_clppm("--device 99 -o " + make_temp_dir("out") + "/x.exr", &out), 1);
     expect_one_line_error(out, "no device with index 99");
 }
 
@@ -140,7 +150,7 @@ TEST(Cli, BadOptionValuesNameTheOptionAndRange) {
     expect_one_line_error(out, "--alpha");
     EXPECT_EQ(run_clppm("--bogus", &out), 1);
     expect_one_line_error(out, "--bogus");
-    EXPECT_EQ(run_clppm("--camera 3 -o /tmp/x.exr --passes 1", &out), 1);
+    EXPECT_EQ(run_clppm("--camera 3 -o " + make_temp_dir("out") + "/x.exr --passes 1", &out), 1);
     expect_one_line_error(out, "--camera 3");
 }
 

@@ -50,9 +50,9 @@ TEST(MultiDevice, TwoDevicesGiveTheSameImageAsOne) {
 
 TEST(MultiDevice, ADeviceNamedTwiceIsAnError) {
     std::string out;
-    EXPECT_EQ(run_two("--device 0 --device 0 -o /tmp/x.exr", &out), 1);
+    EXPECT_EQ(run_two("--device 0 --device 0 -o " + make_temp_dir("out") + "/x.exr", &out), 1);
     EXPECT_NE(out.find("--device 0: device [0]"), std::string::npos) << out;
     EXPECT_NE(out.find("given twice"), std::string::npos) << out;
-    EXPECT_EQ(run_two("--device 0 --device 7 -o /tmp/x.exr", &out), 1);
+    EXPECT_EQ(run_two("--device 0 --device 7 -o " + make_temp_dir("out") + "/x.exr", &out), 1);
     EXPECT_NE(out.find("--device 7: no device with index 7"), std::string::npos) << out;
 }

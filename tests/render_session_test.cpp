@@ -151,7 +151,8 @@ TEST(RenderSession, DroppedLightsAreNamedWithTheirReason) {
     material(gltf, "light")["emissiveFactor"] = {-1.0, -1.0, -1.0};
     add_point_light(gltf, 0.0);
     std::ofstream(d + "/s.gltf") << gltf.dump();
-    EXPECT_EQ(run_clppm(d + "/s.gltf" + kArgs + " --quiet --passes 1 -o " + d + "/s.exr", &out), 1) << out;
+    EXPECT_EQ(run_clppm(d + "/s.gltf" + kArgs + " --quiet --no-default-light --passes 1 -o " + d + "/s.exr", &out), 1)
+        << out;
     EXPECT_NE(out.find("emissiveFactor * emissiveStrength is negative"), std::string::npos) << out;
     EXPECT_NE(out.find("no lights"), std::string::npos) << out;
     EXPECT_NE(out.find("dropped: point light 0 emits nothing (zero intensity or a closed cone)"), std::string::npos)

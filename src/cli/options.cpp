@@ -1,5 +1,6 @@
 #include "cli/options.h"
 
+#include <array>
 #include <cctype>
 #include <cerrno>
 #include <climits>
@@ -74,6 +75,26 @@ double parse_real(const Arg& a, bool (*ok)(double)) {
     double x = std::strtod(v.c_str(), &end);
     if (errno == ERANGE || *end != '\0' || !std::isfinite(x) || !ok(x)) bad_value(a);
     return x;
+}
+
+// "R,G,B": three finite numbers >= 0.
+std::array<float, 3> parse_rgb(const Arg& a) {
+    std::array<float, 3> c{};
+    const std::string& v = a.value;
+    size_t start = 0;
+    for (int k = 0; k < 3; ++k) {
+        const size_t comma = v.find(',', start);
+        if ((k < 2) != (comma != std::string::npos)) bad_value(a);
+        const std::string part = v.substr(start, k < 2 ? comma - start : std::string::npos);
+        if (part.empty() || std::isspace(static_cast<unsigned char>(part[0]))) bad_value(a);
+        errno = 0;
+        char* end = nullptr;
+        const double x = std::strtod(part.c_str(), &end);
+        if (errno == ERANGE || *end != '\0' || !std::isfinite(x) || x < 0 || !std::isfinite(float(x))) bad_value(a);
+        c[size_t(k)] = float(x);
+        start = comma + 1;
+    }
+    return c;
 }
 
 const std::string& non_empty(const Arg& a) {
@@ -174,6 +195,25 @@ const OptionSpec kOptions[] = {
     {"--focus-distance", nullptr, "D", "Distance to the plane in focus, in scene units", "a finite number > 0",
      "the camera's, else the scene centre's distance",
      [](ParseState& st, const Arg& a) { st.options.focus_distance = parse_real(a, [](double x) { return x > 0; }); }},
+    {"--env", nullptr, "FILE",
+     "Light the scene with an equirectangular environment map (top row +Y, centre -Z, u towards +X)",
+     "an .exr or .hdr file", "none", [](ParseState& st, const Arg& a) { st.options.env.file = non_empty(a); }},
+    {"--env-color", nullptr, "R,G,B", "Light the scene with a uniform environment of this radiance",
+     "three numbers >= 0, comma-separated", "none",
+     [](ParseState& st, const Arg& a) {
+         st.options.env.color = parse_rgb(a);
+         st.options.env.has_color = true;
+     }},
+    {"--env-strength", nullptr, "S", "Scale the environment (also the default one)", "a finite number >= 0", "1",
+     [](ParseState& st, const Arg& a) { st.options.env.strength = parse_real(a, [](double x) { return x >= 0; }); }},
+    {"--env-rotate", nullptr, "DEG", "Turn the environment about +Y (right-handed: +X towards -Z)",
+     "a finite number of degrees", "0",
+     [](ParseState& st, const Arg& a) { st.options.env.rotate_degrees = parse_real(a, [](double) { return true; }); }},
+    {"--env-hidden", nullptr, nullptr, "Camera rays that leave the scene see black; the environment still lights it",
+     nullptr, nullptr, [](ParseState& st, const Arg&) { st.options.env.hidden = true; }},
+    {"--no-default-light", nullptr, nullptr,
+     "Refuse a scene without lights instead of lighting it with a uniform white environment of radiance 1", nullptr,
+     nullptr, [](ParseState& st, const Arg&) { st.options.env.default_light = false; }},
     {"--max-bounces", nullptr, "N", "Longest eye or photon path", "an integer in 1..1024", "16",
      [](ParseState& st, const Arg& a) { st.options.max_bounces = static_cast<int>(parse_int(a, 1, 1024)); }},
     {"--progressive-output", nullptr, "K", "Also save the images every K passes", "an integer >= 0 (0 = off)", "0",

@@ -17,6 +17,7 @@
 #include "io/output_lock.h"
 #include "io/stats_json.h"
 #include "scene/device_scene.h"
+#include "scene/environment.h"
 #include "scene/gltf/gltf_load.h"
 #include "scene/scene_features.h"
 #include "scene/scene_fingerprint.h"
@@ -269,6 +270,9 @@ int render_session(const Options& opt) {
     const OutputLock lock(outputs);
 
     Scene scene = load_scene(opt);
+    std::string env_note;
+    apply_environment(scene, opt.env, &env_note);
+    if (!env_note.empty()) note(opt, env_note);
     const uint64_t scene_hash = scene_fingerprint(scene);
     RenderSettings settings = settings_from(opt);
     // Refuse a render the device cannot hold before allocating anything.

@@ -25,6 +25,11 @@ MemoryEstimate estimate_memory(const Scene& scene, const RenderSettings& setting
     m.scene = tris * (3 * 16 + sizeof(dev::TriShading)) + (tris / 2 + 1) * sizeof(dev::BvhNode) +
               scene.texels.size() * 16 + scene.tangents.size() * 16 + scene.colors.size() * 16 + scene.uv1.size() * 8 +
               scene.materials.size() * sizeof(dev::Material) + tris * sizeof(dev::Light);
+    // An environment map's sampling distribution: about two floats per texel (environment.h).
+    if (scene.environment.present && scene.environment.texture >= 0) {
+        const dev::Texture& t = scene.textures[size_t(scene.environment.texture)];
+        m.scene += (2 * size_t(t.width) + 3) * t.height * sizeof(float);
+    }
     const IntegratorMemory own = integrator_memory(settings, width, height, error_estimation);
     m.integrator = own.bytes;
     m.largest_buffer = std::max(own.largest_buffer, tris * sizeof(dev::TriShading));

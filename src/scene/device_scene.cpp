@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "scene/bvh_build.h"
+#include "scene/environment.h"
 #include "scene/light_power.h"
 #include "util/error.h"
 #include "util/narrow_to_float.h"
@@ -275,11 +276,42 @@ DeviceScene upload_scene(const DeviceContext& dc, Scene& scene, const SceneSetti
 
     std::vector<std::string> dropped;
     ds.lights = collect_lights(scene, ds.info, &dropped);
+    ds.info.env_light = ENV_UNIFORM;
+    EnvDistribution env_dist;
+    if (scene.environment.present) {
+        const Environment& e = scene.environment;
+        dev::Light l{};
+        l.type = LIGHT_ENVIRONMENT;
+        l.prim = ENV_UNIFORM;
+        double integral = 4 * M_PI; // of the texels (uniform: 1), before the factor
+        if (e.texture >= 0) {
+            const dev::Texture& t = scene.textures[size_t(e.texture)];
+            env_dist = env_distribution(scene.texels, t.offset, t.width, t.height);
+            integral = env_dist.integral;
+            l.prim = uint32_t(e.texture);
+        }
+        for (int c = 0; c < 3; ++c) l.radiance[c] = e.radiance[size_t(c)];
+        l.position[0] = std::cos(e.rotation), l.position[1] = std::sin(e.rotation);
+        l.position[2] = e.hidden ? 1.f : 0.f;
+        // pi R^2 int L dw: what crosses the disc photons start from (kernels/lights.cl).
+        const double mean = (double(e.radiance[0]) + e.radiance[1] + e.radiance[2]) / 3;
+        const double power = M_PI * double(ds.info.radius) * ds.info.radius * integral * mean;
+        l.power = narrow_to_float(power);
+        if (!std::isfinite(l.power))
+            throw Error(e.source + ": the environment's power (" + watts(power) + ") does not fit a float");
+        if (l.power > 0) {
+            ds.info.env_light = uint32_t(ds.lights.size());
+            ds.lights.push_back(l);
+        } else {
+            dropped.push_back(e.source + " (black)");
+        }
+    }
     if (ds.lights.empty()) {
         std::string why;
         for (const std::string& d : dropped) why += (why.empty() ? "; dropped: " : ", ") + d;
         throw Error(scene.source +
-                    ": no lights (no emissive material and no KHR_lights_punctual light): nothing to render" + why);
+                    ": no lights (no emissive material and no KHR_lights_punctual light): nothing to render" + why +
+                    "; light it with --env FILE or --env-color R,G,B");
     }
     for (const std::string& d : dropped) ds.warnings.push_back("light dropped: " + d);
     double total = 0;
@@ -291,6 +323,11 @@ DeviceScene upload_scene(const DeviceContext& dc, Scene& scene, const SceneSetti
         ds.light_cdf.push_back(float(run / total));
     }
     ds.light_cdf.back() = 1.f;
+    // The environment's sampling distribution follows the lights' CDF.
+    if (ds.info.env_light != ENV_UNIFORM && !env_dist.data.empty()) {
+        ds.lights[ds.info.env_light].two_sided = uint32_t(ds.light_cdf.size());
+        ds.light_cdf.insert(ds.light_cdf.end(), env_dist.data.begin(), env_dist.data.end());
+    }
     if (!std::isfinite(narrow_to_float(total)))
         throw Error(scene.source + ": the lights' total power (" + watts(total) +
                     ") does not fit a float; scale the lights down");

@@ -24,6 +24,16 @@ struct CameraDesc {
     float focus_distance = 0.f;    // extras, 0 = unset
 };
 
+// The environment light (src/scene/environment.h sets it from the --env options).
+struct Environment {
+    bool present = false;
+    std::array<float, 3> radiance{1.f, 1.f, 1.f}; // uniform radiance, or the factor on the map
+    int32_t texture = -1;                         // the map in Scene::textures (linear); -1: uniform
+    float rotation = 0.f;                         // radians about +Y (right-handed)
+    bool hidden = false;                          // camera rays see black
+    std::string source;                           // the file, "--env-color" or "the default environment"
+};
+
 struct Scene {
     // Triangles: three world-space positions each (p[3*i+k]), and shading attributes.
     std::vector<Vec3> positions;          // 3 per triangle
@@ -45,6 +55,7 @@ struct Scene {
     // renderer, not listed here. type is LIGHT_POINT/SPOT/DIRECTIONAL; prim/area unused.
     std::vector<dev::Light> punctual_lights;
     std::vector<CameraDesc> cameras; // empty: no camera in the file
+    Environment environment;
     // Diagnostics from loading, reported by the CLI.
     size_t degenerate_triangles_skipped = 0;
     size_t meshes_without_normals = 0;

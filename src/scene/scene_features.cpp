@@ -35,6 +35,7 @@ SceneFeatures scene_features(const Scene& scene, const DeviceScene& ds) {
         if (l.type == LIGHT_POINT) f.point_lights = true;
         if (l.type == LIGHT_SPOT) f.spot_lights = true;
         if (l.type == LIGHT_DIRECTIONAL) f.directional_lights = true;
+        if (l.type == LIGHT_ENVIRONMENT) f.env_light = true;
     }
     f.thin_lens = ds.camera.lens_radius > 0.f;
     return f;

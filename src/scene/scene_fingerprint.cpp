@@ -17,6 +17,12 @@ uint64_t scene_fingerprint(const Scene& s) {
     h = fnv1a64(s.colors, h);   // likewise without COLOR_0
     h = fnv1a64(s.uv1, h);      // and without TEXCOORD_1
     h = fnv1a64(s.punctual_lights, h);
+    if (s.environment.present) { // absent, it changes nothing: fingerprints from before stay valid
+        const Environment& e = s.environment;
+        std::vector<float> v(e.radiance.begin(), e.radiance.end());
+        v.insert(v.end(), {float(e.texture), e.rotation, e.hidden ? 1.f : 0.f});
+        h = fnv1a64(v, h);
+    }
     for (const CameraDesc& c : s.cameras) {
         std::vector<float> v(c.position, c.position + 3);
         v.insert(v.end(), c.forward, c.forward + 3);

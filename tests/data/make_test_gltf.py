@@ -17,7 +17,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 sys.dont_write_bytecode = True  # keep scripts/ free of __pycache__
 sys.path.insert(0, os.path.join(HERE, "..", "..", "scripts"))
 from make_scenes import (ARRAY_BUFFER, BYTE, FLOAT, SHORT, UBYTE, UINT, USHORT, GltfBuilder,  # noqa: E402
-                         quad, rounded, write_text)
+                         quad, rounded, uv_sphere, write_text)
 
 NAN, INF = float("nan"), float("inf")
 TRI = [(0.0, 0.0, 0.0), (1.0, 0.0, 0.0), (0.0, 1.0, 0.0)]
@@ -691,6 +691,38 @@ def reference_scenes():
         b.write_embedded(out(name))
 
 
+def environment_scenes():
+    """Scenes without lights, for the environment (tests/environment_test.cpp): env_sphere, a
+    Lambertian sphere of albedo 0.5 (radius 1, 64 x 48) seen from z = 4, background around it;
+    env_floor, a Lambertian floor of albedo 0.8 (20 x 20) seen straight down from y = 2, filling
+    the frame; env_outdoor, that floor with a grey box and a rough metal sphere on it, seen from
+    the side, for the sun-map comparison of the integrators."""
+    b = GltfBuilder("clppm tests/data/make_test_gltf.py")
+    grey = b.material("grey", (0.5, 0.5, 0.5), specular=0.0)
+    pos, nrm, idx = uv_sphere(64, 48)
+    b.scene([b.node(name="sphere", mesh=b.mesh([b.primitive(pos, idx, nrm, material=grey)])),
+             b.node(name="camera", camera=b.camera(0.6), translation=[0.0, 0.0, 4.0])])
+    b.write_embedded(out("env_sphere.gltf"))
+    for name in ("env_floor.gltf", "env_outdoor.gltf"):
+        b = GltfBuilder("clppm tests/data/make_test_gltf.py")
+        floor = b.material("floor", (0.8, 0.8, 0.8), specular=0.0)
+        fpos, fnrm, fidx = quad((0.0, 0.0, 0.0), (0.0, 0.0, 10.0), (10.0, 0.0, 0.0))
+        prims = [b.primitive(fpos, fidx, fnrm, material=floor)]
+        if name == "env_floor.gltf":
+            cam = b.node(name="camera", camera=b.camera(0.5), translation=[0.0, 2.0, 0.0],
+                         rotation=quat_axis_angle((1, 0, 0), -math.pi / 2))
+        else:
+            box = b.material("box", (0.6, 0.5, 0.4), roughness=0.6)
+            metal = b.material("metal", (0.9, 0.8, 0.6), metallic=1.0, roughness=0.3)
+            prims.append(box_primitive(b, (-1.2, 0.0, -0.6), (-0.2, 1.0, 0.4), box))
+            spos, snrm, sidx = uv_sphere(32, 24, radius=0.5, center=(0.7, 0.5, 0.0))
+            prims.append(b.primitive(spos, sidx, snrm, material=metal))
+            cam = b.node(name="camera", camera=b.camera(0.8), translation=[0.0, 1.5, 4.0],
+                         rotation=quat_axis_angle((1, 0, 0), -math.atan2(1.0, 4.0)))
+        b.scene([b.node(name="set", mesh=b.mesh(prims)), cam])
+        b.write_embedded(out(name))
+
+
 def specular_textures():
     """KHR_materials_specular textures: a plate whose uniform specularTexture (A = 51: 0.2) and
     specularColorTexture (sRGB (255, 0, 255)) scale factors of 1, against the plate with factors
@@ -804,7 +836,7 @@ def main():
                  materials, texture, lights, cameras, quantized, sparse, strips_fans, gpu_instancing, emissive_texture,
                  normal_maps, vertex_colors, alpha_modes,
                  texture_transform, uv1_plates, volumes,
-                 specular_textures, reference_scenes, errors):
+                 specular_textures, reference_scenes, environment_scenes, errors):
         make()
 
 
