@@ -688,5 +688,16 @@ TEST(GltfShippedScenes, CausticSpotAimsAtTheGlassSphere) {
     EXPECT_TRUE(has_glass(s));
 }
 
+// Skins are not applied (the mesh is drawn as stored): the loader says so once, never silently.
+TEST(GltfSkin, SkinnedNodeIsDrawnAsStoredWithAWarning) {
+    Scene s = load_gltf(data("skinned.gltf"));
+    ASSERT_EQ(s.num_triangles(), 1u);
+    EXPECT_NEAR(s.positions[1].x, 1.0, 1e-7); // as stored: the joint's translation does not move it
+    EXPECT_NEAR(s.positions[1].y, 0.0, 1e-7);
+    size_t skin_warnings = 0;
+    for (const std::string& w : s.warnings) skin_warnings += w.find("skinning is not applied") != std::string::npos;
+    EXPECT_EQ(skin_warnings, 1u);
+}
+
 } // namespace
 } // namespace clppm

@@ -175,6 +175,17 @@ def mirror():
     b.write_embedded(out("mirror.gltf"))
 
 
+def skinned():
+    """A triangle on a node with a skin of one joint: skinning is not applied, with a warning."""
+    b = GltfBuilder("clppm tests/data/make_test_gltf.py")
+    joint = b.node(name="joint", translation=[0.0, 1.0, 0.0])
+    tri = b.node(name="skinned", mesh=b.mesh([b.primitive(TRI, [0, 1, 2], TRI_N)]))
+    b.doc["nodes"][tri]["skin"] = 0
+    b.doc["skins"] = [{"joints": [joint]}]
+    b.scene([tri, joint])
+    b.write_embedded(out("skinned.gltf"))
+
+
 def materials():
     """One triangle per material (z = material index) and one without a material."""
     b = GltfBuilder("clppm tests/data/make_test_gltf.py")
@@ -835,7 +846,7 @@ def main():
     for make in (hierarchy, index_types, byte_stride, containers, no_normals, degenerate, mirror, metallic_roughness,
                  materials, texture, lights, cameras, quantized, sparse, strips_fans, gpu_instancing, emissive_texture,
                  normal_maps, vertex_colors, alpha_modes,
-                 texture_transform, uv1_plates, volumes,
+                 texture_transform, uv1_plates, volumes, skinned,
                  specular_textures, reference_scenes, environment_scenes, errors):
         make()
 

@@ -112,6 +112,11 @@ void SceneBuilder::instantiate(int index, const glm::dmat4& world) {
     if (node.mesh == -1 && node.camera == -1 && !has_light) return;
     std::string label = node_label(index);
     if (node.mesh != -1) {
+        if (node.skin >= 0 && !warned_skin_) {
+            warned_skin_ = true;
+            ctx_.warn(label + " (and any other skinned node) has a skin: skinning is not applied, the mesh is "
+                              "drawn as stored (its bind pose), which differs where the joints are posed");
+        }
         std::vector<glm::dmat4> instances = gpu_instances(node, label);
         if (instances.empty()) add_mesh(node.mesh, world, label);
         for (size_t i = 0; i < instances.size(); ++i) {

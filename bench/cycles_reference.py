@@ -1,0 +1,92 @@
+#!/usr/bin/env python3
+"""Renders a glTF file with Blender's Cycles as an independent reference for clppm, offline (not in
+CI, not a dependency): the file imported by Blender's own glTF importer, seen through its first
+camera or, without one, through clppm's default view (from +Z at the bounding sphere's distance
+r / sin(0.4) x 1.05, vertical field of view 0.8 rad), lit by the file's lights and by a world of
+colour (1, 1, 1) at the given strength (clppm's default environment; 0 for none), the file's
+punctual lights taken one for one as clppm takes them. Box pixel
+filter, as clppm's uniform jitter; 16 bounces of every kind; no clamping. Writes linear EXR.
+
+    python3 -m venv /tmp/bpyenv && /tmp/bpyenv/bin/pip install bpy
+    /tmp/bpyenv/bin/python bench/cycles_reference.py SCENE.glb OUT.exr [--size 256] [--spp 1024]
+        [--world 1.0]
+"""
+import argparse
+import math
+import sys
+
+import bpy
+from mathutils import Vector
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("scene")
+    ap.add_argument("out")
+    ap.add_argument("--size", type=int, default=256)
+    ap.add_argument("--spp", type=int, default=1024)
+    ap.add_argument("--world", type=float, default=1.0)
+    a = ap.parse_args(sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else sys.argv[1:])
+
+    bpy.ops.wm.read_factory_settings(use_empty=True)
+    # RAW: KHR_lights_punctual values read one for one (lux as W/m^2), as clppm reads them
+    # (README.md, "Punctual lights"); Blender's default would divide by 683 lm/W.
+    bpy.ops.import_scene.gltf(filepath=a.scene, export_import_convert_lighting_mode="RAW")
+    scene = bpy.context.scene
+    cams = [o for o in scene.objects if o.type == "CAMERA"]
+    if cams:
+        scene.camera = cams[0]
+    else:
+        # Evaluated meshes: skinned ones as drawn (clppm's bounds are those of what it renders).
+        depsgraph = bpy.context.evaluated_depsgraph_get()
+        pts = []
+        for o in scene.objects:
+            if o.type == "MESH":
+                eo = o.evaluated_get(depsgraph)
+                pts += [eo.matrix_world @ Vector(v.co) for v in eo.to_mesh().vertices]
+        lo = Vector((min(p[i] for p in pts) for i in range(3)))
+        hi = Vector((max(p[i] for p in pts) for i in range(3)))
+        c, r = (lo + hi) / 2, (hi - lo).length / 2
+        d = r / math.sin(0.4) * 1.05
+        cam_data = bpy.data.cameras.new("default")
+        cam_data.sensor_fit = "VERTICAL"
+        cam_data.angle_y = 0.8
+        cam_data.clip_start, cam_data.clip_end = d * 1e-3, d * 10
+        cam = bpy.data.objects.new("default", cam_data)
+        scene.collection.objects.link(cam)
+        # glTF +Z is Blender -Y: from -Y towards +Y, up +Z.
+        cam.location = (c.x, c.y - d, c.z)
+        cam.rotation_euler = (math.pi / 2, 0, 0)
+        scene.camera = cam
+    world = bpy.data.worlds.new("white")
+    world.use_nodes = True
+    bg = world.node_tree.nodes["Background"]
+    bg.inputs["Color"].default_value = (1, 1, 1, 1)
+    bg.inputs["Strength"].default_value = a.world
+    scene.world = world
+    scene.render.engine = "CYCLES"
+    cy = scene.cycles
+    cy.device = "CPU"
+    cy.samples = a.spp
+    cy.use_adaptive_sampling = False
+    cy.use_denoising = False
+    cy.max_bounces = cy.diffuse_bounces = cy.glossy_bounces = cy.transmission_bounces = 16
+    cy.transparent_max_bounces = 16
+    cy.caustics_reflective = cy.caustics_refractive = True
+    cy.sample_clamp_direct = cy.sample_clamp_indirect = 0.0
+    cy.blur_glossy = 0.0
+    cy.pixel_filter_type = "BOX"
+    cy.filter_width = 1.0
+    scene.render.resolution_x = scene.render.resolution_y = a.size
+    scene.render.resolution_percentage = 100
+    scene.render.film_transparent = False
+    scene.view_settings.view_transform = "Standard"
+    scene.render.image_settings.file_format = "OPEN_EXR"
+    scene.render.image_settings.color_depth = "32"
+    scene.render.filepath = a.out
+    bpy.ops.render.render(write_still=True)
+    print("wrote", a.out)
+
+
+if __name__ == "__main__":
+    main()
