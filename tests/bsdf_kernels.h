@@ -167,9 +167,8 @@ struct Params {
     double f90 = 1, alpha = 0.25, dielectric = 1, glass = 0, metal = 0, eta = 1.5;
     bool thin = false;
     std::vector<float> pack() const {
-        return {float(base.x), float(base.y), float(base.z),     float(f0.x),  float(f0.y),  float(f0.z),
-                float(f90),    float(alpha),  float(dielectric), float(glass), float(metal), float(eta),
-                thin ? 1.f : 0.f};
+        return {float(base.x), float(base.y),     float(base.z), float(f0.x),  float(f0.y), float(f0.z),     float(f90),
+                float(alpha),  float(dielectric), float(glass),  float(metal), float(eta),  thin ? 1.f : 0.f};
     }
     std::string name() const {
         return "base (" + std::to_string(base.x) + "," + std::to_string(base.y) + "," + std::to_string(base.z) +

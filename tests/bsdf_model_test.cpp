@@ -105,8 +105,8 @@ Params glass(double alpha, double eta, bool thin = false) {
 }
 
 const std::vector<Params>& cases() {
-    static const std::vector<Params> c = {dielectric(0.05), dielectric(0.25), dielectric(1.0), metal(0.05),
-                                          metal(0.3),       metal(1.0),       mixed(0.1),      mixed(0.6),
+    static const std::vector<Params> c = {dielectric(0.05), dielectric(0.25),    dielectric(1.0),      metal(0.05),
+                                          metal(0.3),       metal(1.0),          mixed(0.1),           mixed(0.6),
                                           glass(0.1, 1.5),  glass(0.5, 1 / 1.5), glass(0.3, 1.5, true)};
     return c;
 }
@@ -201,7 +201,8 @@ TEST(BsdfModel, SampleMatchesPdfChiSquare) {
                     int bu = std::min(nu - 1, int(u * nu)), bp = std::min(nphi - 1, int(phi / (2 * M_PI) * nphi));
                     observed[bu * nphi + bp] += 1;
                 }
-                fprintf(stderr, "DBG inside %g extra exp %g obs %g\n", inside, expected[nu * nphi], observed[nu * nphi]);
+                fprintf(stderr, "DBG inside %g extra exp %g obs %g\n", inside, expected[nu * nphi],
+                        observed[nu * nphi]);
                 Chi2Result c = chi2_test(observed, expected);
                 EXPECT_TRUE(c.error.empty()) << c.error;
                 EXPECT_GT(c.p_value, level) << "chi2 " << c.chi2 << " dof " << c.dof;

@@ -50,9 +50,9 @@ Agreement render_against_reference(const std::string& scene, const std::string& 
 TEST(ReferenceImages, RoughGlassAgreesWithMitsuba) {
     for (const char* integrator : {"pt", "sppm"}) {
         const bool pt = std::string(integrator) == "pt";
-        Agreement g = render_against_reference(
-            "ref_rough_glass", std::string("--integrator ") + integrator +
-                                   (pt ? " --passes 2048" : " --passes 48 --photons 100000"));
+        Agreement g =
+            render_against_reference("ref_rough_glass", std::string("--integrator ") + integrator +
+                                                            (pt ? " --passes 2048" : " --passes 48 --photons 100000"));
         EXPECT_NEAR(g.mean_ratio, 1.0, 0.01) << integrator;
         EXPECT_LT(g.box4_rel_mse, pt ? 5e-4 : 3e-3) << integrator;
     }
@@ -61,9 +61,9 @@ TEST(ReferenceImages, RoughGlassAgreesWithMitsuba) {
 TEST(ReferenceImages, TintedVolumeAgreesWithMitsuba) {
     for (const char* integrator : {"pt", "sppm"}) {
         const bool pt = std::string(integrator) == "pt";
-        Agreement g = render_against_reference(
-            "ref_tinted_volume", std::string("--integrator ") + integrator +
-                                     (pt ? " --passes 2048" : " --passes 48 --photons 100000"));
+        Agreement g = render_against_reference("ref_tinted_volume",
+                                               std::string("--integrator ") + integrator +
+                                                   (pt ? " --passes 2048" : " --passes 48 --photons 100000"));
         EXPECT_NEAR(g.mean_ratio, 1.0, 0.01) << integrator;
         EXPECT_LT(g.box4_rel_mse, pt ? 5e-4 : 3e-3) << integrator;
     }

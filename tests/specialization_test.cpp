@@ -58,9 +58,10 @@ TEST(Specialization, BuildOptionsRemoveWhatTheSceneDoesNotUse) {
     EXPECT_TRUE(fb.metal && fb.glass && fb.area_lights);
     EXPECT_FALSE(fb.specular_layer || fb.rough_glass || fb.textures || fb.spot_lights || fb.point_lights ||
                  fb.thin_lens);
-    EXPECT_EQ(feature_build_options(ff),
-              "-DHAS_SPECULAR_LAYER=0 -DHAS_METAL=0 -DHAS_GLASS=0 -DHAS_ROUGH_GLASS=0 -DHAS_TEXTURES=0 -DHAS_NORMAL_MAPS=0 "
-              "-DHAS_VERTEX_COLORS=0 -DHAS_ALPHA=0 -DHAS_VOLUME=0 -DHAS_POINT_LIGHTS=0 -DHAS_SPOT_LIGHTS=0 "
-              "-DHAS_DIRECTIONAL_LIGHTS=0 -DHAS_ENV_LIGHT=0 -DHAS_THIN_LENS=0");
+    EXPECT_EQ(
+        feature_build_options(ff),
+        "-DHAS_SPECULAR_LAYER=0 -DHAS_METAL=0 -DHAS_GLASS=0 -DHAS_ROUGH_GLASS=0 -DHAS_TEXTURES=0 -DHAS_NORMAL_MAPS=0 "
+        "-DHAS_VERTEX_COLORS=0 -DHAS_ALPHA=0 -DHAS_VOLUME=0 -DHAS_POINT_LIGHTS=0 -DHAS_SPOT_LIGHTS=0 "
+        "-DHAS_DIRECTIONAL_LIGHTS=0 -DHAS_ENV_LIGHT=0 -DHAS_THIN_LENS=0");
     EXPECT_EQ(feature_build_options(SceneFeatures::all()), "");
 }

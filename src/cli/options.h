@@ -31,10 +31,10 @@ struct Options {
     DirectLighting direct = DirectLighting::Sample;
     int spp = 1; // PPM hit points (samples) per pixel, 1..256
     PixelFilter filter = PixelFilter::Box;
-    double aperture = -1.0;             // thin-lens aperture radius; < 0 = the camera's (0 = pinhole)
-    double focus_distance = 0.0;        // thin-lens focus distance; 0 = the camera's
-    int max_bounces = 16;               // 1..1024
-    EnvironmentSettings env;            // --env, --env-color, --env-strength, --env-rotate, --env-hidden, --no-default-light
+    double aperture = -1.0;      // thin-lens aperture radius; < 0 = the camera's (0 = pinhole)
+    double focus_distance = 0.0; // thin-lens focus distance; 0 = the camera's
+    int max_bounces = 16;        // 1..1024
+    EnvironmentSettings env;     // --env, --env-color, --env-strength, --env-rotate, --env-hidden, --no-default-light
     uint64_t progressive_output = 0;    // save every K passes; 0 = off
     std::string checkpoint;             // --checkpoint FILE: save the progressive state here
     uint64_t checkpoint_every = 0;      // ... every K passes (0: off)

@@ -26,7 +26,8 @@ Image read_map(const std::string& path) {
     if (ends_with(path, ".hdr")) {
         int w = 0, h = 0, n = 0;
         float* data = stbi_loadf(path.c_str(), &w, &h, &n, 3);
-        if (!data) throw Error("--env " + path + ": cannot read the Radiance HDR image (" + stbi_failure_reason() + ")");
+        if (!data)
+            throw Error("--env " + path + ": cannot read the Radiance HDR image (" + stbi_failure_reason() + ")");
         Image img;
         img.width = w, img.height = h;
         img.rgb.assign(data, data + size_t(w) * size_t(h) * 3);
@@ -84,14 +85,15 @@ void apply_environment(Scene& scene, const EnvironmentSettings& s, std::string* 
         if (note) {
             char k_text[32];
             std::snprintf(k_text, sizeof k_text, "%g", double(k));
-            *note = scene.source + ": no lights in the scene: lit by a uniform white environment of radiance " + k_text +
-                    " (as a Blender world of strength " + k_text + "); --no-default-light refuses such scenes";
+            *note = scene.source + ": no lights in the scene: lit by a uniform white environment of radiance " +
+                    k_text + " (as a Blender world of strength " + k_text + "); --no-default-light refuses such scenes";
         }
     } else {
         return;
     }
     for (float c : env.radiance)
-        if (!std::isfinite(c) || c < 0.f) throw Error("--env-strength/--env-color: the radiance must be finite and >= 0");
+        if (!std::isfinite(c) || c < 0.f)
+            throw Error("--env-strength/--env-color: the radiance must be finite and >= 0");
     env.present = true;
     scene.environment = env;
 }

@@ -12,13 +12,13 @@
 namespace clppm {
 
 struct EnvironmentSettings {
-    std::string file;              // --env: equirectangular .exr or .hdr; empty: none
-    bool has_color = false;        // --env-color given
-    std::array<float, 3> color{};  // --env-color R,G,B: a uniform environment
-    double strength = 1.0;         // --env-strength
-    double rotate_degrees = 0.0;   // --env-rotate: about +Y, right-handed
-    bool hidden = false;           // --env-hidden: camera rays see black
-    bool default_light = true;     // false with --no-default-light
+    std::string file;             // --env: equirectangular .exr or .hdr; empty: none
+    bool has_color = false;       // --env-color given
+    std::array<float, 3> color{}; // --env-color R,G,B: a uniform environment
+    double strength = 1.0;        // --env-strength
+    double rotate_degrees = 0.0;  // --env-rotate: about +Y, right-handed
+    bool hidden = false;          // --env-hidden: camera rays see black
+    bool default_light = true;    // false with --no-default-light
 };
 
 // Sets scene.environment from the settings: a map (read into scene.textures and texels, linear
