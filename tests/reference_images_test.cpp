@@ -1,5 +1,6 @@
 // clppm against an independent renderer: the scenes of tests/data/make_test_gltf.py's
-// reference_scenes() (a rough glass block, a tinted absorbing glass block) against Mitsuba 3
+// reference_scenes() (a rough glass block, a tinted absorbing glass block, a textured floor with
+// a cut-out leaf card) against Mitsuba 3
 // images committed under tests/references/ (make_references.py made them, 65536 samples per
 // pixel, from the same glTF files). Both the path tracer and SPPM must agree with them in mean
 // and, box-filtered over 4 x 4 pixels (so that the comparison measures bias, not the noise of a
@@ -46,7 +47,8 @@ Agreement render_against_reference(const std::string& scene, const std::string& 
 // Bounds: the mean within 1% (the reference's own noise is below 0.1%); box-4 relative MSE 5e-4
 // for the path tracer and 3e-3 for SPPM (whose density estimate blurs edges at 64 x 64). Measured
 // at these settings (two cores, PoCL): rough glass PT 0.9979 and 6e-5, SPPM 1.0006 and 1.1e-3;
-// tinted volume PT 1.0008 and 7e-5, SPPM 0.9995 and 3.2e-4.
+// tinted volume PT 1.0008 and 7e-5, SPPM 0.9995 and 3.2e-4; textured floor and leaf card PT
+// 1.0004 and 3e-5, SPPM 0.9997 and 1.2e-4.
 TEST(ReferenceImages, RoughGlassAgreesWithMitsuba) {
     for (const char* integrator : {"pt", "sppm"}) {
         const bool pt = std::string(integrator) == "pt";
@@ -64,6 +66,20 @@ TEST(ReferenceImages, TintedVolumeAgreesWithMitsuba) {
         Agreement g = render_against_reference("ref_tinted_volume",
                                                std::string("--integrator ") + integrator +
                                                    (pt ? " --passes 2048" : " --passes 48 --photons 100000"));
+        EXPECT_NEAR(g.mean_ratio, 1.0, 0.01) << integrator;
+        EXPECT_LT(g.box4_rel_mse, pt ? 5e-4 : 3e-3) << integrator;
+    }
+}
+
+// Textures against Mitsuba's bitmaps: a floor whose sRGB base colour texture repeats three times
+// (REPEAT, bilinear), and a leaf card cut out by its texture's alpha (alphaMode MASK), in shadow
+// and in view.
+TEST(ReferenceImages, TexturedFloorAndLeafCardAgreeWithMitsuba) {
+    for (const char* integrator : {"pt", "sppm"}) {
+        const bool pt = std::string(integrator) == "pt";
+        Agreement g =
+            render_against_reference("ref_textured", std::string("--integrator ") + integrator +
+                                                         (pt ? " --passes 2048" : " --passes 48 --photons 100000"));
         EXPECT_NEAR(g.mean_ratio, 1.0, 0.01) << integrator;
         EXPECT_LT(g.box4_rel_mse, pt ? 5e-4 : 3e-3) << integrator;
     }

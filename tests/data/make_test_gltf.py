@@ -700,6 +700,47 @@ def reference_scenes():
         b.scene([b.node(name="set", mesh=b.mesh(prims)),
                  b.node(name="camera", camera=cam, translation=[0.0, 1.3, 3.0], rotation=tilt)])
         b.write_embedded(out(name))
+    textured_reference()
+
+
+def textured_reference():
+    """ref_textured.gltf, the same rig with textures: the floor's base colour an 8 x 8 sRGB
+    texture (an asymmetric pattern, so that a flip shows) repeated 3 times over it (REPEAT), and
+    a vertical leaf card before the wall whose 16 x 16 texture cuts it out (alphaMode MASK,
+    cutoff 0.5: a diamond with a hole), double-sided green."""
+    b = GltfBuilder("clppm tests/data/make_test_gltf.py")
+    pattern = [[(200 if (x + 2 * y) % 5 < 2 else 40, 90 + 20 * x, 240 - 25 * y, 255) for x in range(8)]
+               for y in range(8)]
+    leaf = []
+    for y in range(16):
+        row = []
+        for x in range(16):
+            d = abs(x - 7.5) + abs(y - 7.5)
+            inside = d < 7.5 and not (abs(x - 9.5) < 2 and abs(y - 5.5) < 2)
+            row.append((60, 170, 50, 255 if inside else 0))
+        leaf.append(row)
+    b.doc["images"] = [{"uri": "data:image/png;base64," + base64.b64encode(png_rgba(pattern)).decode("ascii")},
+                       {"uri": "data:image/png;base64," + base64.b64encode(png_rgba(leaf)).decode("ascii")}]
+    b.doc["samplers"] = [{"wrapS": 10497, "wrapT": 10497}, {"wrapS": 33071, "wrapT": 33071}]
+    b.doc["textures"] = [{"source": 0, "sampler": 0}, {"source": 1, "sampler": 1}]
+    floor = b.material("floor", (1.0, 1.0, 1.0), specular=0.0, base_color_texture={"index": 0})
+    wall = b.material("wall", (0.6, 0.6, 0.6), specular=0.0)
+    card = b.material("leaf", (1.0, 1.0, 1.0), specular=0.0, base_color_texture={"index": 1}, double_sided=True)
+    b.doc["materials"][card]["alphaMode"] = "MASK"
+    lamp = b.material("lamp", (0.0, 0.0, 0.0), emissive=(1.0, 1.0, 1.0), emissive_strength=12.0, specular=0.0)
+    fpos, fnrm, fidx = quad((0.0, 0.0, 0.0), (0.0, 0.0, 3.0), (3.0, 0.0, 0.0))
+    fuv = [(0.0, 0.0), (0.0, 3.0), (3.0, 3.0), (3.0, 0.0)]  # corners (-z,-x), (+z,-x), (+z,+x), (-z,+x)
+    wpos, wnrm, widx = quad((0.0, 1.5, -1.5), (3.0, 0.0, 0.0), (0.0, 1.5, 0.0))
+    lpos, lnrm, lidx = quad((0.3, 2.4, 0.6), (0.5, 0.0, 0.0), (0.0, 0.0, 0.5))
+    cpos, cnrm, cidx = quad((0.1, 0.75, -0.2), (0.6, 0.0, 0.0), (0.0, 0.6, 0.0))
+    cuv = [(0.0, 1.0), (1.0, 1.0), (1.0, 0.0), (0.0, 0.0)]  # image top at the card's top
+    prims = [b.primitive(fpos, fidx, fnrm, uvs=fuv, material=floor), b.primitive(wpos, widx, wnrm, material=wall),
+             b.primitive(lpos, lidx, lnrm, material=lamp), b.primitive(cpos, cidx, cnrm, uvs=cuv, material=card)]
+    cam = b.camera(0.75)
+    tilt = quat_axis_angle((1, 0, 0), -math.atan2(1.3 - 0.35, 3.0))
+    b.scene([b.node(name="set", mesh=b.mesh(prims)),
+             b.node(name="camera", camera=cam, translation=[0.0, 1.3, 3.0], rotation=tilt)])
+    b.write_embedded(out("ref_textured.gltf"))
 
 
 def environment_scenes():

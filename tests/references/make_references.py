@@ -3,10 +3,12 @@
 from the glTF scenes tests/data/make_test_gltf.py writes (reference_scenes). Run offline, not in
 CI:
     python3 -m venv /tmp/mi && /tmp/mi/bin/pip install mitsuba numpy
-    /tmp/mi/bin/python tests/references/make_references.py [spp]
+    /tmp/mi/bin/python tests/references/make_references.py [spp [scene ...]]
 The scenes are read from the glTF files themselves (the small subset those files use: one mesh
 of float positions and 16-bit indices, node translation and rotation, a perspective camera), so
-both renderers see the same triangles. Mapping to Mitsuba: a material with
+both renderers see the same triangles. Mapping to Mitsuba: baseColorTexture is a bilinear `bitmap` (sRGB) with the sampler's wrap mode,
+alphaMode MASK a `mask` whose opacity is the texture's alpha thresholded at alphaCutoff (nearest
+texel); diffuse surfaces are `twosided`, as clppm's reflect on both sides; a material with
 KHR_materials_transmission is `roughdielectric` (GGX, alpha = roughness^2, visible-normal
 sampling) or `dielectric` at roughness 0, of the glTF ior against 1.0; KHR_materials_volume's
 attenuation becomes an interior `homogeneous` medium of albedo 0 and sigma_t = -ln(colour) /
@@ -27,7 +29,7 @@ import mitsuba as mi
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 DATA = os.path.join(HERE, "..", "data")
-SCENES = ("ref_rough_glass", "ref_tinted_volume")
+SCENES = ("ref_rough_glass", "ref_tinted_volume", "ref_textured")
 SIZE = 64
 
 
@@ -50,16 +52,44 @@ def read_accessor(doc, blob, index):
     return [vals[i:i + comps] for i in range(0, n, comps)] if comps > 1 else list(vals)
 
 
-def write_ply(path, tris):
+def write_ply(path, tris, uvs=None):
+    """Triangles, and per-corner glTF uvs as they are: Mitsuba 3's bitmaps, like glTF, put v = 0
+    at the image's top row (flipped, the textured reference differs from clppm by a relative MSE
+    of 0.63; as is, 0.002)."""
     with open(path, "wb") as f:
         f.write(("ply\nformat binary_little_endian 1.0\nelement vertex %d\nproperty float x\n"
-                 "property float y\nproperty float z\nelement face %d\nproperty list uchar int vertex_indices\n"
-                 "end_header\n" % (3 * len(tris), len(tris))).encode())
-        for t in tris:
-            for p in t:
+                 "property float y\nproperty float z\n%selement face %d\nproperty list uchar int vertex_indices\n"
+                 "end_header\n" % (3 * len(tris), "property float u\nproperty float v\n" if uvs else "",
+                                    len(tris))).encode())
+        for k, t in enumerate(tris):
+            for j, p in enumerate(t):
                 f.write(struct.pack("<3f", *p))
+                if uvs:
+                    f.write(struct.pack("<2f", *uvs[k][j]))
         for i in range(len(tris)):
             f.write(struct.pack("<B3i", 3, 3 * i, 3 * i + 1, 3 * i + 2))
+
+
+def texture(doc, index, tmp, key, srgb=True, alpha_cutoff=None):
+    """A glTF texture as a Mitsuba bitmap: the image's RGB (sRGB decoded by Mitsuba), or with
+    alpha_cutoff its alpha thresholded (the MASK test clppm applies) as a nearest-filtered
+    opacity. Wrap modes REPEAT or CLAMP_TO_EDGE from the sampler."""
+    import numpy as np
+    t = doc["textures"][index]
+    img = doc["images"][t["source"]]
+    data = base64.b64decode(img["uri"][img["uri"].index(",") + 1:])
+    path = os.path.join(tmp, "%s.png" % key)
+    open(path, "wb").write(data)
+    rgba = np.array(mi.Bitmap(path))
+    sampler = doc.get("samplers", [{}])[t["sampler"]] if "sampler" in t else {}
+    wrap = "clamp" if sampler.get("wrapS", 10497) == 33071 else "repeat"
+    if alpha_cutoff is not None:
+        a = (rgba[..., 3].astype("float32") / 255.0 >= alpha_cutoff).astype("float32")
+        return {"type": "bitmap", "bitmap": mi.Bitmap(a[..., None]), "raw": True, "filter_type": "nearest",
+                "wrap_mode": wrap}
+    bmp = mi.Bitmap(np.ascontiguousarray(rgba[..., :3]))
+    bmp.set_srgb_gamma(srgb)
+    return {"type": "bitmap", "bitmap": bmp, "raw": not srgb, "filter_type": "bilinear", "wrap_mode": wrap}
 
 
 def mitsuba_scene(name, tmp):
@@ -89,8 +119,12 @@ def mitsuba_scene(name, tmp):
             idx = read_accessor(doc, blob, prim["indices"])
             tris = [tuple(tuple(pos[idx[i + j]][c] + t[c] for c in range(3)) for j in range(3))
                     for i in range(0, len(idx), 3)]
+            uvs = None
+            if "TEXCOORD_0" in prim["attributes"]:
+                uv = read_accessor(doc, blob, prim["attributes"]["TEXCOORD_0"])
+                uvs = [tuple(uv[idx[i + j]] for j in range(3)) for i in range(0, len(idx), 3)]
             path = os.path.join(tmp, "%s_%d.ply" % (name, k))
-            write_ply(path, tris)
+            write_ply(path, tris, uvs)
             m = doc["materials"][prim["material"]]
             ext = m.get("extensions", {})
             pbr = m["pbrMetallicRoughness"]
@@ -112,7 +146,16 @@ def mitsuba_scene(name, tmp):
                     has_medium = True
             else:
                 c = pbr.get("baseColorFactor", [1, 1, 1, 1])[:3]
-                shape["bsdf"] = {"type": "diffuse", "reflectance": {"type": "rgb", "value": c}}
+                refl = {"type": "rgb", "value": c}
+                if "baseColorTexture" in pbr:
+                    assert c == [1, 1, 1], "textured base colours here have factor 1"
+                    refl = texture(doc, pbr["baseColorTexture"]["index"], tmp, "%s_%d_base" % (name, k))
+                # clppm's non-emissive surfaces reflect on both sides (README.md, "Materials").
+                shape["bsdf"] = {"type": "twosided", "bsdf": {"type": "diffuse", "reflectance": refl}}
+                if m.get("alphaMode") == "MASK":
+                    shape["bsdf"] = {"type": "mask", "bsdf": shape["bsdf"],
+                                     "opacity": texture(doc, pbr["baseColorTexture"]["index"], tmp,
+                                                        "%s_%d_alpha" % (name, k), alpha_cutoff=m.get("alphaCutoff", 0.5))}
             if "emissiveFactor" in m:
                 s = ext.get("KHR_materials_emissive_strength", {}).get("emissiveStrength", 1.0)
                 shape["emitter"] = {"type": "area",
@@ -125,9 +168,10 @@ def mitsuba_scene(name, tmp):
 
 def main():
     spp = int(sys.argv[1]) if len(sys.argv) > 1 else 65536
+    names = sys.argv[2:] or SCENES
     mi.set_variant("scalar_rgb")
     with tempfile.TemporaryDirectory() as tmp:
-        for name in SCENES:
+        for name in names:
             scene = mi.load_dict(mitsuba_scene(name, tmp))
             img = mi.render(scene, spp=spp)
             out = os.path.join(HERE, name + ".exr")
