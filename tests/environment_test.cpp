@@ -347,6 +347,26 @@ TEST(Environment, UpperHalfLightsTheFloorLowerHalfDoesNot) {
     }
 }
 
+// --env-rotate in a render: a patch of the map around +X lights the sphere's right side (+X is
+// the image's right); turned 180 degrees, the left; turned -90 (right-handed about +Y, +X goes
+// to +Z, towards the camera) the sphere's middle, and turned +90 (+X to -Z, behind it) not.
+TEST(Environment, RotateMovesTheLitSideAsStated) {
+    const std::string d = make_temp_dir("env_rotate");
+    write_map(d + "/patch.exr", 16, 8, [](int x, int y) { return x >= 10 && x < 14 && y >= 2 && y < 6 ? 10.f : 0.f; });
+    auto lit = [&](const std::string& rotate) {
+        return render("env_sphere.gltf",
+                      "--env " + d + "/patch.exr --env-rotate " + rotate + " --env-hidden --integrator pt --passes 64");
+    };
+    Image r0 = lit("0"), r180 = lit("180"), rm90 = lit("-90"), r90 = lit("90");
+    // The sphere spans about pixels 7 to 41; its left and right thirds, and its middle.
+    auto left = [](const Image& i) { return region_mean(i, 10, 20, 16, 28); };
+    auto right = [](const Image& i) { return region_mean(i, 32, 20, 38, 28); };
+    auto middle = [](const Image& i) { return region_mean(i, 21, 20, 27, 28); };
+    EXPECT_GT(right(r0), 10 * left(r0) + 1e-3);
+    EXPECT_GT(left(r180), 10 * right(r180) + 1e-3);
+    EXPECT_GT(middle(rm90), 10 * middle(r90) + 1e-3);
+}
+
 // Without a light and with --no-default-light, the scene is refused as before; a bad map is a
 // one-line error naming it.
 TEST(Environment, RefusalsAndBadMaps) {
