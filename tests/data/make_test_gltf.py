@@ -176,13 +176,23 @@ def mirror():
 
 
 def skinned():
-    """A triangle on a node with a skin of one joint: skinning is not applied, with a warning."""
+    """A triangle skinned to two joints (glTF 2.0 Sec. 3.7.3): joint 0 a node at (0, 1, 0), joint 1
+    a node at (2, 0, 0) whose inverse bind matrix undoes that (so it moves nothing); corner 0 on
+    joint 0, corner 1 on joint 1, corner 2 half on each. The mesh node's own translation
+    (5, 0, 0) must not apply: the corners land at (0, 1, 0), (1, 0, 0) and (0, 1.5, 0)."""
     b = GltfBuilder("clppm tests/data/make_test_gltf.py")
-    joint = b.node(name="joint", translation=[0.0, 1.0, 0.0])
-    tri = b.node(name="skinned", mesh=b.mesh([b.primitive(TRI, [0, 1, 2], TRI_N)]))
+    j0 = b.node(name="joint0", translation=[0.0, 1.0, 0.0])
+    j1 = b.node(name="joint1", translation=[2.0, 0.0, 0.0])
+    prim = b.primitive(TRI, [0, 1, 2], TRI_N)
+    prim["attributes"]["JOINTS_0"] = b.accessor([0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0], UBYTE, "VEC4", ARRAY_BUFFER)
+    prim["attributes"]["WEIGHTS_0"] = b.accessor([1.0, 0, 0, 0, 1.0, 0, 0, 0, 0.5, 0.5, 0, 0], FLOAT, "VEC4",
+                                                 ARRAY_BUFFER)
+    identity = [1.0, 0, 0, 0, 0, 1.0, 0, 0, 0, 0, 1.0, 0, 0, 0, 0, 1.0]
+    undo_j1 = [1.0, 0, 0, 0, 0, 1.0, 0, 0, 0, 0, 1.0, 0, -2.0, 0, 0, 1.0]  # column-major T(-2, 0, 0)
+    tri = b.node(name="skinned", mesh=b.mesh([prim]), translation=[5.0, 0.0, 0.0])
     b.doc["nodes"][tri]["skin"] = 0
-    b.doc["skins"] = [{"joints": [joint]}]
-    b.scene([tri, joint])
+    b.doc["skins"] = [{"joints": [j0, j1], "inverseBindMatrices": b.accessor(identity + undo_j1, FLOAT, "MAT4")}]
+    b.scene([tri, j0, j1])
     b.write_embedded(out("skinned.gltf"))
 
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "scene/gltf/gltf_skin.h"
 #include "scene/gltf/gltf_tangents.h"
 #include "scene/gltf/gltf_transform.h"
 
@@ -111,12 +112,15 @@ void SceneBuilder::instantiate(int index, const glm::dmat4& world) {
     bool has_light = light != node.extensions.end();
     if (node.mesh == -1 && node.camera == -1 && !has_light) return;
     std::string label = node_label(index);
-    if (node.mesh != -1) {
-        if (node.skin >= 0 && !warned_skin_) {
-            warned_skin_ = true;
-            ctx_.warn(label + " (and any other skinned node) has a skin: skinning is not applied, the mesh is "
-                              "drawn as stored (its bind pose), which differs where the joints are posed");
-        }
+    if (node.mesh != -1 && node.skin >= 0) {
+        // Skinned (gltf_skin.h): the joints place the vertices, the node's own transform does not.
+        auto j = joints_.find(node.skin);
+        if (j == joints_.end())
+            j = joints_.emplace(node.skin, joint_matrices(m_, reader_, ctx_, node.skin, label)).first;
+        skin_ = &j->second;
+        add_mesh(node.mesh, glm::dmat4(1.0), label);
+        skin_ = nullptr;
+    } else if (node.mesh != -1) {
         std::vector<glm::dmat4> instances = gpu_instances(node, label);
         if (instances.empty()) add_mesh(node.mesh, world, label);
         for (size_t i = 0; i < instances.size(); ++i) {
@@ -264,6 +268,7 @@ WorldVertices SceneBuilder::world_vertices(const tinygltf::Primitive& prim, cons
         read_uvs(prim, label, "TEXCOORD_1", &v.uv1, v.position.size());
     if (tangents_needed_ && prim.attributes.count("TANGENT")) read_tangents(prim, world, label, &v);
     if (prim.attributes.count("COLOR_0")) read_colors(prim, label, &v);
+    if (skin_) apply_skin(prim, *skin_, reader_, ctx_, label, &v);
     return v;
 }
 

@@ -125,7 +125,8 @@ private:
     LightsAndCameras lights_cameras_;
     std::set<int> meshes_without_normals_;
     std::vector<char> on_path_;
-    bool warned_skin_ = false; // skins are not applied: said once
+    const std::vector<glm::dmat4>* skin_ = nullptr; // the joint matrices of the mesh being added, if skinned
+    std::map<int, std::vector<glm::dmat4>> joints_; // per skin, computed once
     size_t visits_ = 0;
     bool counting_ = false;          // the first traversal: count, build nothing
     size_t instanced_triangles_ = 0; // counted so far, all instances
