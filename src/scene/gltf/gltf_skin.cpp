@@ -16,15 +16,26 @@ std::vector<glm::dmat4> joint_matrices(const tinygltf::Model& m, const AccessorR
     for (size_t i = 0; i < m.nodes.size(); ++i)
         for (int c : m.nodes[i].children)
             if (c >= 0 && size_t(c) < m.nodes.size() && parent[size_t(c)] < 0) parent[size_t(c)] = int(i);
+    // Global transforms, memoised: each node is composed once however many joints sit below it
+    // (a hostile file cannot make this quadratic).
+    std::vector<glm::dmat4> memo(m.nodes.size());
+    std::vector<char> done(m.nodes.size(), 0);
     auto global = [&](int n) {
-        glm::dmat4 g(1.0);
-        for (size_t steps = 0; n >= 0; n = parent[size_t(n)]) {
-            if (++steps > m.nodes.size()) ctx.fail(what + ": node graph cycle above a joint");
-            if (!transform_arrays_valid(m.nodes[size_t(n)]))
-                ctx.fail(labelled("node", n, m.nodes[size_t(n)].name) + " has a transform array of the wrong length");
-            g = local_matrix(m.nodes[size_t(n)]) * g;
+        std::vector<int> chain; // n and its ancestors up to the first known one
+        for (int a = n; a >= 0 && !done[size_t(a)]; a = parent[size_t(a)]) {
+            if (chain.size() > m.nodes.size()) ctx.fail(what + ": node graph cycle above a joint");
+            chain.push_back(a);
         }
-        return g;
+        for (size_t i = chain.size(); i-- > 0;) {
+            const int a = chain[i];
+            const tinygltf::Node& node = m.nodes[size_t(a)];
+            if (!transform_arrays_valid(node))
+                ctx.fail(labelled("node", a, node.name) + " has a transform array of the wrong length");
+            const int p = parent[size_t(a)];
+            memo[size_t(a)] = (p >= 0 ? memo[size_t(p)] : glm::dmat4(1.0)) * local_matrix(node);
+            done[size_t(a)] = 1;
+        }
+        return memo[size_t(n)];
     };
     AccessorView ibm;
     if (s.inverseBindMatrices >= 0) {
