@@ -751,6 +751,42 @@ def textured_reference():
     b.scene([b.node(name="set", mesh=b.mesh(prims)),
              b.node(name="camera", camera=cam, translation=[0.0, 1.3, 3.0], rotation=tilt)])
     b.write_embedded(out("ref_textured.gltf"))
+    normal_panel_reference()
+
+
+def normal_panel_reference():
+    """ref_normal_panel.gltf: the rig's back wall normal-mapped (a 16 x 16 linear normalTexture
+    repeated twice each way, no TANGENT: horizontal ridges tilting up and down in the map's Y on
+    its upper half, vertical ridges tilting left and right in X on its right half), lit from
+    the ceiling at a grazing angle, so that the frame's orientation shows."""
+    b = GltfBuilder("clppm tests/data/make_test_gltf.py")
+    texels = []
+    for y in range(16):
+        row = []
+        for x in range(16):
+            nx = 0.6 if 8 <= x < 12 else (-0.6 if x >= 12 else 0.0)
+            ny = (0.6 if y % 4 < 2 else -0.6) if y < 8 else 0.0
+            length = math.sqrt(nx * nx + ny * ny + 1.0)
+            row.append(tuple(int(round((c / length * 0.5 + 0.5) * 255)) for c in (nx, ny, 1.0)) + (255,))
+        texels.append(row)
+    b.doc["images"] = [{"uri": "data:image/png;base64," + base64.b64encode(png_rgba(texels)).decode("ascii")}]
+    b.doc["samplers"] = [{"wrapS": 10497, "wrapT": 10497}]
+    b.doc["textures"] = [{"source": 0, "sampler": 0}]
+    floor = b.material("floor", (0.8, 0.8, 0.8), specular=0.0)
+    wall = b.material("wall", (0.7, 0.7, 0.7), specular=0.0)
+    b.doc["materials"][wall]["normalTexture"] = {"index": 0}
+    lamp = b.material("lamp", (0.0, 0.0, 0.0), emissive=(1.0, 1.0, 1.0), emissive_strength=12.0, specular=0.0)
+    fpos, fnrm, fidx = quad((0.0, 0.0, 0.0), (0.0, 0.0, 3.0), (3.0, 0.0, 0.0))
+    wpos, wnrm, widx = quad((0.0, 1.5, -1.5), (3.0, 0.0, 0.0), (0.0, 1.5, 0.0))
+    wuv = [(0.0, 2.0), (2.0, 2.0), (2.0, 0.0), (0.0, 0.0)]  # u along +x, v down the wall
+    lpos, lnrm, lidx = quad((0.3, 2.4, -0.9), (0.5, 0.0, 0.0), (0.0, 0.0, 0.5))
+    prims = [b.primitive(fpos, fidx, fnrm, material=floor), b.primitive(wpos, widx, wnrm, uvs=wuv, material=wall),
+             b.primitive(lpos, lidx, lnrm, material=lamp)]
+    cam = b.camera(0.75)
+    tilt = quat_axis_angle((1, 0, 0), -math.atan2(1.3 - 0.35, 3.0))
+    b.scene([b.node(name="set", mesh=b.mesh(prims)),
+             b.node(name="camera", camera=cam, translation=[0.0, 1.3, 3.0], rotation=tilt)])
+    b.write_embedded(out("ref_normal_panel.gltf"))
 
 
 def environment_scenes():

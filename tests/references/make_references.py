@@ -7,6 +7,7 @@ CI:
 The scenes are read from the glTF files themselves (the small subset those files use: one mesh
 of float positions and 16-bit indices, node translation and rotation, a perspective camera), so
 both renderers see the same triangles. Mapping to Mitsuba: baseColorTexture is a bilinear `bitmap` (sRGB) with the sampler's wrap mode,
+normalTexture a `normalmap` (linear bitmap) around the diffuse BSDF,
 alphaMode MASK a `mask` whose opacity is the texture's alpha thresholded at alphaCutoff (nearest
 texel); diffuse surfaces are `twosided`, as clppm's reflect on both sides; a material with
 KHR_materials_transmission is `roughdielectric` (GGX, alpha = roughness^2, visible-normal
@@ -29,6 +30,10 @@ import mitsuba as mi
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 DATA = os.path.join(HERE, "..", "data")
+# ref_normal_panel (render it by name) is not a test yet: with its normal map clppm is 4% brighter
+# than this Mitsuba mapping (1.0401 in mean, box-4 relative MSE 0.0043 at 64x64), in the tilted
+# bands only, as on the Barrel against Cycles; the patterns agree, so it is not the frame's
+# orientation. Open.
 SCENES = ("ref_rough_glass", "ref_tinted_volume", "ref_textured")
 SIZE = 64
 
@@ -151,7 +156,16 @@ def mitsuba_scene(name, tmp):
                     assert c == [1, 1, 1], "textured base colours here have factor 1"
                     refl = texture(doc, pbr["baseColorTexture"]["index"], tmp, "%s_%d_base" % (name, k))
                 # clppm's non-emissive surfaces reflect on both sides (README.md, "Materials").
-                shape["bsdf"] = {"type": "twosided", "bsdf": {"type": "diffuse", "reflectance": refl}}
+                inner = {"type": "diffuse", "reflectance": refl}
+                if "normalTexture" in m:
+                    assert m["normalTexture"].get("scale", 1.0) == 1.0, "normal maps here have scale 1"
+                    # Mitsuba's normal map frame is (dp/du, n x dp/du, n); on these quads, whose v
+                    # runs down the image, n x dp/du points up the image: glTF's +Y.
+                    inner = {"type": "normalmap", "bsdf": inner,
+                             "normalmap": texture(doc, m["normalTexture"]["index"], tmp, "%s_%d_normal" % (name, k),
+                                                  srgb=False)}
+                # clppm's non-emissive surfaces reflect on both sides (README.md, "Materials").
+                shape["bsdf"] = {"type": "twosided", "bsdf": inner}
                 if m.get("alphaMode") == "MASK":
                     shape["bsdf"] = {"type": "mask", "bsdf": shape["bsdf"],
                                      "opacity": texture(doc, pbr["baseColorTexture"]["index"], tmp,
