@@ -1,6 +1,6 @@
 // clppm against an independent renderer: the scenes of tests/data/make_test_gltf.py's
 // reference_scenes() (a rough glass block, a tinted absorbing glass block, a textured floor with
-// a cut-out leaf card) against Mitsuba 3
+// a cut-out leaf card, a normal-mapped wall) against Mitsuba 3
 // images committed under tests/references/ (make_references.py made them, 65536 samples per
 // pixel, from the same glTF files). Both the path tracer and SPPM must agree with them in mean
 // and, box-filtered over 4 x 4 pixels (so that the comparison measures bias, not the noise of a
@@ -80,6 +80,26 @@ TEST(ReferenceImages, TexturedFloorAndLeafCardAgreeWithMitsuba) {
         Agreement g =
             render_against_reference("ref_textured", std::string("--integrator ") + integrator +
                                                          (pt ? " --passes 2048" : " --passes 48 --photons 100000"));
+        EXPECT_NEAR(g.mean_ratio, 1.0, 0.01) << integrator;
+        EXPECT_LT(g.box4_rel_mse, pt ? 5e-4 : 3e-3) << integrator;
+    }
+}
+
+// A wall whose normal map tilts by 31 degrees up, down, left and right (no TANGENT: clppm's
+// generated frame), lit from a lamp above it at grazing angles, so a mirrored or swapped frame,
+// a wrongly decoded map or a lost scale shows: Mitsuba's `normalmap` without its terminator
+// shadowing (make_references.py says why). What is left is a convention glTF does not fix: where
+// a ray meets the wall from below its mapped normal (from the floor, at grazing angles, never from
+// the camera here), clppm shades with the geometric normal and Mitsuba returns black. clppm
+// rendered with Mitsuba's convention instead agrees to 1.0004 in mean and 1.7e-5 box-4 relative
+// MSE (PT); as shipped PT gives 1.0052 and 6.9e-5, SPPM 1.0045 and 1.2e-3, the excess in the
+// rows where wall and floor meet.
+TEST(ReferenceImages, NormalMappedWallAgreesWithMitsuba) {
+    for (const char* integrator : {"pt", "sppm"}) {
+        const bool pt = std::string(integrator) == "pt";
+        Agreement g =
+            render_against_reference("ref_normal_panel", std::string("--integrator ") + integrator +
+                                                             (pt ? " --passes 2048" : " --passes 48 --photons 100000"));
         EXPECT_NEAR(g.mean_ratio, 1.0, 0.01) << integrator;
         EXPECT_LT(g.box4_rel_mse, pt ? 5e-4 : 3e-3) << integrator;
     }

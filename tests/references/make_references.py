@@ -7,7 +7,11 @@ CI:
 The scenes are read from the glTF files themselves (the small subset those files use: one mesh
 of float positions and 16-bit indices, node translation and rotation, a perspective camera), so
 both renderers see the same triangles. Mapping to Mitsuba: baseColorTexture is a bilinear `bitmap` (sRGB) with the sampler's wrap mode,
-normalTexture a `normalmap` (linear bitmap) around the diffuse BSDF,
+normalTexture a `normalmap` (linear bitmap) around the diffuse BSDF, with Mitsuba's own additions
+switched off (since 3.7.1 it multiplies by the terminator shadowing of Conty Estevez et al. 2019,
+which glTF does not have: with it a constant map of one tilt renders 0.927 times the same tilt
+given as vertex normals, and the normal panel 4% darker than glTF's definition; and it folds
+normals that face away from the geometric side, which the panel's 31-degree tilts never reach),
 alphaMode MASK a `mask` whose opacity is the texture's alpha thresholded at alphaCutoff (nearest
 texel); diffuse surfaces are `twosided`, as clppm's reflect on both sides; a material with
 KHR_materials_transmission is `roughdielectric` (GGX, alpha = roughness^2, visible-normal
@@ -30,13 +34,7 @@ import mitsuba as mi
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 DATA = os.path.join(HERE, "..", "data")
-# ref_normal_panel (render it by name) is not a test: with its normal map clppm is 4% brighter than
-# this Mitsuba mapping (1.0401 in mean, box-4 relative MSE 0.0043 at 64x64), but the difference is
-# on this side. With a constant map of one tilt, Mitsuba's `normalmap` renders 0.927 times what
-# Mitsuba renders for the same tilt given as vertex normals, whereas clppm's two agree to 0.04%
-# and clppm's vertex-normal render agrees with Mitsuba's (0.994, box-4 4e-5, direct light). The
-# `normalmap` mapping here is not yet an equivalent of glTF's normalTexture.
-SCENES = ("ref_rough_glass", "ref_tinted_volume", "ref_textured")
+SCENES = ("ref_rough_glass", "ref_tinted_volume", "ref_textured", "ref_normal_panel")
 SIZE = 64
 
 
@@ -80,7 +78,7 @@ def write_ply(path, tris, uvs=None):
 def texture(doc, index, tmp, key, srgb=True, alpha_cutoff=None):
     """A glTF texture as a Mitsuba bitmap: the image's RGB (sRGB decoded by Mitsuba), or with
     alpha_cutoff its alpha thresholded (the MASK test clppm applies) as a nearest-filtered
-    opacity. Wrap modes REPEAT or CLAMP_TO_EDGE from the sampler."""
+    opacity. Wrap modes REPEAT or CLAMP_TO_EDGE and magFilter NEAREST from the sampler."""
     import numpy as np
     t = doc["textures"][index]
     img = doc["images"][t["source"]]
@@ -96,7 +94,8 @@ def texture(doc, index, tmp, key, srgb=True, alpha_cutoff=None):
                 "wrap_mode": wrap}
     bmp = mi.Bitmap(np.ascontiguousarray(rgba[..., :3]))
     bmp.set_srgb_gamma(srgb)
-    return {"type": "bitmap", "bitmap": bmp, "raw": not srgb, "filter_type": "bilinear", "wrap_mode": wrap}
+    filt = "nearest" if sampler.get("magFilter") == 9728 else "bilinear"
+    return {"type": "bitmap", "bitmap": bmp, "raw": not srgb, "filter_type": filt, "wrap_mode": wrap}
 
 
 def mitsuba_scene(name, tmp):
@@ -163,7 +162,8 @@ def mitsuba_scene(name, tmp):
                     assert m["normalTexture"].get("scale", 1.0) == 1.0, "normal maps here have scale 1"
                     # Mitsuba's normal map frame is (dp/du, n x dp/du, n); on these quads, whose v
                     # runs down the image, n x dp/du points up the image: glTF's +Y.
-                    inner = {"type": "normalmap", "bsdf": inner,
+                    inner = {"type": "normalmap", "bsdf": inner, "use_shadowing_function": False,
+                             "flip_invalid_normals": False,
                              "normalmap": texture(doc, m["normalTexture"]["index"], tmp, "%s_%d_normal" % (name, k),
                                                   srgb=False)}
                 # clppm's non-emissive surfaces reflect on both sides (README.md, "Materials").
