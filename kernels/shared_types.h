@@ -89,19 +89,21 @@ typedef struct {
     u32 pad0;
 } Material;                     /* 128 bytes */
 
-/* Texture wrap bits per axis (glTF sampler wrapS, wrapT): clamp s, clamp t, mirror s, mirror t;
- * none set is REPEAT. */
+/* Sampler bits of a texture. Wrap per axis (glTF sampler wrapS, wrapT): clamp s, clamp t, mirror
+ * s, mirror t; none set is REPEAT. TEXTURE_NEAREST: magFilter NEAREST, the texel the coordinate
+ * falls in; without it, bilinear between texel centres. */
 #define TEXTURE_CLAMP_S 1u
 #define TEXTURE_CLAMP_T 2u
 #define TEXTURE_MIRROR_S 4u
 #define TEXTURE_MIRROR_T 8u
+#define TEXTURE_NEAREST 16u
 
 /* One texture reference: an image's texels, its sampler's wrap modes, the texture coordinate
  * set and KHR_texture_transform's affine map of it (identity without the extension). */
 typedef struct {
     u32 offset; /* first texel in the texel buffer (float4 linear RGBA) */
     u32 width, height;
-    u32 wrap;        /* TEXTURE_* bits */
+    u32 wrap;        /* TEXTURE_* bits: wrap modes and filter */
     float xform[6];  /* u' = x0 u + x1 v + x2, v' = x3 u + x4 v + x5 */
     u32 texcoord;    /* 0: TEXCOORD_0, 1: TEXCOORD_1 */
     u32 pad0;

@@ -1,5 +1,6 @@
-/* texture.cl: glTF texture sampling, bilinear between texel centres with REPEAT or
- * CLAMP_TO_EDGE per axis (src/scene/texture_sampling.cpp is the host reference). */
+/* texture.cl: glTF texture sampling, bilinear between texel centres or (magFilter NEAREST) the
+ * texel a coordinate falls in, with REPEAT, MIRRORED_REPEAT or CLAMP_TO_EDGE per axis
+ * (src/scene/texture_sampling.cpp is the host reference). */
 #ifndef CLPPM_TEXTURE_CL
 #define CLPPM_TEXTURE_CL
 
@@ -36,7 +37,12 @@ float4 texture_rgba(__global const Texture* textures, __global const float4* tex
     const bool cs = (tex->wrap & TEXTURE_CLAMP_S) != 0u, ct = (tex->wrap & TEXTURE_CLAMP_T) != 0u;
     const bool ms = (tex->wrap & TEXTURE_MIRROR_S) != 0u, mt = (tex->wrap & TEXTURE_MIRROR_T) != 0u;
     const int w = (int)tex->width, h = (int)tex->height;
-    float x = wrap_coordinate(st.x, cs, ms) * (float)w - 0.5f, y = wrap_coordinate(st.y, ct, mt) * (float)h - 0.5f;
+    const float rs = wrap_coordinate(st.x, cs, ms), rt = wrap_coordinate(st.y, ct, mt);
+    if (tex->wrap & TEXTURE_NEAREST) {
+        int px = wrap_texel((int)floor(rs * (float)w), w, cs, ms), py = wrap_texel((int)floor(rt * (float)h), h, ct, mt);
+        return texels[tex->offset + (uint)py * tex->width + (uint)px];
+    }
+    float x = rs * (float)w - 0.5f, y = rt * (float)h - 0.5f;
     float fx = floor(x), fy = floor(y);
     float ax = x - fx, ay = y - fy;
     int ix = (int)fx, iy = (int)fy;

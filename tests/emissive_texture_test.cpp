@@ -54,9 +54,10 @@ std::vector<T> read(const DeviceContext& dc, const cl::Buffer& b, size_t n) {
 
 } // namespace
 
-// Bilinear weights, texel centres, REPEAT, MIRRORED_REPEAT and CLAMP_TO_EDGE on each axis, a
-// KHR_texture_transform on TEXCOORD_1, coordinates far outside [0, 1] and non-finite ones: the
-// device's texture_lookup against the host's.
+// Bilinear weights, texel centres, REPEAT, MIRRORED_REPEAT and CLAMP_TO_EDGE on each axis, each
+// also with magFilter NEAREST, a KHR_texture_transform on TEXCOORD_1, coordinates far outside
+// [0, 1] and non-finite ones: the device's texture_lookup against the host's. A NEAREST lookup
+// is one of its texels exactly.
 TEST(TextureSampling, DeviceLookupMatchesTheHostReference) {
     Scene s;
     s.source = "<texture test>";
@@ -66,12 +67,13 @@ TEST(TextureSampling, DeviceLookupMatchesTheHostReference) {
     // Every combination of REPEAT, MIRRORED_REPEAT and CLAMP_TO_EDGE per axis, then a transformed
     // reference on the second coordinate set.
     const uint32_t modes[3] = {0, TEXTURE_CLAMP_S, TEXTURE_MIRROR_S};
-    for (uint32_t ms : modes)
-        for (uint32_t mt : modes) {
-            const uint32_t w = 3 + uint32_t(s.textures.size() % 3), h = 2 + uint32_t(s.textures.size() % 2);
-            s.textures.push_back(plain_texture(uint32_t(s.texels.size()), w, h, ms | (mt << 1)));
-            for (uint32_t i = 0; i < w * h; ++i) s.texels.push_back({texel(gen), texel(gen), texel(gen), 1.f});
-        }
+    for (uint32_t filter : {0u, TEXTURE_NEAREST})
+        for (uint32_t ms : modes)
+            for (uint32_t mt : modes) {
+                const uint32_t w = 3 + uint32_t(s.textures.size() % 3), h = 2 + uint32_t(s.textures.size() % 2);
+                s.textures.push_back(plain_texture(uint32_t(s.texels.size()), w, h, ms | (mt << 1) | filter));
+                for (uint32_t i = 0; i < w * h; ++i) s.texels.push_back({texel(gen), texel(gen), texel(gen), 1.f});
+            }
     dev::Texture moved = s.textures[4];
     const float xform[6] = {0.7f, 0.5f, 0.25f, -0.5f, 0.7f, 1.f};
     std::copy(xform, xform + 6, moved.xform);
@@ -95,14 +97,24 @@ TEST(TextureSampling, DeviceLookupMatchesTheHostReference) {
         k.setArg(a++, cl_int(tex)), k.setArg(a++, in), k.setArg(a++, out);
         dc.queue.enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(n));
         std::vector<float> got = read<float>(dc, out, 3 * n);
+        const dev::Texture& t = s.textures[size_t(tex)];
+        const bool nearest = (t.wrap & TEXTURE_NEAREST) != 0;
         double worst = 0;
+        size_t not_a_texel = 0;
         for (size_t i = 0; i < n; ++i) {
-            const size_t set = s.textures[size_t(tex)].texcoord ? 2 : 0;
+            const size_t set = t.texcoord ? 2 : 0;
             std::array<double, 3> want = sample_texture(s, tex, uv[4 * i + set], uv[4 * i + set + 1]);
             for (int c = 0; c < 3; ++c) worst = std::max(worst, std::fabs(got[3 * i + size_t(c)] - want[size_t(c)]));
+            bool is_texel = false;
+            for (uint32_t j = t.offset; j < t.offset + t.width * t.height; ++j)
+                is_texel |= got[3 * i] == s.texels[j][0] && got[3 * i + 1] == s.texels[j][1] &&
+                            got[3 * i + 2] == s.texels[j][2];
+            not_a_texel += !is_texel;
         }
         // Float coordinates against double: a texel's weight moves by ~|u| w 2^-24.
         EXPECT_LT(worst, 2e-5);
+        if (nearest) EXPECT_EQ(not_a_texel, 0u);
+        else EXPECT_GT(not_a_texel, n / 2); // bilinear blends
     }
 }
 

@@ -341,7 +341,7 @@ TEST(GltfMaterials, DefaultMaterialFollowsTheSpecification) {
     expect_vec3(s.materials[6].base_color, 1, 1, 1);
 }
 
-TEST(GltfTextures, SrgbTexelsDecodeToLinearWithWrapBits) {
+TEST(GltfTextures, SrgbTexelsDecodeToLinearWithSamplerBits) {
     Scene s = load_gltf(data("texture.gltf"));
     ASSERT_EQ(s.textures.size(), 2u);
     ASSERT_EQ(s.texels.size(), 8u);
@@ -353,7 +353,7 @@ TEST(GltfTextures, SrgbTexelsDecodeToLinearWithWrapBits) {
     EXPECT_EQ(a.height, 2u);
     EXPECT_EQ(a.wrap, 1u); // CLAMP_TO_EDGE on s only
     EXPECT_EQ(s.textures[1].offset, 4u);
-    EXPECT_EQ(s.textures[1].wrap, 3u); // clamp s and t; image from a bufferView
+    EXPECT_EQ(s.textures[1].wrap, 3u | TEXTURE_NEAREST); // clamp s and t, magFilter NEAREST; from a bufferView
     // Top row first: (0,0,0,255) (255,255,255,255) / (128,64,188,255) (10,200,30,128).
     const std::array<float, 4> want[4] = {
         {0, 0, 0, 1}, {1, 1, 1, 1}, {srgb(128), srgb(64), srgb(188), 1}, {srgb(10), srgb(200), srgb(30), 128 / 255.f}};

@@ -44,7 +44,14 @@ std::array<double, 3> sample_texture(const Scene& scene, int index, double u0, d
     const bool clamp_s = t.wrap & TEXTURE_CLAMP_S, clamp_t = t.wrap & TEXTURE_CLAMP_T;
     const bool mirror_s = t.wrap & TEXTURE_MIRROR_S, mirror_t = t.wrap & TEXTURE_MIRROR_T;
     const long w = long(t.width), h = long(t.height);
-    const double x = reduce(u, clamp_s, mirror_s) * double(w) - 0.5, y = reduce(v, clamp_t, mirror_t) * double(h) - 0.5;
+    const double rs = reduce(u, clamp_s, mirror_s), rt = reduce(v, clamp_t, mirror_t);
+    if (t.wrap & TEXTURE_NEAREST) {
+        const long px = wrap_texel(long(std::floor(rs * double(w))), w, clamp_s, mirror_s);
+        const long py = wrap_texel(long(std::floor(rt * double(h))), h, clamp_t, mirror_t);
+        const std::array<float, 4>& texel = scene.texels[t.offset + size_t(py) * size_t(w) + size_t(px)];
+        return {texel[0], texel[1], texel[2]};
+    }
+    const double x = rs * double(w) - 0.5, y = rt * double(h) - 0.5;
     const double fx = std::floor(x), fy = std::floor(y);
     const double ax = x - fx, ay = y - fy;
     std::array<double, 3> c{0, 0, 0};

@@ -1,6 +1,7 @@
 // Texture lookups on the host, as glTF samplers define them and kernels/scene.cl texture_lookup
-// implements them: bilinear between texel centres at ((i + 0.5) / width, (j + 0.5) / height),
-// REPEAT or CLAMP_TO_EDGE per axis, texels linear RGBA (already decoded from sRGB). In double
+// implements them: bilinear between texel centres at ((i + 0.5) / width, (j + 0.5) / height), or
+// with TEXTURE_NEAREST (magFilter NEAREST) the texel (floor(u width), floor(v height)); REPEAT,
+// MIRRORED_REPEAT or CLAMP_TO_EDGE per axis, texels linear RGBA (already decoded from sRGB). In double
 // precision: the reference the device is tested against, and what the emitters' power is
 // integrated with.
 #pragma once

@@ -222,7 +222,8 @@ TEXTURE_PIXELS = [[(0, 0, 0, 255), (255, 255, 255, 255)],
 
 
 def texture():
-    """A 2x2 sRGB PNG as a data URI (sampler: clamp s) and from a bufferView (clamp s and t);
+    """A 2x2 sRGB PNG as a data URI (sampler: clamp s, magFilter LINEAR) and from a bufferView
+    (clamp s and t, magFilter NEAREST, a minFilter that is not read);
     a texture on TEXCOORD_2 (not read) and one whose image is not an image."""
     b = GltfBuilder("clppm tests/data/make_test_gltf.py")
     png = png_rgba(TEXTURE_PIXELS)
@@ -231,7 +232,8 @@ def texture():
         {"uri": "data:image/png;base64," + base64.b64encode(b"this is not a PNG file").decode("ascii")},
         {"bufferView": b.buffer_view(png), "mimeType": "image/png"},
     ]
-    b.doc["samplers"] = [{"wrapS": 33071, "wrapT": 10497}, {"wrapS": 33071, "wrapT": 33071}]
+    b.doc["samplers"] = [{"wrapS": 33071, "wrapT": 10497, "magFilter": 9729},
+                         {"wrapS": 33071, "wrapT": 33071, "magFilter": 9728, "minFilter": 9987}]
     b.doc["textures"] = [{"source": 0, "sampler": 0}, {"source": 0}, {"source": 1}, {"source": 2, "sampler": 1}]
     b.material("textured", (1, 1, 1), base_color_texture={"index": 0})
     b.material("third_uv_set", (1, 1, 1), base_color_texture={"index": 1, "texCoord": 2})

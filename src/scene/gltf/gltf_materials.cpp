@@ -314,7 +314,7 @@ std::optional<dev::Texture> MaterialConverter::convert_texture(int index, bool s
     }
     if (s_.texels.size() + texels > kMaxTexels) ctx_.fail("textures exceed 2^26 texels in total");
     dev::Texture tex =
-        plain_texture(uint32_t(s_.texels.size()), uint32_t(img.width), uint32_t(img.height), wrap_bits(t.sampler));
+        plain_texture(uint32_t(s_.texels.size()), uint32_t(img.width), uint32_t(img.height), sampler_bits(t.sampler));
     append_texels(img, srgb);
     return tex;
 }
@@ -330,10 +330,14 @@ void MaterialConverter::append_texels(const tinygltf::Image& img, bool srgb) {
     }
 }
 
-uint32_t MaterialConverter::wrap_bits(int sampler) {
-    if (sampler < 0 || size_t(sampler) >= m_.samplers.size()) return 0; // repeat
+// The sampler's wrap modes, and magFilter NEAREST. minFilter is not read: every pixel averages
+// many samples over its footprint (README.md, "Materials"), so a minified texture converges to
+// its area average whatever the mip filter would have approximated.
+uint32_t MaterialConverter::sampler_bits(int sampler) {
+    if (sampler < 0 || size_t(sampler) >= m_.samplers.size()) return 0; // repeat, linear
     const tinygltf::Sampler& s = m_.samplers[size_t(sampler)];
-    return (s.wrapS == TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE ? TEXTURE_CLAMP_S : 0u) |
+    return (s.magFilter == TINYGLTF_TEXTURE_FILTER_NEAREST ? TEXTURE_NEAREST : 0u) |
+           (s.wrapS == TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE ? TEXTURE_CLAMP_S : 0u) |
            (s.wrapT == TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE ? TEXTURE_CLAMP_T : 0u) |
            (s.wrapS == TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT ? TEXTURE_MIRROR_S : 0u) |
            (s.wrapT == TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT ? TEXTURE_MIRROR_T : 0u);

@@ -57,7 +57,7 @@ private:
 
     void append_texels(const tinygltf::Image& img, bool srgb);
 
-    uint32_t wrap_bits(int sampler);
+    uint32_t sampler_bits(int sampler);
 
     const tinygltf::Model& m_;
     LoadContext& ctx_;
