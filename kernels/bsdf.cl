@@ -51,6 +51,7 @@
 
 typedef struct {
     float3 ns, ng; /* shading and geometric normal on the side of wo */
+    float3 nl;     /* the smooth normal, ns before any normal map (bsdf_smooth_side) */
     float3 base;   /* base colour */
     float3 f0;     /* dielectric layer: Schlick F0 */
     float f90;     /* and F90 */
@@ -282,8 +283,18 @@ LobeWeights lobe_weights(const Bsdf* b, float cos_o, uint mask) {
     return w;
 }
 
+/* Whether wi lies on the same side of the smooth normal nl as of the shading normal. A normal map
+ * tilts the shading normal but not the surface: light arriving from below the smooth surface (the
+ * interpolated normal, past the terminator of a low-poly mesh) does not reach the point, however
+ * the map tilts it, and no sampled ray leaves that way, as Blender's Cycles renders normal maps
+ * (README.md, "Materials"). Always true without a normal map (nl = ns). */
+bool bsdf_smooth_side(const Bsdf* b, float3 wi) {
+    return !HAS_NORMAL_MAPS || (dot(wi, b->nl) > 0.0f) == (dot(wi, b->ns) > 0.0f);
+}
+
 /* f(wo, wi) of the non-delta part of the lobes in mask; zero for wi below the surface. */
 float3 bsdf_eval(const Bsdf* b, float3 wo, float3 wi, uint mask) {
+    if (!bsdf_smooth_side(b, wi)) return (float3)(0.0f);
     float cos_o = dot(b->ns, wo), cos_i = dot(b->ns, wi);
     float3 f = (float3)(0.0f);
     if (HAS_ROUGH_GLASS && (mask & LOBE_GLASS) && b->glass > 0.0f && glass_is_rough(b)) {
@@ -308,6 +319,7 @@ float3 bsdf_eval(const Bsdf* b, float3 wo, float3 wi, uint mask) {
 
 /* The density bsdf_sample draws a non-delta wi with, given the selection weights w. */
 float bsdf_pdf_weighted(const Bsdf* b, float3 wo, float3 wi, const LobeWeights* w) {
+    if (!bsdf_smooth_side(b, wi)) return 0.0f;
     float cos_o = dot(b->ns, wo), cos_i = dot(b->ns, wi);
     if (cos_o <= 0.0f || !(w->total > 0.0f)) return 0.0f;
     float p = 0.0f;
@@ -324,7 +336,8 @@ float bsdf_pdf_weighted(const Bsdf* b, float3 wo, float3 wi, const LobeWeights* 
 float bsdf_pdf(const Bsdf* b, float3 wo, float3 wi, uint mask) {
     if (bsdf_plain_lambert(b)) {
         float cos_i = dot(b->ns, wi);
-        return (mask & LOBE_DIFFUSE) && dot(b->ns, wo) > 0.0f && cos_i > 0.0f ? cos_i * INV_PI_F : 0.0f;
+        return (mask & LOBE_DIFFUSE) && dot(b->ns, wo) > 0.0f && cos_i > 0.0f && bsdf_smooth_side(b, wi) ? cos_i * INV_PI_F
+                                                                                                          : 0.0f;
     }
     LobeWeights w = lobe_weights(b, dot(b->ns, wo), mask);
     return bsdf_pdf_weighted(b, wo, wi, &w);
@@ -333,7 +346,7 @@ float bsdf_pdf(const Bsdf* b, float3 wo, float3 wi, uint mask) {
 /* Samples the lobes in mask: one technique chosen by its weight with u_lobe, then the direction
  * with (u1, u2). Non-delta samples are weighted by the whole set's eval and pdf (one-sample MIS
  * over the lobes). False when nothing is sampled (no lobe, or wi below the geometric surface). */
-bool bsdf_sample(const Bsdf* b, float3 wo, uint mask, float u_lobe, float u1, float u2, BsdfSample* s) {
+bool bsdf_sample_lobes(const Bsdf* b, float3 wo, uint mask, float u_lobe, float u1, float u2, BsdfSample* s) {
     float cos_o = dot(b->ns, wo);
     s->delta = false;
     s->below = false;
@@ -430,6 +443,10 @@ bool bsdf_sample(const Bsdf* b, float3 wo, uint mask, float u_lobe, float u1, fl
     return true;
 }
 
+bool bsdf_sample(const Bsdf* b, float3 wo, uint mask, float u_lobe, float u1, float u2, BsdfSample* s) {
+    return bsdf_sample_lobes(b, wo, mask, u_lobe, u1, u2, s) && bsdf_smooth_side(b, s->wi);
+}
+
 /* The lobes a hit point keeps (the gather and direct lighting evaluate them there): the diffuse
  * one, and the reflection lobes when they are rough enough. The eye pass follows the others. */
 uint bsdf_gathered_lobes(float alpha) {
@@ -450,6 +467,7 @@ Bsdf surface_bsdf(SCENE_PARAMS, const Surface* s) {
     Bsdf b;
     b.ns = s->ns;
     b.ng = s->ng;
+    b.nl = s->nl;
     b.base = surface_base_color(SCENE_ARGS, s);
     float metallic = HAS_METAL ? m->metallic : 0.0f;
     float r = m->roughness;

@@ -21,7 +21,7 @@ void store_hitpoint(__global HitPoint* hp, uint pixel, float3 p, float3 wo, floa
     hp->normal_oct = oct_encode(b->ns);
     hp->ng_oct = oct_encode(b->ng);
     hp->wo_oct = oct_encode(wo);
-    hp->pad0 = 0;
+    hp->nl_oct = oct_encode(b->nl);
     hp->pixel = pixel;
 }
 
@@ -30,6 +30,7 @@ Bsdf hitpoint_bsdf(__global const HitPoint* hp, float3 n) {
     Bsdf b;
     b.ns = n;
     b.ng = oct_decode(hp->ng_oct);
+    b.nl = HAS_NORMAL_MAPS ? oct_decode(hp->nl_oct) : n;
     b.base = load3g(hp->color);
     b.alpha = hp->alpha;
     b.f0 = load3g(hp->f0);
@@ -65,7 +66,7 @@ HitBrdf hitpoint_brdf_make(__global const HitPoint* hp, float3 n) {
 
 /* f(wo, wi) at the hit point over the lobes it keeps; zero for light from below the surface. */
 float3 hitpoint_brdf(const HitBrdf* h, float3 wi) {
-    if (h->lambert) return dot(h->b.ns, wi) > 0.0f ? h->f_lambert : (float3)(0.0f);
+    if (h->lambert) return dot(h->b.ns, wi) > 0.0f && bsdf_smooth_side(&h->b, wi) ? h->f_lambert : (float3)(0.0f);
     return bsdf_eval(&h->b, h->wo, wi, h->lobes);
 }
 

@@ -23,6 +23,7 @@ typedef struct {
     float3 p;
     float3 ng;  /* geometric normal, on the side the ray came from */
     float3 ns;  /* shading normal, on the same side */
+    float3 nl;  /* the smooth normal: ns before the normal map (= ns without one), same side */
     float4 uv; /* xy: TEXCOORD_0, zw: TEXCOORD_1 (= TEXCOORD_0 when the scene has none) */
     uint material;
     uint prim;
@@ -96,17 +97,21 @@ Surface make_surface(SCENE_PARAMS, float3 dir, const Hit* h) {
     s.color = (HAS_VERTEX_COLORS && info->vertex_colors)
                   ? colors[3 * prim] * b0 + colors[3 * prim + 1] * b1 + colors[3 * prim + 2] * b2
                   : (float4)(1.0f);
+    float3 nl = ns;
     if (HAS_NORMAL_MAPS && materials[s.material].normal_tex >= 0)
         ns = normal_mapped(SCENE_ARGS, &materials[s.material], prim, b1, b2, ns, s.uv);
     s.front = dot(ng, dir) < 0.0f;
     if (!s.front) {
         ng = -ng;
         ns = -ns;
+        nl = -nl;
     }
     /* An interpolated normal facing away from the ray would make shading inconsistent. */
     if (dot(ns, dir) >= 0.0f) ns = ng;
+    if (dot(nl, dir) >= 0.0f) nl = ng;
     s.ng = ng;
     s.ns = ns;
+    s.nl = HAS_NORMAL_MAPS ? nl : ns;
     return s;
 }
 

@@ -183,7 +183,7 @@ typedef struct {
     u32 normal_oct;   /* shading normal on the side the eye path arrives from, octahedral 2x16 */
     u32 ng_oct;       /* geometric normal, same side (shadow-ray offsets) */
     u32 wo_oct;       /* unit direction back along the eye path */
-    u32 pad0;
+    u32 nl_oct;       /* smooth normal (before any normal map), same side */
 } HitPoint; /* 88 bytes */
 
 #define HITPOINT_NONE 0xffffffffu

@@ -53,6 +53,7 @@ Bsdf test_bsdf(__global const float* p, float3 n) {
     Bsdf b;
     b.ns = n;
     b.ng = n;
+    b.nl = n;
     b.base = (float3)(p[0], p[1], p[2]);
     b.f0 = (float3)(p[3], p[4], p[5]);
     b.f90 = p[6];
@@ -96,6 +97,7 @@ __kernel void lambert(__global const HitPoint* hp, float nx, float ny, float nz,
     uint i = get_global_id(0);
     float3 n = (float3)(nx, ny, nz);
     Bsdf b = hitpoint_bsdf(hp, n);
+    b.nl = n; /* the hit point's stored normals are not set here: n is the surface */
     out[i] = bsdf_eval(&b, n, (float3)(wi[3 * i], wi[3 * i + 1], wi[3 * i + 2]), LOBE_DIFFUSE).y;
 }
 )CL";

@@ -67,6 +67,7 @@ CLPPM_CHECK_OFFSET(HitPoint, dielectric, 64);
 CLPPM_CHECK_OFFSET(HitPoint, metal, 68);
 CLPPM_CHECK_OFFSET(HitPoint, normal_oct, 72);
 CLPPM_CHECK_OFFSET(HitPoint, wo_oct, 80);
+CLPPM_CHECK_OFFSET(HitPoint, nl_oct, 84);
 
 CLPPM_CHECK_SIZE(HitStats, 64);
 CLPPM_CHECK_OFFSET(HitStats, n, 8);

@@ -454,7 +454,8 @@ def normal_maps():
     (scale 0.8) and no TANGENT; a second quad with TANGENT (0, 1, 0, -1); the first mesh again
     under a mirroring node (scale x by -1).
     normal_plate_*.gltf: a lit plate with a uniform normal map, the same plate with that normal as
-    its vertex normals, and the flat plate."""
+    its vertex normals, and the flat plate; normal_plate_terminator*.gltf: the map on a plate
+    whose smooth normals face away from the lamp, and the plate with the mapped normals."""
     b = GltfBuilder("clppm tests/data/make_test_gltf.py")
     png = png_rgba([[NORMAL_TEXEL, (128, 128, 255, 255)], [(128, 200, 220, 255), (60, 100, 230, 255)]])
     b.doc["images"] = [{"uri": "data:image/png;base64," + base64.b64encode(png).decode("ascii")}]
@@ -491,6 +492,26 @@ def normal_maps():
         world = (tilted[0], tilted[2], -tilted[1])
         normals = [world if kind == "geometry" else (0.0, 1.0, 0.0)] * 4
         prim = b.primitive(quad, [0, 1, 2, 0, 2, 3], normals, uvs=uvs, material=plate)
+        write_lit_plate(b, name, prim, lamp=[1.6, 0.5, 0.0])
+    # Past the terminator: the same plate and map, but smooth (vertex) normals tilted 45 degrees
+    # away from the lamp, so that the lamp lies below the smooth normal everywhere on the plate
+    # (though above the flat triangles), while the map tilts the shading normal 38 degrees back
+    # towards it; and the unmapped plate whose vertex normals are that mapped normal.
+    smooth = (-math.sqrt(0.5), math.sqrt(0.5), 0.0)
+    c, s = tilted[2], tilted[0]  # the map's tilt about z, from smooth towards +x
+    shading = (smooth[0] * c + smooth[1] * s, smooth[1] * c - smooth[0] * s, 0.0)
+    for name, kind in (("normal_plate_terminator.gltf", "map"), ("normal_plate_terminator_geometry.gltf", "geometry")):
+        b = GltfBuilder("clppm tests/data/make_test_gltf.py")
+        plate = b.material("plate", (0.8, 0.8, 0.8), roughness=0.5)
+        if kind == "map":
+            png = png_rgba([[NORMAL_TEXEL] * 2] * 2)
+            b.doc["images"] = [{"uri": "data:image/png;base64," + base64.b64encode(png).decode("ascii")}]
+            b.doc["textures"] = [{"source": 0}]
+            b.doc["materials"][plate]["normalTexture"] = {"index": 0}
+        quad = [(-1.0, 0.0, -1.0), (-1.0, 0.0, 1.0), (1.0, 0.0, 1.0), (1.0, 0.0, -1.0)]
+        uvs = [(0, 0), (0, 1), (1, 1), (1, 0)]
+        prim = b.primitive(quad, [0, 1, 2, 0, 2, 3], [smooth if kind == "map" else shading] * 4, uvs=uvs,
+                           material=plate)
         write_lit_plate(b, name, prim, lamp=[1.6, 0.5, 0.0])
 
 
