@@ -60,6 +60,7 @@ GatherCase make_case(float cell, float radius, uint32_t n_photons, uint32_t n_hi
         h.pos[0] = x, h.pos[1] = 0, h.pos[2] = z;
         h.normal_oct = oct(0, 1, 0);
         h.wo_oct = h.normal_oct;
+        h.nl_oct = h.normal_oct;                  // no normal map: the smooth normal is the shading normal
         h.color[0] = h.color[1] = h.color[2] = 1; // Lambertian (no layer: f0 = f90 = 0), f = 1/pi
         h.alpha = 1;
         h.dielectric = 1;

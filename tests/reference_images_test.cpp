@@ -42,48 +42,32 @@ Agreement render_against_reference(const std::string& scene, const std::string& 
     return {full.mean_a / full.mean_b, box.rel_mse};
 }
 
+// Both integrators against the scene's reference: the mean within 1% (the reference's own noise is
+// below 0.1%); box-4 relative MSE 5e-4 for the path tracer and 3e-3 for SPPM (whose density
+// estimate blurs edges at 64 x 64).
+void expect_agreement(const std::string& scene) {
+    for (const char* integrator : {"pt", "sppm"}) {
+        const bool pt = std::string(integrator) == "pt";
+        Agreement g = render_against_reference(scene, std::string("--integrator ") + integrator +
+                                                          (pt ? " --passes 2048" : " --passes 48 --photons 100000"));
+        EXPECT_NEAR(g.mean_ratio, 1.0, 0.01) << integrator;
+        EXPECT_LT(g.box4_rel_mse, pt ? 5e-4 : 3e-3) << integrator;
+    }
+}
+
 } // namespace
 
-// Bounds: the mean within 1% (the reference's own noise is below 0.1%); box-4 relative MSE 5e-4
-// for the path tracer and 3e-3 for SPPM (whose density estimate blurs edges at 64 x 64). Measured
-// at these settings (two cores, PoCL): rough glass PT 0.9979 and 6e-5, SPPM 1.0006 and 1.1e-3;
+// Measured at these settings (two cores, PoCL): rough glass PT 0.9979 and 6e-5, SPPM 1.0006 and 1.1e-3;
 // tinted volume PT 1.0008 and 7e-5, SPPM 0.9995 and 3.2e-4; textured floor and leaf card PT
 // 1.0004 and 3e-5, SPPM 0.9997 and 1.2e-4.
-TEST(ReferenceImages, RoughGlassAgreesWithMitsuba) {
-    for (const char* integrator : {"pt", "sppm"}) {
-        const bool pt = std::string(integrator) == "pt";
-        Agreement g =
-            render_against_reference("ref_rough_glass", std::string("--integrator ") + integrator +
-                                                            (pt ? " --passes 2048" : " --passes 48 --photons 100000"));
-        EXPECT_NEAR(g.mean_ratio, 1.0, 0.01) << integrator;
-        EXPECT_LT(g.box4_rel_mse, pt ? 5e-4 : 3e-3) << integrator;
-    }
-}
+TEST(ReferenceImages, RoughGlassAgreesWithMitsuba) { expect_agreement("ref_rough_glass"); }
 
-TEST(ReferenceImages, TintedVolumeAgreesWithMitsuba) {
-    for (const char* integrator : {"pt", "sppm"}) {
-        const bool pt = std::string(integrator) == "pt";
-        Agreement g = render_against_reference("ref_tinted_volume",
-                                               std::string("--integrator ") + integrator +
-                                                   (pt ? " --passes 2048" : " --passes 48 --photons 100000"));
-        EXPECT_NEAR(g.mean_ratio, 1.0, 0.01) << integrator;
-        EXPECT_LT(g.box4_rel_mse, pt ? 5e-4 : 3e-3) << integrator;
-    }
-}
+TEST(ReferenceImages, TintedVolumeAgreesWithMitsuba) { expect_agreement("ref_tinted_volume"); }
 
 // Textures against Mitsuba's bitmaps: a floor whose sRGB base colour texture repeats three times
 // (REPEAT, bilinear), and a leaf card cut out by its texture's alpha (alphaMode MASK), in shadow
 // and in view.
-TEST(ReferenceImages, TexturedFloorAndLeafCardAgreeWithMitsuba) {
-    for (const char* integrator : {"pt", "sppm"}) {
-        const bool pt = std::string(integrator) == "pt";
-        Agreement g =
-            render_against_reference("ref_textured", std::string("--integrator ") + integrator +
-                                                         (pt ? " --passes 2048" : " --passes 48 --photons 100000"));
-        EXPECT_NEAR(g.mean_ratio, 1.0, 0.01) << integrator;
-        EXPECT_LT(g.box4_rel_mse, pt ? 5e-4 : 3e-3) << integrator;
-    }
-}
+TEST(ReferenceImages, TexturedFloorAndLeafCardAgreeWithMitsuba) { expect_agreement("ref_textured"); }
 
 // A wall whose normal map tilts by 31 degrees up, down, left and right (no TANGENT: clppm's
 // generated frame), lit from a lamp above it at grazing angles, so a mirrored or swapped frame,
@@ -94,13 +78,4 @@ TEST(ReferenceImages, TexturedFloorAndLeafCardAgreeWithMitsuba) {
 // rendered with Mitsuba's convention instead agrees to 1.0004 in mean and 1.7e-5 box-4 relative
 // MSE (PT); as shipped PT gives 1.0052 and 6.9e-5, SPPM 1.0045 and 1.2e-3, the excess in the
 // rows where wall and floor meet.
-TEST(ReferenceImages, NormalMappedWallAgreesWithMitsuba) {
-    for (const char* integrator : {"pt", "sppm"}) {
-        const bool pt = std::string(integrator) == "pt";
-        Agreement g =
-            render_against_reference("ref_normal_panel", std::string("--integrator ") + integrator +
-                                                             (pt ? " --passes 2048" : " --passes 48 --photons 100000"));
-        EXPECT_NEAR(g.mean_ratio, 1.0, 0.01) << integrator;
-        EXPECT_LT(g.box4_rel_mse, pt ? 5e-4 : 3e-3) << integrator;
-    }
-}
+TEST(ReferenceImages, NormalMappedWallAgreesWithMitsuba) { expect_agreement("ref_normal_panel"); }

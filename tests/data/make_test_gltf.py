@@ -475,24 +475,12 @@ def normal_maps():
     b.write_embedded(out("normal_map.gltf"))
 
     tilted = texel_normal(NORMAL_TEXEL)
-    for name, kind in (("normal_plate_mapped.gltf", "map"), ("normal_plate_geometry.gltf", "geometry"),
-                       ("normal_plate_flat.gltf", "flat")):
-        b = GltfBuilder("clppm tests/data/make_test_gltf.py")
-        plate = b.material("plate", (0.8, 0.8, 0.8), roughness=0.5)
-        if kind == "map":
-            png = png_rgba([[NORMAL_TEXEL] * 2] * 2)
-            b.doc["images"] = [{"uri": "data:image/png;base64," + base64.b64encode(png).decode("ascii")}]
-            b.doc["textures"] = [{"source": 0}]
-            b.doc["materials"][plate]["normalTexture"] = {"index": 0}
-        # The plate lies in y = 0 facing +y; u runs along +x and v along +z (down the image), so
-        # the tangent is +x and the bitangent (the map's +Y) is -z.
-        quad = [(-1.0, 0.0, -1.0), (-1.0, 0.0, 1.0), (1.0, 0.0, 1.0), (1.0, 0.0, -1.0)]
-        uvs = [(0, 0), (0, 1), (1, 1), (1, 0)]
-        # (t, b, n) = (+x, -z, +y): the tilted normal in world space.
-        world = (tilted[0], tilted[2], -tilted[1])
-        normals = [world if kind == "geometry" else (0.0, 1.0, 0.0)] * 4
-        prim = b.primitive(quad, [0, 1, 2, 0, 2, 3], normals, uvs=uvs, material=plate)
-        write_lit_plate(b, name, prim, lamp=[1.6, 0.5, 0.0])
+    # (t, b, n) = (+x, -z, +y): the tilted normal in world space.
+    world = (tilted[0], tilted[2], -tilted[1])
+    flat = (0.0, 1.0, 0.0)
+    lit_plate("normal_plate_mapped.gltf", flat, mapped=True)
+    lit_plate("normal_plate_geometry.gltf", world, mapped=False)
+    lit_plate("normal_plate_flat.gltf", flat, mapped=False)
     # Past the terminator: the same plate and map, but smooth (vertex) normals tilted 45 degrees
     # away from the lamp, so that the lamp lies below the smooth normal everywhere on the plate
     # (though above the flat triangles), while the map tilts the shading normal 38 degrees back
@@ -500,19 +488,26 @@ def normal_maps():
     smooth = (-math.sqrt(0.5), math.sqrt(0.5), 0.0)
     c, s = tilted[2], tilted[0]  # the map's tilt about z, from smooth towards +x
     shading = (smooth[0] * c + smooth[1] * s, smooth[1] * c - smooth[0] * s, 0.0)
-    for name, kind in (("normal_plate_terminator.gltf", "map"), ("normal_plate_terminator_geometry.gltf", "geometry")):
-        b = GltfBuilder("clppm tests/data/make_test_gltf.py")
-        plate = b.material("plate", (0.8, 0.8, 0.8), roughness=0.5)
-        if kind == "map":
-            png = png_rgba([[NORMAL_TEXEL] * 2] * 2)
-            b.doc["images"] = [{"uri": "data:image/png;base64," + base64.b64encode(png).decode("ascii")}]
-            b.doc["textures"] = [{"source": 0}]
-            b.doc["materials"][plate]["normalTexture"] = {"index": 0}
-        quad = [(-1.0, 0.0, -1.0), (-1.0, 0.0, 1.0), (1.0, 0.0, 1.0), (1.0, 0.0, -1.0)]
-        uvs = [(0, 0), (0, 1), (1, 1), (1, 0)]
-        prim = b.primitive(quad, [0, 1, 2, 0, 2, 3], [smooth if kind == "map" else shading] * 4, uvs=uvs,
-                           material=plate)
-        write_lit_plate(b, name, prim, lamp=[1.6, 0.5, 0.0])
+    lit_plate("normal_plate_terminator.gltf", smooth, mapped=True)
+    lit_plate("normal_plate_terminator_geometry.gltf", shading, mapped=False)
+
+
+def lit_plate(name, normal, mapped):
+    """A 2 x 2 plate in y = 0 facing +y with vertex normals `normal`, under write_lit_plate's rig
+    with the lamp low towards +x; with `mapped`, a uniform normalTexture of NORMAL_TEXEL. u runs
+    along +x and v along +z (down the image), so the tangent is +x and the bitangent (the map's +Y)
+    is -z."""
+    b = GltfBuilder("clppm tests/data/make_test_gltf.py")
+    plate = b.material("plate", (0.8, 0.8, 0.8), roughness=0.5)
+    if mapped:
+        png = png_rgba([[NORMAL_TEXEL] * 2] * 2)
+        b.doc["images"] = [{"uri": "data:image/png;base64," + base64.b64encode(png).decode("ascii")}]
+        b.doc["textures"] = [{"source": 0}]
+        b.doc["materials"][plate]["normalTexture"] = {"index": 0}
+    quad = [(-1.0, 0.0, -1.0), (-1.0, 0.0, 1.0), (1.0, 0.0, 1.0), (1.0, 0.0, -1.0)]
+    uvs = [(0, 0), (0, 1), (1, 1), (1, 0)]
+    prim = b.primitive(quad, [0, 1, 2, 0, 2, 3], [normal] * 4, uvs=uvs, material=plate)
+    write_lit_plate(b, name, prim, lamp=[1.6, 0.5, 0.0])
 
 
 def vertex_colors():
