@@ -45,7 +45,8 @@ Image solid(int w, int h, float r, float g, float b) {
     Image img;
     img.width = w;
     img.height = h;
-    for (int i = 0; i < w * h; ++i) img.rgb.insert(img.rgb.end(), {r, g, b});
+    img.rgb.resize(size_t(w) * size_t(h) * 3);
+    for (size_t i = 0; i < img.rgb.size(); i += 3) img.rgb[i] = r, img.rgb[i + 1] = g, img.rgb[i + 2] = b;
     return img;
 }
 
@@ -190,13 +191,30 @@ TEST(ImageIo, PngHasSrgbValuesAndMagentaForNonFinite) {
 
 TEST(ImageIo, PngExposureScalesBeforeEncoding) {
     std::string dir = test::make_temp_dir("image_io");
-    write_png(dir + "/q.png", solid(2, 2, 0.25f, 0.09f, 1.0f), 2.0f);
+    write_png(dir + "/q.png", solid(2, 2, 0.25f, 0.09f, 1.0f), ToneMapping{ToneCurve::Clip, 1.0, false});
     int w = 0, h = 0;
     std::vector<unsigned char> px = load_png(dir + "/q.png", &w, &h);
     ASSERT_EQ(px.size(), 12u);
     EXPECT_EQ(px[0], 188); // 0.25 * 2 = 0.5
     EXPECT_EQ(px[1], 118); // 0.09 * 2 = 0.18
     EXPECT_EQ(px[2], 255);
+}
+
+// The tone curve after the exposure: Reinhard at 2 x 0.5 = 1 is 0.5 (code 188), at 2 x 0.09 is
+// 0.18 / 1.18; auto exposure of a uniform 0.045 grey is +2 stops, to 0.18 (code 118) under clip.
+TEST(ImageIo, PngToneCurveAfterExposure) {
+    std::string dir = test::make_temp_dir("image_io");
+    write_png(dir + "/r.png", solid(1, 1, 0.5f, 0.09f, 0.0f), ToneMapping{ToneCurve::Reinhard, 1.0, false});
+    int w = 0, h = 0;
+    std::vector<unsigned char> px = load_png(dir + "/r.png", &w, &h);
+    ASSERT_EQ(px.size(), 3u);
+    EXPECT_EQ(px[0], 188);
+    EXPECT_EQ(px[1], linear_to_srgb8(float(0.18 / 1.18)));
+    EXPECT_EQ(px[2], 0);
+    write_png(dir + "/a.png", solid(2, 1, 0.045f, 0.045f, 0.045f), ToneMapping{ToneCurve::Clip, 0.0, true});
+    px = load_png(dir + "/a.png", &w, &h);
+    ASSERT_EQ(px.size(), 6u);
+    EXPECT_EQ(px[0], 118);
 }
 
 TEST(ImageIo, WritesReplaceAtomicallyAndLeaveNoTempFiles) {

@@ -46,6 +46,24 @@ TEST(Options, Defaults) {
     EXPECT_EQ(o.dump_kernel_source, "");
     EXPECT_FALSE(o.help);
     EXPECT_FALSE(o.version);
+    EXPECT_EQ(o.tone.curve, ToneCurve::Aces);
+    EXPECT_EQ(o.tone.exposure_ev, 0.0);
+    EXPECT_FALSE(o.tone.auto_exposure);
+}
+
+// Choices are case-insensitive; the PNG's tone options and their ranges.
+TEST(Options, ChoicesIgnoreCaseAndToneOptions) {
+    Options o = parse_options(Args{"--integrator", "SPPM", "--direct", "Photons", "--filter", "TENT", "--tonemap",
+                                   "Clip", "--exposure=-2.5", "--auto-exposure"});
+    EXPECT_EQ(o.integrator, Integrator::SPPM);
+    EXPECT_EQ(o.direct, DirectLighting::Photons);
+    EXPECT_EQ(o.filter, PixelFilter::Tent);
+    EXPECT_EQ(o.tone.curve, ToneCurve::Clip);
+    EXPECT_EQ(o.tone.exposure_ev, -2.5);
+    EXPECT_TRUE(o.tone.auto_exposure);
+    EXPECT_EQ(error_of({"--tonemap", "agx"}), "--tonemap agx: must be clip, aces or reinhard");
+    EXPECT_EQ(error_of({"--exposure", "65"}), "--exposure 65: must be a number in -64..64");
+    EXPECT_EQ(error_of({"--exposure", "nan"}), "--exposure nan: must be a number in -64..64");
 }
 
 // Every valued option, once as "--opt value" and once as "--opt=value".

@@ -67,6 +67,17 @@ TEST(RenderSession, ExrHeaderRecordsPassesIntegratorAndInterruption) {
     EXPECT_EQ(img.attributes["clppm:integrator"], "sppm");
     EXPECT_EQ(img.attributes["clppm:interrupted"], "no");
     EXPECT_FALSE(img.attributes["clppm:version"].empty());
+    EXPECT_EQ(img.attributes.count("clppm:png_tonemap"), 0u); // --no-png: nothing to say
+    // With a PNG: the tone curve and exposure it applied (the default is aces at 0 stops).
+    const std::string png_args = " --width 24 --height 24 --photons 4000 --quiet --passes 1";
+    ASSERT_EQ(run_clppm(png_args + " -o " + d + "/b.exr", &out), 0) << out;
+    img = read_exr(d + "/b.exr");
+    EXPECT_EQ(img.attributes["clppm:png_tonemap"], "aces");
+    EXPECT_EQ(img.attributes["clppm:png_exposure_ev"], "0");
+    ASSERT_EQ(run_clppm(png_args + " --tonemap Reinhard --exposure -1.5 -o " + d + "/c.exr", &out), 0) << out;
+    img = read_exr(d + "/c.exr");
+    EXPECT_EQ(img.attributes["clppm:png_tonemap"], "reinhard");
+    EXPECT_EQ(img.attributes["clppm:png_exposure_ev"], "-1.5");
 }
 
 // A radius beyond the scene would gather every photon everywhere (and an infinite one used to

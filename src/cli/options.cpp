@@ -97,6 +97,13 @@ std::array<float, 3> parse_rgb(const Arg& a) {
     return c;
 }
 
+// A choice's value as typed, lower-cased: choices are case-insensitive ("--integrator SPPM").
+std::string lower(const std::string& v) {
+    std::string out(v);
+    for (char& ch : out) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+    return out;
+}
+
 const std::string& non_empty(const Arg& a) {
     if (a.value.empty()) bad_value(a);
     return a.value;
@@ -127,6 +134,22 @@ const OptionSpec kOptions[] = {
      }},
     {"--no-png", nullptr, nullptr, "Do not write the PNG preview", nullptr, nullptr,
      [](ParseState& st, const Arg&) { st.options.write_png = false; }},
+    {"--tonemap", nullptr, "CURVE",
+     "The PNG's tone curve: clip = linear up to white, aces = a filmic curve (Narkowicz's ACES fit), "
+     "reinhard = x / (1 + x); the EXR stays linear",
+     "clip, aces or reinhard", "aces",
+     [](ParseState& st, const Arg& a) {
+         if (!parse_tone_curve(a.value, &st.options.tone.curve)) bad_value(a);
+     }},
+    {"--exposure", nullptr, "EV",
+     "The PNG's exposure in stops (x 2^EV before the tone curve; with --auto-exposure, added to it)",
+     "a number in -64..64", "0",
+     [](ParseState& st, const Arg& a) {
+         st.options.tone.exposure_ev = parse_real(a, [](double x) { return x >= -64 && x <= 64; });
+     }},
+    {"--auto-exposure", nullptr, nullptr,
+     "Expose the PNG so that the image's log-average luminance shows as middle grey (0.18)", nullptr, nullptr,
+     [](ParseState& st, const Arg&) { st.options.tone.auto_exposure = true; }},
     {"--width", nullptr, "N", "Image width in pixels", "an integer in 0..16384 (0 = from the camera)", "0",
      [](ParseState& st, const Arg& a) { st.options.width = static_cast<int>(parse_int(a, 0, 16384)); }},
     {"--height", nullptr, "N", "Image height in pixels", "an integer in 0..16384 (0 = from the camera)", "0",
@@ -166,17 +189,19 @@ const OptionSpec kOptions[] = {
      "(independent passes), pt = path-traced reference",
      "ppm, sppm, pppm or pt", "ppm",
      [](ParseState& st, const Arg& a) {
-         if (a.value == "ppm") st.options.integrator = Integrator::PPM;
-         else if (a.value == "sppm") st.options.integrator = Integrator::SPPM;
-         else if (a.value == "pppm") st.options.integrator = Integrator::PPPM;
-         else if (a.value == "pt") st.options.integrator = Integrator::PT;
+         const std::string v = lower(a.value);
+         if (v == "ppm") st.options.integrator = Integrator::PPM;
+         else if (v == "sppm") st.options.integrator = Integrator::SPPM;
+         else if (v == "pppm") st.options.integrator = Integrator::PPPM;
+         else if (v == "pt") st.options.integrator = Integrator::PT;
          else bad_value(a);
      }},
     {"--direct", nullptr, "MODE", "Direct light from photons (density estimate) or by sampling lights at hit points",
      "photons or sample", "sample",
      [](ParseState& st, const Arg& a) {
-         if (a.value == "photons") st.options.direct = DirectLighting::Photons;
-         else if (a.value == "sample") st.options.direct = DirectLighting::Sample;
+         const std::string v = lower(a.value);
+         if (v == "photons") st.options.direct = DirectLighting::Photons;
+         else if (v == "sample") st.options.direct = DirectLighting::Sample;
          else bad_value(a);
      }},
     {"--spp", nullptr, "N", "Hit points (samples) per pixel per pass", "an integer in 1..256", "1",
@@ -185,8 +210,9 @@ const OptionSpec kOptions[] = {
      "Pixel filter, importance-sampled: box = the pixel's square, tent = separable tent of radius 1 pixel",
      "box or tent", "box",
      [](ParseState& st, const Arg& a) {
-         if (a.value == "box") st.options.filter = PixelFilter::Box;
-         else if (a.value == "tent") st.options.filter = PixelFilter::Tent;
+         const std::string v = lower(a.value);
+         if (v == "box") st.options.filter = PixelFilter::Box;
+         else if (v == "tent") st.options.filter = PixelFilter::Tent;
          else bad_value(a);
      }},
     {"--aperture", nullptr, "R", "Thin-lens aperture radius in scene units (depth of field)",

@@ -6,21 +6,23 @@
 #include <vector>
 
 #include "integrators/render_settings.h" // Integrator, DirectLighting, PixelFilter
+#include "io/tone_map.h"
 #include "scene/environment.h"
 
 namespace clppm {
 
 struct Options {
-    std::string scene;                  // .gltf/.glb; empty = the embedded Cornell box
-    std::string output = "clppm.exr";   // -o/--output, always ends in .exr
-    bool write_png = true;              // false with --no-png
-    int width = 0;                      // 1..16384; 0 = from the camera
-    int height = 0;                     // 1..16384; 0 = from the camera
-    uint64_t passes = 64;               // 0 = unlimited (only with --time); 64 when neither is given
-    double time_limit = 0.0;            // --time seconds; 0 = none
-    uint32_t photons_per_pass = 200000; // --photons, 1..2^31-1
-    double alpha = 0.7;                 // in (0, 1]
-    double radius = 0.0;                // initial radius R0; 0 = heuristic
+    std::string scene;                             // .gltf/.glb; empty = the embedded Cornell box
+    std::string output = "clppm.exr";              // -o/--output, always ends in .exr
+    bool write_png = true;                         // false with --no-png
+    ToneMapping tone{ToneCurve::Aces, 0.0, false}; // the PNG's --tonemap, --exposure, --auto-exposure
+    int width = 0;                                 // 1..16384; 0 = from the camera
+    int height = 0;                                // 1..16384; 0 = from the camera
+    uint64_t passes = 64;                          // 0 = unlimited (only with --time); 64 when neither is given
+    double time_limit = 0.0;                       // --time seconds; 0 = none
+    uint32_t photons_per_pass = 200000;            // --photons, 1..2^31-1
+    double alpha = 0.7;                            // in (0, 1]
+    double radius = 0.0;                           // initial radius R0; 0 = heuristic
     uint64_t seed = 1;
     bool list_devices = false;
     std::vector<std::string> devices; // --device, repeatable, in the order given

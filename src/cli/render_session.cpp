@@ -115,13 +115,20 @@ struct ErrorTracking {
 };
 
 // The integrator's image, with the EXR header attributes that say how it came to be (as the stats
-// JSON does): version, integrator, passes, and whether the render was interrupted.
-Image current_image(IntegratorBase& integ, int signal) {
+// JSON does): version, integrator, passes, whether the render was interrupted, and the tone curve
+// and exposure the PNG beside it applied (the EXR itself is linear).
+Image current_image(const Options& opt, IntegratorBase& integ, int signal) {
     Image img = integ.image();
     img.attributes["clppm:version"] = kVersion;
     img.attributes["clppm:integrator"] = integ.name();
     img.attributes["clppm:passes"] = std::to_string(integ.stats().passes);
     img.attributes["clppm:interrupted"] = signal ? "yes" : "no";
+    if (opt.write_png) {
+        char ev[32];
+        std::snprintf(ev, sizeof ev, "%.6g", applied_exposure_ev(opt.tone, img));
+        img.attributes["clppm:png_tonemap"] = to_string(opt.tone.curve);
+        img.attributes["clppm:png_exposure_ev"] = ev;
+    }
     return img;
 }
 
@@ -131,7 +138,7 @@ void save_images(const Options& opt, const Image& img, const ErrorTracking& erro
     if (errors.integ && errors.last.relative.size() == img.rgb.size() / 3)
         layers.push_back({"error", &errors.last.relative});
     write_exr(opt.output, img, layers);
-    if (opt.write_png) write_png(png_path_for(opt.output), img);
+    if (opt.write_png) write_png(png_path_for(opt.output), img, opt.tone);
 }
 
 // --error-output: the relative bound as a grey EXR (with its bias and noise parts as layers) and a
@@ -364,7 +371,7 @@ int render_session(const Options& opt) {
         errors.update(opt, progress, st.passes, render_clock.seconds());
         progress.update(st.passes, st.photons_emitted, st.mean_radius, render_clock.seconds());
         if (opt.progressive_output > 0 && st.passes % opt.progressive_output == 0)
-            save_images(opt, current_image(*integ, 0), errors);
+            save_images(opt, current_image(opt, *integ, 0), errors);
         if (!opt.checkpoint.empty() && ((opt.checkpoint_every > 0 && st.passes % opt.checkpoint_every == 0) ||
                                         render_clock.seconds() - last_checkpoint >= opt.checkpoint_interval)) {
             save_checkpoint(opt, *integ, fingerprint, dc);
@@ -381,7 +388,7 @@ int render_session(const Options& opt) {
         return interrupted_exit_status(signal);
     }
 
-    Image img = current_image(*integ, signal);
+    Image img = current_image(opt, *integ, signal);
     save_images(opt, img, errors);
     if (!opt.error_output.empty() && !errors.last.relative.empty()) save_error_images(opt, errors.last);
     if (errors.integ) {

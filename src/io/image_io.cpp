@@ -94,14 +94,16 @@ std::string encode_exr(const std::string& path, const Image& img, const std::vec
 
 bool is_finite_pixel(const float* p) { return std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]); }
 
-std::vector<unsigned char> to_srgb8(const Image& img, float exposure) {
+std::vector<unsigned char> to_srgb8(const Image& img, const ToneMapping& tone) {
+    const double scale = std::exp2(applied_exposure_ev(tone, img));
     static const unsigned char kMagenta[3] = {255, 0, 255};
     size_t pixels = static_cast<size_t>(img.width) * static_cast<size_t>(img.height);
     std::vector<unsigned char> out(pixels * 3);
     for (size_t i = 0; i < pixels; ++i) {
         const float* p = &img.rgb[3 * i];
         bool finite = is_finite_pixel(p);
-        for (int c = 0; c < 3; ++c) out[3 * i + c] = finite ? linear_to_srgb8(p[c] * exposure) : kMagenta[c];
+        for (int c = 0; c < 3; ++c)
+            out[3 * i + c] = finite ? linear_to_srgb8(float(tone_curve(tone.curve, p[c] * scale))) : kMagenta[c];
     }
     return out;
 }
@@ -151,9 +153,9 @@ void write_exr(const std::string& path, const Image& img, const std::vector<ExrL
     write_file_atomic(path, bytes);
 }
 
-void write_png(const std::string& path, const Image& img, float exposure) {
+void write_png(const std::string& path, const Image& img, const ToneMapping& tone) {
     check_image(path, img);
-    std::vector<unsigned char> pixels = to_srgb8(img, exposure);
+    std::vector<unsigned char> pixels = to_srgb8(img, tone);
     std::string bytes;
     if (!stbi_write_png_to_func(append_bytes, &bytes, img.width, img.height, 3, pixels.data(), img.width * 3))
         throw Error("cannot write " + path + ": PNG encoding failed");

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "io/atomic_file.h"
+#include "io/tone_map.h"
 
 namespace clppm {
 
@@ -26,10 +27,10 @@ using ExrLayer = std::pair<std::string, const std::vector<float>*>;
 // Float32 R,G,B (plus `extra_layers`), ZIP compression. Throws clppm::Error naming the path.
 void write_exr(const std::string& path, const Image& img, const std::vector<ExrLayer>& extra_layers = {});
 
-// 8-bit sRGB preview: each channel is scaled by `exposure`, clamped to [0, 1] (a plain clip, no
-// tone curve: the EXR is the real output, this is a quick look) and encoded with the sRGB OETF,
-// rounded to nearest. A pixel with any NaN or Inf channel is drawn magenta so that it stands out.
-void write_png(const std::string& path, const Image& img, float exposure = 1.0f);
+// 8-bit sRGB preview: each channel is scaled by 2^EV (applied_exposure_ev), put through the tone
+// curve (tone_map.h) and encoded with the sRGB OETF, rounded to nearest; the default mapping is a
+// plain clip at 1. A pixel with any NaN or Inf channel is drawn magenta so that it stands out.
+void write_png(const std::string& path, const Image& img, const ToneMapping& tone = {});
 
 // Reads R,G,B of an EXR as float; a file without all three channels is an error.
 Image read_exr(const std::string& path);
