@@ -138,5 +138,63 @@ TEST(Progress, QuietPrintsNothingAndAbortEndsTheLine) {
     EXPECT_EQ(out.back(), '\n');
 }
 
+// The first pass holds the kernels' build and PoCL's first-launch compilation: the rate and the
+// ETA come from the passes after it (the issue saw "ETA 10m59s" at pass 1 of 200 for a 50 s run).
+TEST(Progress, EtaAndRateExcludeTheFirstPass) {
+    ProgressInfo p = info(1, 200, 0, 10.0);
+    p.steady_pass0 = 1, p.steady_t0 = 10.0;
+    EXPECT_LT(progress_eta(p), 0);
+    EXPECT_EQ(format_progress_line(p, false), "  0% pass 1/200  200k photons  r 0.0123  - pass/s  10s  ETA ?");
+    p = info(5, 200, 0, 11.0); // four passes in the second after it
+    p.steady_pass0 = 1, p.steady_t0 = 10.0;
+    EXPECT_DOUBLE_EQ(progress_rate(p), 4.0);
+    EXPECT_DOUBLE_EQ(progress_eta(p), 195.0 / 4.0);
+    EXPECT_EQ(format_progress_line(p, false), "  2% pass 5/200  1.00M photons  r 0.0123  4.00 pass/s  11s  ETA 49s");
+    // The reporter takes its first update as that origin.
+    std::FILE* f = std::tmpfile();
+    {
+        Progress progress(f, false, false, 200, 0);
+        progress.update(1, 1, 0.5, 10.0);
+        progress.update(5, 5, 0.5, 11.0);
+        progress.update(21, 21, 0.5, 15.0); // 20 passes in 5 s after the first: 4 pass/s
+    }
+    std::string out = captured(f);
+    std::fclose(f);
+    EXPECT_NE(out.find("pass 1/200  1 photons  r 0.5  - pass/s  10s  ETA ?\n"), std::string::npos) << out;
+    EXPECT_NE(out.find("pass 21/200  21 photons  r 0.5  4.00 pass/s  15s  ETA 45s\n"), std::string::npos) << out;
+}
+
+TEST(Progress, ResumedRendersSayWhere) {
+    ProgressInfo p = info(5, 10, 0, 2.0);
+    p.resumed_at = 4;
+    EXPECT_EQ(format_progress_line(p, false),
+              " 50% pass 5/10 (resumed at 4)  1.00M photons  r 0.0123  0.50 pass/s  2s  ETA 10s");
+    // A checkpoint already past --passes (a total) renders nothing, and says so plainly.
+    p = info(4, 2, 0, 0.0);
+    p.resumed_at = 4;
+    p.finished = true;
+    EXPECT_EQ(format_progress_line(p, false),
+              "100% pass 4/4 (resumed at 4)  800k photons  r 0.0123  - pass/s  0s  done");
+}
+
+// In a log, the pass that reaches the limit is printed once, by the final line.
+TEST(Progress, PlainLogPrintsTheLastPassOnce) {
+    for (bool by_time : {false, true}) {
+        std::FILE* f = std::tmpfile();
+        {
+            Progress progress(f, false, false, by_time ? 0 : 3, by_time ? 18.0 : 0);
+            for (int pass = 1; pass <= 3; ++pass) progress.update(pass, pass, 0.5, 6.0 * pass);
+            progress.finish(3, 3, 0.5, 18.0);
+        }
+        std::string out = captured(f);
+        std::fclose(f);
+        EXPECT_EQ(count_of(out, '\n'), 3u) << out;
+        size_t first = out.find("pass 3");
+        ASSERT_NE(first, std::string::npos) << out;
+        EXPECT_EQ(out.find("pass 3", first + 1), std::string::npos) << out;
+        EXPECT_NE(out.find("done"), std::string::npos) << out;
+    }
+}
+
 } // namespace
 } // namespace clppm

@@ -28,13 +28,16 @@ std::string bar(double fraction) {
 
 std::string pass_text(const ProgressInfo& p) {
     std::string s = "pass " + std::to_string(p.pass);
-    if (p.pass_limit > 0) s += "/" + std::to_string(p.pass_limit);
+    // A checkpoint past the limit (--passes counts from the original start) renders nothing: the
+    // limit shown is then what was already done, never "pass 4/2".
+    if (p.pass_limit > 0) s += "/" + std::to_string(std::max(p.pass_limit, p.resumed_at));
+    if (p.resumed_at > 0) s += " (resumed at " + std::to_string(p.resumed_at) + ")";
     return s;
 }
 
 std::string rate_text(const ProgressInfo& p) {
-    if (p.elapsed_s <= 0 || p.pass == 0) return "- pass/s";
-    return three_digits(static_cast<double>(p.pass) / p.elapsed_s) + " pass/s";
+    double rate = progress_rate(p);
+    return rate < 0 ? "- pass/s" : three_digits(rate) + " pass/s";
 }
 
 std::string eta_text(const ProgressInfo& p) {
@@ -69,12 +72,18 @@ double progress_fraction(const ProgressInfo& p) {
     return f < 0 ? f : std::min(f, 1.0);
 }
 
+double progress_rate(const ProgressInfo& p) {
+    const uint64_t pass0 = p.steady_t0 >= 0 ? p.steady_pass0 : p.resumed_at;
+    const double t0 = p.steady_t0 >= 0 ? p.steady_t0 : 0.0;
+    if (p.pass <= pass0 || !(p.elapsed_s > t0)) return -1.0;
+    return static_cast<double>(p.pass - pass0) / (p.elapsed_s - t0);
+}
+
 double progress_eta(const ProgressInfo& p) {
     double eta = -1.0;
-    if (p.pass_limit > 0 && p.pass > 0 && p.elapsed_s > 0) {
-        double remaining = static_cast<double>(p.pass_limit - std::min(p.pass, p.pass_limit));
-        eta = remaining * p.elapsed_s / static_cast<double>(p.pass);
-    }
+    const double rate = progress_rate(p);
+    if (p.pass_limit > 0 && p.pass >= p.pass_limit) eta = 0.0;
+    else if (p.pass_limit > 0 && rate > 0) eta = static_cast<double>(p.pass_limit - p.pass) / rate;
     if (p.time_limit > 0) {
         double left = std::max(0.0, p.time_limit - p.elapsed_s);
         eta = eta < 0 ? left : std::min(eta, left);
@@ -145,15 +154,27 @@ ProgressInfo Progress::info(uint64_t pass, uint64_t photons, double radius, doub
     p.error = error_;
     p.target_error = target_error_;
     p.error_eta_s = error_eta_s_;
+    p.resumed_at = resumed_at_;
+    p.steady_pass0 = steady_pass0_;
+    p.steady_t0 = steady_t0_;
     return p;
 }
 
 void Progress::update(uint64_t pass, uint64_t photons, double radius, double elapsed_s) {
+    if (steady_t0_ < 0) { // this run's first pass: the rate is measured from here on
+        steady_pass0_ = pass;
+        steady_t0_ = elapsed_s;
+    }
     if (quiet_) return;
     double interval = terminal_ ? kTerminalInterval : kPlainInterval;
     if (drawn_ && elapsed_s - last_draw_s_ < interval) return;
+    // In a log, the pass that reaches a limit is the final line's to print (finish), not twice.
+    const bool last = (pass_limit_ > 0 && pass >= pass_limit_) || (time_limit_ > 0 && elapsed_s >= time_limit_);
+    if (!terminal_ && last) return;
     draw(info(pass, photons, radius, elapsed_s));
 }
+
+void Progress::set_resumed(uint64_t passes) { resumed_at_ = passes; }
 
 void Progress::set_error(double error, double target, double eta_s) {
     error_ = error;

@@ -19,6 +19,13 @@ struct ProgressInfo {
     double error = -1.0;       // estimated relative error (--target-error, --error-output); < 0 = none
     double target_error = 0.0; // 0 = none
     double error_eta_s = -1.0; // seconds until error <= target_error; < 0 = unknown
+    uint64_t resumed_at = 0;   // passes the checkpoint held ("pass 5/10 (resumed at 4)"); 0 = fresh
+    // The steady rate's origin: the pass count and elapsed time at the end of this run's first
+    // pass, whose time holds the kernels' build and first-launch compilation. With it, the rate and
+    // the pass limit's ETA come from the passes after it alone (the ETA is unknown until a second
+    // pass is done); without it (steady_t0 < 0), from all passes.
+    uint64_t steady_pass0 = 0;
+    double steady_t0 = -1.0;
 };
 
 // One progress line without any terminal control characters, e.g.
@@ -30,8 +37,12 @@ std::string format_progress_line(const ProgressInfo& info, bool with_bar);
 // Completed fraction in [0, 1] of whichever limit is closer; negative when there is no limit.
 double progress_fraction(const ProgressInfo& info);
 
-// Seconds left until the nearer limit; negative when unknown (no limit, or no pass done yet).
+// Seconds left until the nearer limit; negative when unknown (no limit, or no steady pass yet).
 double progress_eta(const ProgressInfo& info);
+
+// Passes per second: after steady_pass0 when steady_t0 >= 0, else over the whole run; negative
+// when unknown.
+double progress_rate(const ProgressInfo& info);
 
 // 950 -> "950", 12345 -> "12.3k", 5400000 -> "5.40M", 2e9 -> "2.00G".
 std::string format_count(uint64_t n);
@@ -55,6 +66,8 @@ public:
     void update(uint64_t pass, uint64_t photons, double radius, double elapsed_s);
     // The estimated error (and the target and the time to reach it) shown from now on.
     void set_error(double error, double target, double eta_s);
+    // This run continues a checkpoint of `passes` passes (shown on every line).
+    void set_resumed(uint64_t passes);
     // Draws the final line unconditionally (and ends it on a terminal).
     void finish(uint64_t pass, uint64_t photons, double radius, double elapsed_s);
 
@@ -68,6 +81,9 @@ private:
     uint64_t pass_limit_;
     double time_limit_;
     double error_ = -1.0, target_error_ = 0.0, error_eta_s_ = -1.0;
+    uint64_t resumed_at_ = 0;
+    uint64_t steady_pass0_ = 0; // pass and time of the first update (steady_t0)
+    double steady_t0_ = -1.0;
     bool drawn_ = false; // a line has been drawn
     double last_draw_s_ = 0.0;
     size_t last_length_ = 0; // of the terminal line, to blank out leftovers of a longer one

@@ -347,10 +347,15 @@ int render_session(const Options& opt) {
                  resume_from.header.value("device", std::string("unknown")) + "): the image will not be bit-identical");
         integ->restore(resume_from);
         note(opt, "resumed " + opt.resume + " at pass " + std::to_string(integ->stats().passes));
+        if (opt.passes > 0 && integ->stats().passes >= opt.passes)
+            warn("--passes " + std::to_string(opt.passes) + ": the checkpoint already holds " +
+                 std::to_string(integ->stats().passes) +
+                 " passes (--passes counts from the start of the original render); nothing to render");
     }
 
     // --passes counts from the start of the original render (a total), --time this session only.
     Progress progress(opt.quiet, opt.passes, opt.time_limit);
+    if (!opt.resume.empty()) progress.set_resumed(integ->stats().passes);
     double last_checkpoint = 0;
     int signal = 0;
     auto more = [&] {
