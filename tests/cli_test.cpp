@@ -184,4 +184,23 @@ TEST(Cli, CompareBoxFilteredRelativeMse) {
     EXPECT_EQ(j["box"].get<int>(), 2);
     EXPECT_EQ(run_clppm("compare " + d + "/a.exr " + d + "/b.exr --box 0", &out), 1);
     expect_one_line_error(out, "--box 0: must be an integer in 1..1024");
+    // The difference image is a PNG, so its name must say so (it was written into d.jpg).
+    EXPECT_EQ(run_clppm("compare " + d + "/a.exr " + d + "/b.exr --diff " + d + "/d.jpg", &out), 1);
+    expect_one_line_error(out, "--diff " + d + "/d.jpg: must be a file name ending in .png");
+    EXPECT_FALSE(std::ifstream(d + "/d.jpg").good());
+    ASSERT_EQ(run_clppm("compare " + d + "/a.exr " + d + "/b.exr --diff " + d + "/d.PNG", &out), 0) << out;
+    EXPECT_TRUE(std::ifstream(d + "/d.PNG").good());
+}
+
+// clppm --help names the compare command, and clppm compare --help explains it (it was an error).
+TEST(Cli, CompareHasHelpAndTheMainHelpNamesIt) {
+    std::string out;
+    ASSERT_EQ(run_clppm("--help", &out), 0) << out;
+    EXPECT_NE(out.find("clppm compare IMAGE.exr REFERENCE.exr"), std::string::npos) << out;
+    EXPECT_NE(out.find("CLPPM_CACHE_DIR"), std::string::npos) << out; // the environment variables
+    for (const char* help : {"compare --help", "compare -h"}) {
+        ASSERT_EQ(run_clppm(help, &out), 0) << out;
+        EXPECT_NE(out.find("Usage: clppm compare IMAGE.exr REFERENCE.exr"), std::string::npos) << out;
+        EXPECT_NE(out.find("--box K"), std::string::npos) << out;
+    }
 }

@@ -209,6 +209,19 @@ TEST(Options, PassesAndTime) {
 
 TEST(Options, UnknownMissingAndStrayValues) {
     EXPECT_EQ(error_of({"--foo"}), "unknown option --foo (see --help)");
+    // A near miss gets a suggestion.
+    EXPECT_EQ(error_of({"--pases", "3"}), "unknown option --pases (did you mean --passes? see --help)");
+    EXPECT_EQ(error_of({"--integrater=sppm"}), "unknown option --integrater (did you mean --integrator? see --help)");
+    EXPECT_EQ(error_of({"--env-colour", "1,1,1"}),
+              "unknown option --env-colour (did you mean --env-color? see --help)");
+    // An option where a value should be is a missing value, not the value ("--passes --quiet"
+    // took "--quiet" as the number); negative numbers are values.
+    EXPECT_EQ(error_of({"--passes", "--quiet"}),
+              "--passes: missing value N (must be an integer >= 1 (0 = unlimited, with --time))");
+    EXPECT_EQ(error_of({"-o", "--width=3"}), "-o: missing value FILE (must be a file name ending in .exr)");
+    EXPECT_EQ(parse_options(Args{"--exposure", "-2"}).tone.exposure_ev, -2.0);
+    // The short form takes "=" too, as the long ones do.
+    EXPECT_EQ(parse_options(Args{"-o=x.exr"}).output, "x.exr");
     EXPECT_EQ(error_of({"--foo=3"}), "unknown option --foo (see --help)");
     EXPECT_EQ(error_of({"-x"}), "unknown option -x (see --help)");
     EXPECT_EQ(error_of({"--alpha"}), "--alpha: missing value A (must be in (0, 1])");

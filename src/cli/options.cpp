@@ -1,5 +1,6 @@
 #include "cli/options.h"
 
+#include <algorithm>
 #include <array>
 #include <cctype>
 #include <cerrno>
@@ -301,6 +302,45 @@ const OptionSpec* find_option(const std::string& name) {
     return nullptr;
 }
 
+// Levenshtein distance, for suggestions.
+size_t edit_distance(const std::string& a, const std::string& b) {
+    std::vector<size_t> row(b.size() + 1);
+    for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
+    for (size_t i = 1; i <= a.size(); ++i) {
+        size_t diagonal = row[0];
+        row[0] = i;
+        for (size_t j = 1; j <= b.size(); ++j) {
+            const size_t up = row[j];
+            row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+            diagonal = up;
+        }
+    }
+    return row[b.size()];
+}
+
+// "unknown option --pases (did you mean --passes? see --help)": the nearest long name within a
+// third of its length in edits (at least 1, at most 3), else no suggestion.
+[[noreturn]] void unknown_option(const std::string& name) {
+    const OptionSpec* best = nullptr;
+    size_t best_distance = 0;
+    for (const OptionSpec& spec : kOptions) {
+        const size_t d = edit_distance(name, spec.name);
+        if (!best || d < best_distance) best = &spec, best_distance = d;
+    }
+    const size_t allowed = std::clamp<size_t>(std::string(best->name).size() / 3, 1, 3);
+    if (name.rfind("--", 0) == 0 && best_distance <= allowed)
+        throw Error("unknown option " + name + " (did you mean " + best->name + "? see --help)");
+    throw Error("unknown option " + name + " (see --help)");
+}
+
+// Whether a token is itself an option (so it cannot be the previous option's value): "--name" or
+// "--name=..." or "-o" with a known name. Negative numbers are values.
+bool is_option_token(const std::string& token) {
+    if (token.rfind("--", 0) == 0) return find_option(token.substr(0, token.find('='))) != nullptr;
+    return token.size() >= 2 && token[0] == '-' && find_option(token.substr(0, 2)) != nullptr &&
+           (token.size() == 2 || token[2] == '=');
+}
+
 // "--passes" defaults to 64 only when no --time bounds the render; 0 passes needs a time limit.
 void resolve_limits(ParseState& st) {
     Options& o = st.options;
@@ -321,16 +361,17 @@ void check_error_options(const ParseState& st) {
 // Handles args[i], an option; returns the index of the last argument it consumed.
 size_t parse_option(ParseState& st, const std::vector<std::string>& args, size_t i) {
     const std::string& arg = args[i];
-    size_t eq = arg.rfind("--", 0) == 0 ? arg.find('=') : std::string::npos;
+    // "--name=value", and "-o=value" for the short forms.
+    size_t eq = arg.rfind("--", 0) == 0 ? arg.find('=') : (arg.size() > 2 && arg[2] == '=' ? 2 : std::string::npos);
     std::string name = arg.substr(0, eq);
     const OptionSpec* spec = find_option(name);
-    if (!spec) throw Error("unknown option " + name + " (see --help)");
+    if (!spec) unknown_option(name);
     std::string value;
     if (!spec->metavar) {
         if (eq != std::string::npos) throw Error(name + " takes no value");
     } else if (eq != std::string::npos) {
         value = arg.substr(eq + 1);
-    } else if (i + 1 < args.size()) {
+    } else if (i + 1 < args.size() && !is_option_token(args[i + 1])) {
         value = args[++i];
     } else {
         throw Error(name + ": missing value " + spec->metavar + " (must be " + spec->range + ")");
@@ -400,8 +441,12 @@ Options parse_options(int argc, char** argv) {
 std::string usage() {
     const size_t indent = 30, width = 100;
     std::string out = "Usage: clppm [options] [SCENE.gltf|SCENE.glb]\n"
+                      "       clppm compare IMAGE.exr REFERENCE.exr [--diff OUT.png] [--box K]\n"
                       "Renders SCENE (default: the built-in Cornell box) with progressive photon mapping in OpenCL.\n"
-                      "Values may be given as --opt VALUE or --opt=VALUE.\n\nOptions:\n";
+                      "Values may be given as --opt VALUE or --opt=VALUE (-o FILE or -o=FILE).\n\n"
+                      "Commands:\n"
+                      "  compare                     How far an image is from a reference, as JSON "
+                      "(clppm compare --help)\n\nOptions:\n";
     for (const OptionSpec& spec : kOptions) {
         std::string col = option_column(spec);
         out += col;
@@ -411,6 +456,20 @@ std::string usage() {
         if (spec.default_text) text += std::string(". Default: ") + spec.default_text;
         text += ".";
         append_wrapped(out, text, indent, width);
+    }
+    out += "\nEnvironment:\n";
+    const char* env[][2] = {
+        {"CLPPM_KERNEL_DIR", "load the kernel sources from this folder instead of the embedded copies"},
+        {"CLPPM_CACHE_DIR", "where built programs are cached (else $XDG_CACHE_HOME/clppm, else ~/.cache/clppm)"},
+        {"CLPPM_NO_CACHE", "1: build the kernels every time, cache nothing"},
+        {"CLPPM_BUILD_LOG", "1: print the compiler's log of successful kernel builds"},
+        {"CLPPM_LOCAL_SIZE", "force this work-group size (the image does not change)"},
+        {"CLPPM_PHOTON_BATCH", "trace each pass's photons in batches of at most this many (the image does not change)"},
+        {"POCL_DEVICES", "PoCL's devices, e.g. \"pthread pthread\" for two CPU devices (--device all)"}};
+    for (const auto& [name, what] : env) {
+        std::string col = std::string("  ") + name;
+        out += col + std::string(indent > col.size() ? indent - col.size() : 1, ' ');
+        append_wrapped(out, what, indent, width);
     }
     return out;
 }

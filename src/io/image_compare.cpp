@@ -1,6 +1,7 @@
 #include "io/image_compare.h"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -97,6 +98,17 @@ Image box_filter(const Image& a, int k) {
     return b;
 }
 
+std::string compare_usage() {
+    return "Usage: clppm compare IMAGE.exr REFERENCE.exr [--diff OUT.png] [--box K]\n"
+           "Prints, as JSON, how far IMAGE is from REFERENCE: both means and their ratio, the relative MSE\n"
+           "(per pixel and channel, (a - b)^2 / (b^2 + 0.01)), RMSE, relative RMSE, the RMSE of the sRGB\n"
+           "codes, and NaN/Inf counts.\n\n"
+           "  --diff OUT.png   also write a false-colour difference image\n"
+           "  --box K          also the relative MSE of both images box-filtered over K x K pixels\n"
+           "                   (box_rel_mse: bias more than noise); K in 1..1024\n"
+           "  -h, --help       print this help and exit\n";
+}
+
 int compare_command(int argc, char** argv) {
     const char* usage = " (usage: clppm compare A.exr REFERENCE.exr [--diff OUT.png] [--box K])";
     std::vector<std::string> files;
@@ -104,9 +116,19 @@ int compare_command(int argc, char** argv) {
     int box = 0;
     for (int i = 0; i < argc; ++i) {
         std::string s = argv[i];
+        if (s == "--help" || s == "-h") {
+            std::fputs(compare_usage().c_str(), stdout);
+            return 0;
+        }
         if (s == "--diff") {
             if (i + 1 >= argc) throw Error("compare --diff: missing value OUT.png");
             diff_png = argv[++i];
+            const size_t n = diff_png.size();
+            std::string tail = n >= 4 ? diff_png.substr(n - 4) : "";
+            for (char& ch : tail) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+            if (n <= 4 || tail != ".png")
+                throw Error("compare --diff " + diff_png +
+                            ": must be a file name ending in .png (it is written as PNG)");
         } else if (s == "--box") {
             const std::string v = i + 1 < argc ? argv[++i] : "";
             char* end = nullptr;

@@ -33,6 +33,9 @@ Image box_filter(const Image& a, int k);
 // The compare command: args are [A.exr, B.exr, optional --diff OUT.png, optional --box K];
 // prints the metrics as JSON on stdout (with --box also box_rel_mse, the relative MSE of the
 // images box-filtered over K x K pixels); returns the exit status.
+// The compare command's help text (clppm compare --help).
+std::string compare_usage();
+
 int compare_command(int argc, char** argv);
 
 } // namespace clppm
