@@ -39,7 +39,7 @@ TEST(Options, Defaults) {
     EXPECT_EQ(o.stats_json, "");
     EXPECT_EQ(o.integrator, Integrator::PPM);
     EXPECT_EQ(o.direct, DirectLighting::Sample);
-    EXPECT_EQ(o.spp, 1);
+    EXPECT_EQ(o.spp, 4);
     EXPECT_EQ(o.max_bounces, 16);
     EXPECT_EQ(o.progressive_output, 0u);
     EXPECT_EQ(o.kernel_dir, "");

@@ -205,7 +205,7 @@ const OptionSpec kOptions[] = {
          else if (v == "sample") st.options.direct = DirectLighting::Sample;
          else bad_value(a);
      }},
-    {"--spp", nullptr, "N", "Hit points (samples) per pixel per pass", "an integer in 1..256", "1",
+    {"--spp", nullptr, "N", "Hit points (samples) per pixel per pass", "an integer in 1..256", "4",
      [](ParseState& st, const Arg& a) { st.options.spp = static_cast<int>(parse_int(a, 1, 256)); }},
     {"--filter", nullptr, "NAME",
      "Pixel filter, importance-sampled: box = the pixel's square, tent = separable tent of radius 1 pixel",

@@ -31,7 +31,7 @@ struct Options {
     std::string stats_json; // --stats-json FILE; empty = none
     Integrator integrator = Integrator::PPM;
     DirectLighting direct = DirectLighting::Sample;
-    int spp = 1; // PPM hit points (samples) per pixel, 1..256
+    int spp = 4; // PPM hit points (samples) per pixel, 1..256: 4 anti-alias (bench/RESULTS.md)
     PixelFilter filter = PixelFilter::Box;
     double aperture = -1.0;      // thin-lens aperture radius; < 0 = the camera's (0 = pinhole)
     double focus_distance = 0.0; // thin-lens focus distance; 0 = the camera's
