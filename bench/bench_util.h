@@ -12,6 +12,7 @@
 #include "device/kernel_program.h"
 #include "integrators/integrator_factory.h"
 #include "scene/device_scene.h"
+#include "scene/environment.h"
 #include "scene/gltf/gltf_load.h"
 #include "scene/scene_features.h"
 #include "util/error.h"
@@ -22,9 +23,15 @@ inline double now_s() {
     return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
 
+// A benchmark scene by name, or a glTF file by path; lit as the command line lights it (a scene
+// without lights by the default white environment).
 inline Scene load_named_scene(const std::string& name) {
-    if (name.empty() || name == "cornell_box") return load_default_scene();
-    return load_gltf(std::string(CLPPM_SOURCE_DIR) + "/scenes/" + name + ".gltf");
+    Scene scene = name.empty() || name == "cornell_box" ? load_default_scene()
+                  : name.find('/') != std::string::npos
+                      ? load_gltf(name)
+                      : load_gltf(std::string(CLPPM_SOURCE_DIR) + "/scenes/" + name + ".gltf");
+    apply_environment(scene, EnvironmentSettings{}, nullptr);
+    return scene;
 }
 
 // A render in this process on one device: build, prepare, then passes on demand.
@@ -37,12 +44,15 @@ struct Render {
     std::unique_ptr<IntegratorBase> integ;
     double prepare_seconds = 0;
 
-    Render(const DeviceInfo& device, const std::string& scene_name, const RenderSettings& s, bool generic = false)
+    // error_estimation: enabled before prepare(), as PPM needs.
+    Render(const DeviceInfo& device, const std::string& scene_name, const RenderSettings& s, bool generic = false,
+           bool error_estimation = false)
         : dc(device), scene(load_named_scene(scene_name)) {
         ds = upload_scene(dc, scene, s);
         std::string features = generic ? std::string() : feature_build_options(scene_features(scene, ds));
         program = build_program(dc, integrator_program_file(s), integrator_build_options(s, device, features), &build);
         integ = make_integrator(dc, ds, s, program);
+        if (error_estimation) integ->enable_error_estimation();
         double t0 = now_s();
         integ->prepare();
         dc.queue.finish();

@@ -1,13 +1,17 @@
 // error_calibration: how well the progressive error estimate (src/integrators/error_estimate.h) predicts the
-// actual error. For each benchmark scene it renders a reference (SPPM, another seed,
-// --ref-passes passes), then an SPPM render with error estimation, and at a few pass counts
-// compares, per pixel and on luminance, the estimated bound with the actual error against the
-// reference: the fraction of pixels within their bound (to compare with the confidence), and the
-// image-level (90th percentile) estimated and actual relative errors. Writes a CSV and a markdown
-// table to --out (FILE.csv and FILE.md). Measures; never fails on a number.
+// actual error. For each scene (benchmark names, or paths to .gltf files) it renders a reference
+// (SPPM, another seed, --ref-photon-factor times the photons, --ref-passes passes; cached as an
+// EXR in --ref-cache), then for each integrator a render with error estimation, and at passes
+// 4, 8, 16, ... compares, on luminance, the estimates with the actual error against the
+// reference: the image-level (90th percentile) bound, the uncalibrated expectation from noise
+// alone and from noise and bias, the calibrated estimate --target-error stops on, the actual
+// error by the same measure, and the fraction of pixels within their bound (to compare with the
+// confidence). Writes a CSV and a markdown table to --out (PREFIX.csv and PREFIX.md). Measures;
+// never fails on a number.
 //
-//   error_calibration [--out PREFIX] [--size N] [--photons M] [--passes N] [--ref-passes N]
-//                     [--confidence P] [--device SPEC] [--quick]
+//   error_calibration [--out PREFIX] [--scenes A,B] [--integrators ppm,sppm,pppm] [--size N]
+//                     [--photons M] [--passes N] [--ref-passes N] [--ref-photon-factor K]
+//                     [--ref-cache DIR] [--confidence P] [--device SPEC] [--quick]
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
@@ -18,6 +22,7 @@
 
 #include "bench_util.h"
 #include "integrators/error_estimate.h"
+#include "io/image_io.h"
 
 using namespace clppm;
 using namespace clppm::bench;
@@ -25,11 +30,32 @@ using namespace clppm::bench;
 namespace {
 
 struct Args {
-    std::string out = "error_calibration", device;
+    std::string out = "error_calibration", device, ref_cache, integrators = "sppm,pppm,ppm";
+    std::string scenes = "cornell_box,caustic";
     unsigned size = 48;
-    uint64_t photons = 50000, passes = 200, ref_passes = 1600;
+    uint64_t photons = 50000, passes = 200, ref_passes = 1600, ref_photon_factor = 4;
     double confidence = 0.95;
 };
+
+Integrator parse_integrator(const std::string& name) {
+    for (Integrator i : {Integrator::PPM, Integrator::SPPM, Integrator::PPPM})
+        if (name == to_string(i)) return i;
+    throw Error("--integrators: " + name + " is not ppm, sppm or pppm");
+}
+
+// A file name part for a scene name or path.
+std::string scene_tag(const std::string& scene) {
+    std::string t = scene.substr(scene.find_last_of('/') + 1);
+    return t.substr(0, t.find('.'));
+}
+
+std::vector<std::string> split(const std::string& s) {
+    std::vector<std::string> v;
+    std::stringstream ss(s);
+    for (std::string t; std::getline(ss, t, ',');)
+        if (!t.empty()) v.push_back(t);
+    return v;
+}
 
 std::vector<float> luminance(const Image& img) {
     std::vector<float> y(size_t(img.width) * img.height);
@@ -39,9 +65,9 @@ std::vector<float> luminance(const Image& img) {
 }
 
 struct Row {
-    std::string scene;
+    std::string scene, integrator;
     uint64_t pass;
-    double seconds, estimated, actual, coverage, median_ratio;
+    double seconds, bound, expected, expected_clean, calibrated, actual, coverage, median_ratio;
 };
 
 } // namespace
@@ -58,6 +84,10 @@ int main(int argc, char** argv) {
         else if (k == "--ref-passes") a.ref_passes = std::stoull(next());
         else if (k == "--confidence") a.confidence = std::stod(next());
         else if (k == "--device") a.device = next();
+        else if (k == "--ref-cache") a.ref_cache = next();
+        else if (k == "--ref-photon-factor") a.ref_photon_factor = std::stoull(next());
+        else if (k == "--integrators") a.integrators = next();
+        else if (k == "--scenes") a.scenes = next();
         else if (k == "--quick") a.size = 16, a.photons = 5000, a.passes = 8, a.ref_passes = 32;
         else {
             std::fprintf(stderr, "error_calibration: unknown argument %s\n", k.c_str());
@@ -68,59 +98,89 @@ int main(int argc, char** argv) {
         const DeviceInfo& device = bench_device(a.device);
         std::vector<Row> rows;
         const double t_start = now_s();
-        for (const std::string scene : {"cornell_box", "caustic"}) {
+        for (const std::string& scene : split(a.scenes)) {
+            // The reference: SPPM with ref_photon_factor times the photons per pass and another
+            // seed, optionally cached as an EXR (it dominates the run time).
             RenderSettings s;
             s.integrator = Integrator::SPPM;
             s.width = s.height = a.size;
-            s.photons = a.photons;
-            s.seed = 1000; // the reference: independent of the tracked render's photons
-            Render ref(device, scene, s);
-            for (uint64_t p = 0; p < a.ref_passes; ++p) ref.integ->run_pass();
-            const std::vector<float> ref_y = luminance(ref.integ->image());
-            std::fprintf(stderr, "%s: reference of %llu passes done\n", scene.c_str(),
-                         (unsigned long long)a.ref_passes);
+            s.photons = a.photons * a.ref_photon_factor;
+            s.seed = 1000;
+            const std::string cache = a.ref_cache.empty()
+                                          ? std::string()
+                                          : a.ref_cache + "/" + scene_tag(scene) + "_" + std::to_string(a.size) + "_" +
+                                                std::to_string(s.photons) + "x" + std::to_string(a.ref_passes) + ".exr";
+            std::vector<float> ref_y;
+            if (!cache.empty() && std::ifstream(cache).good()) {
+                ref_y = luminance(read_exr(cache));
+            } else {
+                Render ref(device, scene, s);
+                for (uint64_t p = 0; p < a.ref_passes; ++p) ref.integ->run_pass();
+                const Image img = ref.integ->image();
+                if (!cache.empty()) write_exr(cache, img);
+                ref_y = luminance(img);
+            }
+            std::fprintf(stderr, "%s: reference of %llu passes of %llu photons\n", scene_tag(scene).c_str(),
+                         (unsigned long long)a.ref_passes, (unsigned long long)s.photons);
 
-            s.seed = 1;
-            Render r(device, scene, s);
-            r.integ->enable_error_estimation();
-            const double t0 = now_s();
-            for (uint64_t p = 1; p <= a.passes; ++p) {
-                r.integ->run_pass();
-                const bool sample = p == a.passes || (p >= 4 && (p & (p - 1)) == 0); // 4, 8, 16, ...
-                if (!sample) continue;
-                ErrorImage e = r.integ->error_estimate(a.confidence);
-                std::vector<float> actual(e.absolute.size());
-                size_t within = 0;
-                std::vector<double> ratio;
-                for (size_t i = 0; i < actual.size(); ++i) {
-                    actual[i] = std::fabs(e.luminance[i] - ref_y[i]);
-                    within += actual[i] <= e.absolute[i];
-                    ratio.push_back(e.absolute[i] > 0 ? actual[i] / e.absolute[i] : 0.0);
+            for (const std::string& name : split(a.integrators)) {
+                s.integrator = parse_integrator(name);
+                s.photons = a.photons;
+                s.seed = 1;
+                if (s.integrator == Integrator::PPM) s.spp = 4;
+                Render r(device, scene, s, false, true);
+                const double t0 = now_s();
+                for (uint64_t p = 1; p <= a.passes; ++p) {
+                    r.integ->run_pass();
+                    const bool sample = p == a.passes || (p >= 4 && (p & (p - 1)) == 0); // 4, 8, 16, ...
+                    if (!sample) continue;
+                    ErrorImage e = r.integ->error_estimate(a.confidence);
+                    std::vector<float> actual(e.absolute.size());
+                    size_t within = 0;
+                    std::vector<double> ratio;
+                    for (size_t i = 0; i < actual.size(); ++i) {
+                        actual[i] = std::fabs(e.luminance[i] - ref_y[i]);
+                        within += actual[i] <= e.absolute[i];
+                        ratio.push_back(e.absolute[i] > 0 ? actual[i] / e.absolute[i] : 0.0);
+                    }
+                    std::nth_element(ratio.begin(), ratio.begin() + ratio.size() / 2, ratio.end());
+                    rows.push_back({scene_tag(scene), name, p, now_s() - t0, e.image_error,
+                                    expected_image_error(e.sigma, {}, e.luminance),
+                                    expected_image_error(e.sigma, e.bias_clean, e.luminance), e.expected_error,
+                                    image_error(relative_bounds(actual, ref_y)), double(within) / double(actual.size()),
+                                    ratio[ratio.size() / 2]});
+                    const Row& w = rows.back();
+                    std::fprintf(stderr,
+                                 "%s %s pass %llu: bound %.4f noise %.4f (+bias %.4f) calibrated %.4f actual %.4f "
+                                 "(calibrated/actual %.2f)\n",
+                                 scene_tag(scene).c_str(), name.c_str(), (unsigned long long)p, w.bound, w.expected,
+                                 w.expected_clean, w.calibrated, w.actual, w.calibrated / w.actual);
                 }
-                std::nth_element(ratio.begin(), ratio.begin() + ratio.size() / 2, ratio.end());
-                rows.push_back({scene, p, now_s() - t0, e.image_error,
-                                image_error(relative_bounds(actual, e.luminance)),
-                                double(within) / double(actual.size()), ratio[ratio.size() / 2]});
-                std::fprintf(stderr, "%s pass %llu: estimated %.4f actual %.4f coverage %.3f\n", scene.c_str(),
-                             (unsigned long long)p, rows.back().estimated, rows.back().actual, rows.back().coverage);
             }
         }
         std::ofstream csv(a.out + ".csv");
-        csv << "scene,pass,seconds,estimated_error_p90,actual_error_p90,fraction_within_bound,median_actual_over_"
-               "bound\n";
+        csv << "scene,integrator,pass,seconds,bound_p90,expected_p90,expected_with_bias_p90,calibrated_p90,actual_p90,"
+               "fraction_within_"
+               "bound,median_actual_over_bound\n";
         std::ostringstream md;
         md << "Device: " << device.name << "; " << a.size << "x" << a.size << ", " << a.photons
-           << " photons per pass, SPPM alpha 0.7; reference: " << a.ref_passes << " passes (seed 1000); confidence "
-           << a.confidence << "; total " << int(now_s() - t_start) << " s.\n\n"
-           << "| scene | pass | s | estimated (p90) | actual (p90) | pixels within bound | median actual/bound |\n"
-           << "|---|---:|---:|---:|---:|---:|---:|\n";
+           << " photons per pass (PPM: --spp 4), alpha 0.7; reference: SPPM, " << a.ref_passes << " passes of "
+           << a.photons * a.ref_photon_factor << " photons (seed 1000); confidence " << a.confidence << "; total "
+           << int(now_s() - t_start) << " s.\n\n"
+           << "| scene | integrator | pass | s | bound (p90) | noise only (p90) | noise and bias (p90) | calibrated "
+              "estimate (p90) "
+              "| actual (p90) | calibrated / actual | pixels within bound | median actual/bound |\n"
+           << "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
         char buf[256];
         for (const Row& r : rows) {
-            csv << r.scene << ',' << r.pass << ',' << r.seconds << ',' << r.estimated << ',' << r.actual << ','
-                << r.coverage << ',' << r.median_ratio << '\n';
-            std::snprintf(buf, sizeof buf, "| %s | %llu | %.1f | %.4f | %.4f | %.1f%% | %.3f |\n", r.scene.c_str(),
-                          (unsigned long long)r.pass, r.seconds, r.estimated, r.actual, 100 * r.coverage,
-                          r.median_ratio);
+            csv << r.scene << ',' << r.integrator << ',' << r.pass << ',' << r.seconds << ',' << r.bound << ','
+                << r.expected << ',' << r.expected_clean << ',' << r.calibrated << ',' << r.actual << ',' << r.coverage
+                << ',' << r.median_ratio << '\n';
+            std::snprintf(buf, sizeof buf,
+                          "| %s | %s | %llu | %.1f | %.4f | %.4f | %.4f | %.4f | %.4f | %.2f | %.1f%% | %.3f |\n",
+                          r.scene.c_str(), r.integrator.c_str(), (unsigned long long)r.pass, r.seconds, r.bound,
+                          r.expected, r.expected_clean, r.calibrated, r.actual, r.calibrated / r.actual,
+                          100 * r.coverage, r.median_ratio);
             md << buf;
         }
         std::ofstream(a.out + ".md") << md.str();

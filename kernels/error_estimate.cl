@@ -1,17 +1,19 @@
 /* error_estimate.cl: the progressive error estimate of Hachisuka, Jarosz and Jensen, "A Progressive
  * Error Estimation Framework for Photon Density Estimation" (SIGGRAPH Asia 2010), for SPPM and
- * PPPM, per pixel and on the pixel luminance:
+ * PPPM and PPM, per pixel and on the pixel luminance:
  *   error bound  E_i = |B_i| + t_{i-1}((1 + P) / 2) sqrt(V_i / i)     (Sec. 4: bias plus a stochastic
  *                                                                   noise bound at confidence P)
- *   bias         B_i = mean_j(R_j^2) / 8 * Lap L                    (Sec. 5: B = R^2 k_2 Lap L / 2;
+ *   bias         B_i = mean_j(R_j^2 / 8 * Lap_j L)                  (Sec. 5: B = R^2 k_2 Lap L / 2;
  *                                                                   the disc kernel has k_2 = 1/4)
  *   Laplacian    Lap L ~ mean_j [ sum_p Lap K_R(x - x_p) f Phi_p ]  (Sec. 5: the Laplacian of a smooth
  *                                                                   kernel, accumulated progressively)
  *   variance     V_i = sample variance of the single-pass estimates L_j (Sec. 6)
  * The Laplacian uses the biweight K(t) = 3/pi (1 - |t|^2)^2, whose Laplacian in the plane is
- * 24/pi (2|t|^2 - 1) (K and K' vanish at |t| = 1, so no boundary term). Only compiled into the
- * SPPM program; only launched when error estimation is on. */
+ * 24/pi (2|t|^2 - 1) (K and K' vanish at |t| = 1, so no boundary term). Per pixel for SPPM and
+ * PPPM (one visible point each) and for PPM (a pixel's spp fixed hit points); only launched when
+ * error estimation is on. */
 #include "gather_common.cl"
+#include "radiance_estimate.cl"
 
 #define ERROR_LUMINANCE_R 0.2126
 #define ERROR_LUMINANCE_G 0.7152
@@ -48,55 +50,121 @@ __kernel void error_gather(__constant GridInfo* g, __global const Photon* sorted
     out[i] = acc;
 }
 
-/* Fresh statistics; direct_y starts at the direct light already summed (a resumed render). */
-__kernel void error_reset(__global const HitStats* stats, uint n, __global ErrorStats* es) {
-    uint i = get_global_id(0);
-    if (i >= n) return;
-    __global const HitStats* s = &stats[i];
-    __global ErrorStats* e = &es[i];
-    e->n = e->mean_l = e->m2_l = e->mean_r2 = e->mean_lap = 0.0;
-    e->direct_y = error_luminance(s->direct[0], s->direct[1], s->direct[2]);
+/* Hit points [first, last) make one pixel: SPPM's one visible point per pixel (pixel_first = 0:
+ * hit point p is pixel p), or PPM's fixed hit points, spp samples per pixel, whose pixel owns
+ * [pixel_first[p], pixel_first[p + 1]) as in ppm_film. */
+uint2 error_pixel_range(__global const uint* pixel_first, uint p) {
+    return pixel_first ? (uint2)(pixel_first[p], pixel_first[p + 1]) : (uint2)(p, p + 1);
 }
 
-/* After a pass's gathers, before ppm_update (stats[i].r2 is still this pass's R_j^2): the pass's
- * single-pass estimates join the running means. L_j = Y(w tau_M) P / (M pi R_j^2) + this pass's
- * emission and direct light, so that the image is mean_j L_j. global_r2 > 0: PPPM's radius. */
+/* The pixel's summed direct light (and SPPM's seen emission), in luminance. */
+double error_direct_y(__global const HitStats* stats, uint2 range) {
+    double y = 0.0;
+    for (uint k = range.x; k < range.y; ++k)
+        y += error_luminance(stats[k].direct[0], stats[k].direct[1], stats[k].direct[2]);
+    return y;
+}
+
+/* Fresh statistics; direct_y starts at the direct light already summed (a resumed render). */
+__kernel void error_reset(__global const HitStats* stats, __global const uint* pixel_first, uint n,
+                          __global ErrorStats* es) {
+    uint p = get_global_id(0);
+    if (p >= n) return;
+    __global ErrorStats* e = &es[p];
+    e->n = e->mean_l = e->m2_l = e->mean_bias = e->m2_bias = 0.0;
+    e->direct_y = error_direct_y(stats, error_pixel_range(pixel_first, p));
+}
+
+/* After a pass's gathers, before ppm_update (stats[k].r2 is still this pass's R_j^2): the pass's
+ * single-pass estimates join the running means. Per hit point k of the pixel,
+ *   L_j += Y(w tau_M) P / (M pi R_j^2),   B_j += R_j^2 Lap_j / 8,
+ * plus this pass's direct light (and SPPM's seen emission) and PPM's constant seen emission, all
+ * divided by the pixel's sample count, so that the image is exactly mean_j L_j (ppm_update keeps
+ * tau / R^2 = sum_j tau_M,j / R_j^2). global_r2 > 0: PPPM's radius. */
 __kernel void error_update(__global const PassFlux* pass, __global const long* lap, __global const HitPoint* hitpoints,
-                           __global const HitStats* stats, uint n, double global_r2, double power_per_photon,
-                           __global ErrorStats* es) {
-    uint i = get_global_id(0);
-    if (i >= n) return;
-    __global const HitStats* s = &stats[i];
-    __global ErrorStats* e = &es[i];
-    const double r2 = global_r2 > 0.0 ? global_r2 : s->r2;
-    const double direct_y = error_luminance(s->direct[0], s->direct[1], s->direct[2]);
-    double L = direct_y - e->direct_y, lap_j = 0.0;
+                           __global const HitStats* stats, __global const uint* pixel_first,
+                           __global const float4* emitted, uint n, uint spp, double global_r2,
+                           double power_per_photon, __global ErrorStats* es) {
+    uint p = get_global_id(0);
+    if (p >= n) return;
+    __global ErrorStats* e = &es[p];
+    const uint2 range = error_pixel_range(pixel_first, p);
+    const double direct_y = error_direct_y(stats, range);
+    double L = direct_y - e->direct_y, bias_j = 0.0;
     e->direct_y = direct_y;
-    __global const HitPoint* hp = &hitpoints[i];
-    if (hp->pixel != HITPOINT_NONE && r2 > 0.0) {
-        __global const PassFlux* pf = &pass[i];
+    if (emitted) L += error_luminance(emitted[p].x, emitted[p].y, emitted[p].z);
+    for (uint k = range.x; k < range.y; ++k) {
+        __global const HitPoint* hp = &hitpoints[k];
+        const double r2 = global_r2 > 0.0 ? global_r2 : stats[k].r2;
+        if (hp->pixel == HITPOINT_NONE || !(r2 > 0.0)) continue;
+        __global const PassFlux* pf = &pass[k];
         double tau_y = error_luminance(hp->weight[0] * ((double)pf->flux[0] / FLUX_FIXED_SCALE),
                                        hp->weight[1] * ((double)pf->flux[1] / FLUX_FIXED_SCALE),
                                        hp->weight[2] * ((double)pf->flux[2] / FLUX_FIXED_SCALE));
         L += tau_y * power_per_photon / (M_PI * r2);
-        lap_j = (24.0 / M_PI) * ((double)lap[i] / FLUX_FIXED_SCALE) * power_per_photon / (r2 * r2);
+        /* R^2 / 8 times the Laplacian 24 / (pi R^4) sum: 3 / (pi R^2) sum. */
+        bias_j += (3.0 / M_PI) * ((double)lap[k] / FLUX_FIXED_SCALE) * power_per_photon / r2;
     }
+    L /= (double)spp;
+    bias_j /= (double)spp;
     /* Welford's update: no cancellation however many passes. */
-    const double k = e->n + 1.0, d = L - e->mean_l;
+    const double k = e->n + 1.0, d = L - e->mean_l, db = bias_j - e->mean_bias;
     e->n = k;
     e->mean_l += d / k;
     e->m2_l += d * (L - e->mean_l);
-    e->mean_r2 += (r2 - e->mean_r2) / k;
-    e->mean_lap += (lap_j - e->mean_lap) / k;
+    e->mean_bias += db / k;
+    e->m2_bias += db * (bias_j - e->mean_bias);
 }
 
-/* Per pixel (E_i, L_i, B_i, noise bound) for the Student-t quantile t of the pass count; E_i is
- * +Inf until two passes give a variance. */
-__kernel void error_bound(__global const ErrorStats* es, uint n, double t, __global float4* out) {
+/* Per pixel, for the Student-t quantile t of the pass count: (E_i, L_i, B_i, t sigma_i) and
+ * (B_i with its own noise taken out, sigma_i). sigma_i = sqrt(V_i / i) is the standard deviation
+ * of the mean L_i; E_i is +Inf until two passes give a variance. The de-noised bias:
+ * E[B_est^2] = B^2 + Var(B_est), so |B| ~ sqrt(max(0, B_est^2 - Var(B_est))), with the sign of
+ * B_est. */
+__kernel void error_bound(__global const ErrorStats* es, uint n, double t, __global float8* out) {
     uint i = get_global_id(0);
     if (i >= n) return;
     __global const ErrorStats* e = &es[i];
-    const double bias = e->mean_r2 * e->mean_lap / 8.0;
-    const double noise = e->n >= 2.0 ? t * sqrt(e->m2_l / (e->n - 1.0) / e->n) : INFINITY;
-    out[i] = (float4)((float)(fabs(bias) + noise), (float)e->mean_l, (float)bias, (float)noise);
+    const double bias = e->mean_bias;
+    const double sigma = e->n >= 2.0 ? sqrt(e->m2_l / (e->n - 1.0) / e->n) : INFINITY;
+    const double var_bias = e->n >= 2.0 ? e->m2_bias / (e->n - 1.0) / e->n : INFINITY;
+    const double bias_clean = copysign(sqrt(fmax(0.0, bias * bias - var_bias)), bias);
+    const double noise = t * sigma;
+    out[i] = (float8)((float)(fabs(bias) + noise), (float)e->mean_l, (float)bias, (float)noise, (float)bias_clean,
+                      (float)sigma, 0.0f, 0.0f);
+}
+
+/* PPM: the spread of a pixel's fixed samples. Its spp samples are frozen for the whole render,
+ * so the error of their mean as an estimate of the pixel integral (anti-aliasing, texture and
+ * edges within the pixel) never decays; the passes' spread (error_update) cannot see it. The
+ * sample variance of the samples' current radiance estimates, divided by spp, estimates the
+ * variance of that frozen error plus the pixel's noise (each sample's noise is in its
+ * estimate). Sample s of pixel p: its seen emission sample_y[p spp + s] plus, for each of its
+ * hit points (hit_sample[k] == s, in sample order within the pixel's range), the film's
+ * radiance (ppm_film). Out: sqrt(variance / spp), 0 for spp = 1. */
+__kernel void error_sample_spread(__global const HitStats* stats, __global const uint* pixel_first,
+                                  __global const uint* hit_sample, __global const float* sample_y, uint n, uint spp,
+                                  double total_power, double photons_emitted, double passes, __global float* out) {
+    uint p = get_global_id(0);
+    if (p >= n) return;
+    if (spp < 2) {
+        out[p] = 0.0f;
+        return;
+    }
+    uint k = pixel_first[p];
+    const uint end = pixel_first[p + 1];
+    double mean = 0.0, m2 = 0.0;
+    for (uint s = 0; s < spp; ++s) {
+        double y = sample_y[(ulong)p * spp + s];
+        for (; k < end && hit_sample[k] == s; ++k) {
+            __global const HitStats* st = &stats[k];
+            double3 L = photon_radiance(st, total_power, photons_emitted);
+            if (passes > 0.0) L += (double3)(st->direct[0], st->direct[1], st->direct[2]) / passes;
+            y += error_luminance(L.x, L.y, L.z);
+        }
+        const double d = y - mean;
+        mean += d / (double)(s + 1);
+        m2 += d * (y - mean);
+    }
+    out[p] = (float)sqrt(m2 / (double)(spp - 1) / (double)spp);
 }

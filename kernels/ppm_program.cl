@@ -6,3 +6,4 @@
 #include "direct_light.cl"
 #include "ppm_update.cl"
 #include "film.cl"
+#include "error_estimate.cl"

@@ -234,16 +234,16 @@ typedef struct {
 
 /* Per-pixel statistics of the progressive error estimate (Hachisuka, Jarosz and Jensen 2010;
  * kernels/error_estimate.cl), kept only when error estimation is on. Running means (Welford) over
- * the passes j = 1..n of the single-pass luminance estimates L_j, of R_j^2 and of the single-pass
- * Laplacian estimates: the image is exactly the mean of the L_j (SPPM: tau_i / R_i^2 =
- * sum_j tau_M,j / R_j^2), so their spread is its noise and mean(R_j^2) Laplacian / 8 its bias. */
+ * the passes j = 1..n of the single-pass luminance estimates L_j and of the single-pass bias
+ * estimates B_j = R_j^2 Lap_j L / 8: the image is exactly the mean of the L_j (tau_i / R_i^2 =
+ * sum_j tau_M,j / R_j^2), so their spread is its noise and mean_j B_j its bias. */
 typedef struct {
-    double n;        /* passes accumulated */
-    double mean_l;   /* mean of L_j (luminance) */
-    double m2_l;     /* sum of squared deviations of L_j from their mean (Welford) */
-    double mean_r2;  /* mean of R_j^2 */
-    double mean_lap; /* mean of the single-pass estimates of the Laplacian of L */
-    double direct_y; /* luminance of HitStats.direct after the previous pass: this pass's share is the difference */
+    double n;         /* passes accumulated */
+    double mean_l;    /* mean of L_j (luminance) */
+    double m2_l;      /* sum of squared deviations of L_j from their mean (Welford) */
+    double mean_bias; /* mean of B_j */
+    double m2_bias;   /* sum of squared deviations of B_j from their mean: the bias estimate's own noise */
+    double direct_y;  /* luminance of the pixel's HitStats.direct after the previous pass: this pass's share is the difference */
 } ErrorStats; /* 48 bytes */
 
 #ifndef __OPENCL_VERSION__

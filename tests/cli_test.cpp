@@ -182,6 +182,8 @@ TEST(Cli, CompareBoxFilteredRelativeMse) {
     EXPECT_NEAR(j["rel_mse"].get<double>(), 0.25 / 1.01, 1e-6);
     EXPECT_NEAR(j["box_rel_mse"].get<double>(), 0.0, 1e-12);
     EXPECT_EQ(j["box"].get<int>(), 2);
+    // Every pixel is 50% off in luminance: the 90th percentile of the relative error is 0.5.
+    EXPECT_NEAR(j["p90_rel_error"].get<double>(), 0.5, 1e-6);
     EXPECT_EQ(run_clppm("compare " + d + "/a.exr " + d + "/b.exr --box 0", &out), 1);
     expect_one_line_error(out, "--box 0: must be an integer in 1..1024");
     // The difference image is a PNG, so its name must say so (it was written into d.jpg).

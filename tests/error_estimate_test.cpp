@@ -131,6 +131,54 @@ TEST(ErrorEstimate, ImageErrorIsThe90thPercentileOfRelativeBounds) {
     EXPECT_FLOAT_EQ(rel[2], 0.f);
 }
 
+// The expected percentile of |bias_i + sigma_i Z| / L_i over pixels, against closed forms and
+// against a simulation of the errors themselves (an independent host reference).
+TEST(ErrorEstimate, ExpectedImageErrorIsThePercentileOfTheErrorMixture) {
+    const std::vector<float> one(1000, 1.f);
+    // One sigma everywhere: the 90th percentile of |sigma Z| is sigma z_0.95.
+    EXPECT_NEAR(expected_image_error(std::vector<float>(1000, 0.1f), {}, one), 0.1 * normal_quantile(0.95), 1e-4);
+    // Bias alone: its own percentile.
+    std::vector<float> bias(1000), zero(1000, 0.f);
+    for (int i = 0; i < 1000; ++i) bias[i] = (i % 2 ? -1.f : 1.f) * float(i) / 1000;
+    EXPECT_NEAR(expected_image_error(zero, bias, one), 0.9, 2e-3);
+    // Relative to each pixel's radiance: doubling L halves the error.
+    EXPECT_NEAR(expected_image_error(std::vector<float>(1000, 0.2f), {}, std::vector<float>(1000, 2.f)),
+                0.1 * normal_quantile(0.95), 1e-4);
+    EXPECT_TRUE(std::isinf(expected_image_error({std::numeric_limits<float>::infinity(), 0.1f}, {}, {1.f, 1.f})));
+    EXPECT_TRUE(std::isinf(expected_image_error({}, {}, {})));
+
+    // A mixture of sigmas, biases and radiances (a pixel black, measured against 1% of the mean):
+    // the percentile of simulated errors.
+    std::vector<float> sigma, b, L;
+    for (int i = 0; i < 400; ++i) {
+        L.push_back(i == 7 ? 0.f : 0.5f + float(i % 13) / 4);
+        sigma.push_back(0.02f * float(1 + i % 7) * L.back() + (i == 7 ? 0.001f : 0.f));
+        b.push_back(0.03f * float(i % 5 - 2) * L.back());
+    }
+    uint64_t state = 12345;
+    auto uniform = [&] {
+        state = state * 6364136223846793005ull + 1442695040888963407ull;
+        return (double(state >> 11) + 0.5) / 9007199254740992.0;
+    };
+    double mean = 0;
+    for (float l : L) mean += l;
+    mean /= double(L.size());
+    std::vector<float> simulated;
+    for (int k = 0; k < 500; ++k)
+        for (size_t i = 0; i < L.size(); ++i) {
+            const double z = std::sqrt(-2 * std::log(uniform())) * std::cos(2 * M_PI * uniform());
+            simulated.push_back(float(std::fabs(b[i] + sigma[i] * z) / std::max(double(L[i]), 0.01 * mean)));
+        }
+    EXPECT_NEAR(expected_image_error(sigma, b, L) / image_error(simulated), 1.0, 0.01);
+}
+
+TEST(ErrorEstimate, C4CorrectsTheSampleStandardDeviation) {
+    EXPECT_NEAR(c4(2), std::sqrt(2 / M_PI), 1e-12);
+    EXPECT_NEAR(c4(4), 0.9213177, 1e-6);
+    EXPECT_NEAR(c4(1000), 1.0, 3e-4);
+    EXPECT_EQ(c4(1), 0.0);
+}
+
 TEST(ErrorEstimate, TrendExtrapolatesAPowerLaw) {
     ErrorTrend t;
     EXPECT_LT(t.eta_seconds(0.1), 0);
@@ -235,30 +283,29 @@ TEST(ErrorEstimate, BoundCoversTheActualErrorOnTheAnalyticPlane) {
 }
 
 // --target-error stops the render once the estimate is below the target, and not before; an
-// unreachable target runs to --passes.
+// unreachable target runs to --passes; --error-bound stops on the bound instead.
 TEST(ErrorEstimate, TargetErrorHaltsTheRender) {
     const std::string dir = make_temp_dir("error_estimate");
     const std::string common = " --integrator sppm --width 32 --height 32 --photons 10000 --quiet --no-png -o " + dir +
                                "/out.exr --stats-json " + dir + "/stats.json";
     std::string out;
-    ASSERT_EQ(run_clppm("--target-error 0.35 --passes 300 --error-output " + dir + "/err.exr" + common, &out), 0)
-        << out;
+    ASSERT_EQ(run_clppm("--target-error 0.2 --passes 300 --error-output " + dir + "/err.exr" + common, &out), 0) << out;
     nlohmann::json j = read_json(dir + "/stats.json");
     const uint64_t passes = j["passes"];
-    std::printf("--target-error 0.35 reached after %llu passes\n", static_cast<unsigned long long>(passes));
+    std::printf("--target-error 0.2 reached after %llu passes\n", static_cast<unsigned long long>(passes));
     EXPECT_LT(passes, 300u);
     EXPECT_TRUE(j["error"]["reached"].get<bool>());
-    EXPECT_LE(j["error"]["estimated"].get<double>(), 0.35);
+    EXPECT_LE(j["error"]["estimated"].get<double>(), 0.2);
     EXPECT_EQ(j["error"]["passes"].get<uint64_t>(), passes);
     std::ifstream err(dir + "/err.exr"), errpng(dir + "/err.png");
     EXPECT_TRUE(err.good());
     EXPECT_TRUE(errpng.good());
 
     // It halted at the first pass whose estimate was below the target: one pass fewer is above.
-    ASSERT_EQ(run_clppm("--target-error 0.35 --passes " + std::to_string(passes - 1) + common, &out), 0) << out;
+    ASSERT_EQ(run_clppm("--target-error 0.2 --passes " + std::to_string(passes - 1) + common, &out), 0) << out;
     nlohmann::json before = read_json(dir + "/stats.json");
     EXPECT_EQ(before["passes"].get<uint64_t>(), passes - 1);
-    EXPECT_GT(before["error"]["estimated"].get<double>(), 0.35);
+    EXPECT_GT(before["error"]["estimated"].get<double>(), 0.2);
     EXPECT_FALSE(before["error"]["reached"].get<bool>());
 
     ASSERT_EQ(run_clppm("--target-error 0.0001 --passes 6" + common, &out), 0) << out;
@@ -266,14 +313,52 @@ TEST(ErrorEstimate, TargetErrorHaltsTheRender) {
     EXPECT_EQ(far["passes"].get<uint64_t>(), 6u);
     EXPECT_FALSE(far["error"]["reached"].get<bool>());
     EXPECT_GT(far["error"]["estimated"].get<double>(), 0.0001);
+
+    // The bound is the larger: it stops later.
+    ASSERT_EQ(run_clppm("--target-error 0.2 --error-bound --passes 300" + common, &out), 0) << out;
+    nlohmann::json bound = read_json(dir + "/stats.json");
+    EXPECT_EQ(bound["error"]["stops_on"], "bound");
+    EXPECT_TRUE(bound["error"]["reached"].get<bool>());
+    EXPECT_LE(bound["error"]["bound"].get<double>(), 0.2);
+    EXPECT_GT(bound["passes"].get<uint64_t>(), passes);
+    EXPECT_EQ(run_clppm("--integrator sppm --error-bound --passes 1 --quiet", &out), 1);
+    EXPECT_NE(out.find("--error-bound: needs --target-error"), std::string::npos) << out;
 }
 
 TEST(ErrorEstimate, UnsupportedIntegratorIsAnError) {
     std::string out;
-    EXPECT_EQ(run_clppm("--integrator ppm --target-error 0.1 --passes 1 --quiet", &out), 1);
-    EXPECT_NE(out.find("--target-error: error estimation needs --integrator sppm or pppm (not ppm)"), std::string::npos)
+    EXPECT_EQ(run_clppm("--integrator pt --target-error 0.1 --passes 1 --quiet", &out), 1);
+    EXPECT_NE(
+        out.find("--target-error: error estimation needs a photon-mapping integrator (ppm, sppm or pppm), not pt"),
+        std::string::npos)
         << out;
     EXPECT_EQ(run_clppm("--integrator pt --error-output e.exr --passes 1 --quiet", &out), 1);
-    EXPECT_NE(out.find("--error-output: error estimation needs --integrator sppm or pppm (not pt)"), std::string::npos)
+    EXPECT_NE(
+        out.find("--error-output: error estimation needs a photon-mapping integrator (ppm, sppm or pppm), not pt"),
+        std::string::npos)
         << out;
+}
+
+// The estimate's statistics are part of a checkpoint: a resumed render estimates exactly what an
+// uninterrupted one does (PPM keeps them per pixel over its fixed hit points, SPPM per visible
+// point).
+TEST(ErrorEstimate, ResumedEstimateMatchesAnUninterruptedOne) {
+    const std::string dir = make_temp_dir("error_resume");
+    for (const char* integrator : {"ppm", "sppm"}) {
+        const std::string common = std::string(" --integrator ") + integrator +
+                                   " --width 24 --height 24 --photons 5000 --quiet --no-png --target-error 0.0001"
+                                   " --stats-json " +
+                                   dir + "/stats.json";
+        std::string out;
+        ASSERT_EQ(run_clppm("--passes 10 -o " + dir + "/full.exr" + common, &out), 0) << out;
+        const double full = read_json(dir + "/stats.json")["error"]["estimated"].get<double>();
+        ASSERT_EQ(run_clppm("--passes 5 --checkpoint " + dir + "/ck.bin -o " + dir + "/part.exr" + common, &out), 0)
+            << out;
+        ASSERT_EQ(run_clppm("--passes 10 --resume " + dir + "/ck.bin -o " + dir + "/part.exr" + common, &out), 0)
+            << out;
+        const nlohmann::json resumed = read_json(dir + "/stats.json");
+        EXPECT_EQ(resumed["error"]["passes"].get<uint64_t>(), 10u) << integrator;
+        EXPECT_EQ(resumed["error"]["estimated"].get<double>(), full) << integrator;
+        EXPECT_TRUE(std::isfinite(full)) << integrator;
+    }
 }

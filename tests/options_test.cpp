@@ -292,12 +292,16 @@ TEST(Options, ErrorEstimation) {
     EXPECT_EQ(o.confidence, 0.9);
     EXPECT_EQ(o.error_output, "e.exr");
     EXPECT_TRUE(wants_error_estimate(o));
-    // The integrator may come after the option; pppm estimates too.
+    EXPECT_FALSE(o.error_bound);
+    // The integrator may come after the option; pppm and ppm estimate too.
     EXPECT_TRUE(wants_error_estimate(parse_options(Args{"--error-output", "e.exr", "--integrator", "pppm"})));
-    EXPECT_EQ(error_of({"--target-error", "0.1"}),
-              "--target-error: error estimation needs --integrator sppm or pppm (not ppm)");
+    EXPECT_TRUE(wants_error_estimate(parse_options(Args{"--integrator", "ppm", "--target-error", "0.1"})));
+    EXPECT_TRUE(parse_options(Args{"--target-error", "0.1", "--error-bound"}).error_bound);
+    EXPECT_EQ(error_of({"--integrator", "pt", "--target-error", "0.1"}),
+              "--target-error: error estimation needs a photon-mapping integrator (ppm, sppm or pppm), not pt");
     EXPECT_EQ(error_of({"--integrator", "pt", "--error-output", "e.exr"}),
-              "--error-output: error estimation needs --integrator sppm or pppm (not pt)");
+              "--error-output: error estimation needs a photon-mapping integrator (ppm, sppm or pppm), not pt");
+    EXPECT_EQ(error_of({"--error-bound"}), "--error-bound: needs --target-error");
     EXPECT_EQ(error_of({"--integrator", "sppm", "--confidence", "0.9"}),
               "--confidence: needs --target-error or --error-output");
     EXPECT_EQ(error_of({"--target-error", "0"}), "--target-error 0: must be a number > 0");

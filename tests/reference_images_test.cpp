@@ -7,9 +7,14 @@
 // short render), in relative MSE. bench/RESULTS.md records the same numbers at longer renders.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 #include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include "io/image_compare.h"
 #include "io/image_io.h"
@@ -79,3 +84,56 @@ TEST(ReferenceImages, TexturedFloorAndLeafCardAgreeWithMitsuba) { expect_agreeme
 // MSE (PT); as shipped PT gives 1.0052 and 6.9e-5, SPPM 1.0045 and 1.2e-3, the excess in the
 // rows where wall and floor meet.
 TEST(ReferenceImages, NormalMappedWallAgreesWithMitsuba) { expect_agreement("ref_normal_panel"); }
+
+namespace {
+
+// The measure --target-error states, computed here independently: the 90th percentile over
+// pixels of |Y - Y_ref| / max(Y_ref, 1% of the mean Y_ref), on luminance.
+double p90_relative_error(const Image& a, const Image& ref) {
+    std::vector<double> ya, yr;
+    double mean = 0;
+    for (size_t i = 0; i < ref.rgb.size() / 3; ++i) {
+        auto y = [&](const Image& im) {
+            return 0.2126 * im.rgb[3 * i] + 0.7152 * im.rgb[3 * i + 1] + 0.0722 * im.rgb[3 * i + 2];
+        };
+        ya.push_back(y(a)), yr.push_back(y(ref));
+        mean += yr.back();
+    }
+    mean /= double(yr.size());
+    std::vector<double> rel;
+    for (size_t i = 0; i < ya.size(); ++i) rel.push_back(std::fabs(ya[i] - yr[i]) / std::max(yr[i], 0.01 * mean));
+    std::sort(rel.begin(), rel.end());
+    return rel[size_t(std::ceil(0.9 * double(rel.size()))) - 1];
+}
+
+} // namespace
+
+// The stopping rule on a scene it was not calibrated on (bench/ERROR_CALIBRATION.md fits the
+// factor on the benchmark scenes): when --target-error E stops a render, the image's actual
+// error against Mitsuba, by the measure the option states, lies in [E/2, E], for each
+// photon-mapping integrator.
+TEST(ReferenceImages, TargetErrorStopsWithinTheStatedBand) {
+    const double target = 0.1;
+    const Image ref = read_exr(std::string(CLPPM_TEST_DATA) + "/../references/ref_textured.exr");
+    for (const char* integrator : {"ppm", "sppm", "pppm"}) {
+        const std::string d = make_temp_dir("target_error"), out_file = d + "/out.exr";
+        std::string out;
+        ASSERT_EQ(run_clppm(std::string(CLPPM_TEST_DATA) +
+                                "/ref_textured.gltf --width 64 --height 64 --quiet --no-png " +
+                                "--photons 50000 --passes 2000 --integrator " + integrator + " --target-error " +
+                                std::to_string(target) + " --stats-json " + d + "/stats.json -o " + out_file,
+                            &out),
+                  0)
+            << out;
+        std::ifstream in(d + "/stats.json");
+        const nlohmann::json j = nlohmann::json::parse(in);
+        EXPECT_TRUE(j["error"]["reached"].get<bool>()) << integrator;
+        const Image img = read_exr(out_file);
+        const double actual = p90_relative_error(img, ref);
+        EXPECT_NEAR(compare_images(img, ref).p90_rel_error, actual, 1e-9 * actual); // clppm compare's figure
+        std::printf("%s: --target-error %.2f stopped after %d passes (estimate %.4f), actual %.4f\n", integrator,
+                    target, j["passes"].get<int>(), j["error"]["estimated"].get<double>(), actual);
+        EXPECT_LE(actual, target) << integrator;
+        EXPECT_GE(actual, 0.5 * target) << integrator;
+    }
+}

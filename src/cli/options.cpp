@@ -270,12 +270,17 @@ const OptionSpec kOptions[] = {
      [](ParseState& st, const Arg& a) { st.options.kernel_dir = non_empty(a); }},
     {"--dump-kernel-source", nullptr, "FILE", "Write the assembled kernel source and build options to FILE",
      "a file name", "none", [](ParseState& st, const Arg& a) { st.options.dump_kernel_source = non_empty(a); }},
-    // Hachisuka, Jarosz and Jensen 2010: a per-pixel bound on |L_i - L| (bias + noise bound).
+    // Hachisuka, Jarosz and Jensen 2010: per-pixel bias and noise (integrators/error_estimate.h).
     {"--target-error", nullptr, "E",
-     "Stop once the estimated relative error (90th percentile of the per-pixel bounds at --confidence) "
-     "is at most E; --passes and --time still bound the render (sppm, pppm)",
+     "Stop once the estimated error is at most E: the 90th percentile over pixels of |L - L_true| / L, "
+     "calibrated so that the actual error at the stop is between E/2 and E; --passes and --time still "
+     "bound the render (ppm, sppm, pppm)",
      "a number > 0", "none",
      [](ParseState& st, const Arg& a) { st.options.target_error = parse_real(a, [](double x) { return x > 0; }); }},
+    {"--error-bound", nullptr, nullptr,
+     "With --target-error: stop on the conservative bound instead (the 90th percentile of per-pixel bounds "
+     "that hold at --confidence; typically 3 to 4 times the actual error)",
+     nullptr, nullptr, [](ParseState& st, const Arg&) { st.options.error_bound = true; }},
     {"--confidence", nullptr, "P", "Confidence of the per-pixel error bounds (with --target-error or --error-output)",
      "in (0, 1)", "0.95",
      [](ParseState& st, const Arg& a) {
@@ -348,13 +353,15 @@ void resolve_limits(ParseState& st) {
     if (!st.passes_given) o.passes = o.time_limit > 0 ? 0 : 64;
 }
 
-// Only SPPM and PPPM estimate their error; --confidence means nothing without an estimate.
+// The photon-mapping integrators estimate their error; --confidence means nothing without an
+// estimate, --error-bound nothing without a target.
 void check_error_options(const ParseState& st) {
     const Options& o = st.options;
     const char* asked = o.target_error > 0 ? "--target-error" : !o.error_output.empty() ? "--error-output" : nullptr;
-    if (asked && o.integrator != Integrator::SPPM && o.integrator != Integrator::PPPM)
-        throw Error(std::string(asked) + ": error estimation needs --integrator sppm or pppm (not " +
-                    to_string(o.integrator) + ")");
+    if (asked && o.integrator == Integrator::PT)
+        throw Error(std::string(asked) + ": error estimation needs a photon-mapping integrator (ppm, sppm or pppm), "
+                                         "not pt");
+    if (o.error_bound && !(o.target_error > 0)) throw Error("--error-bound: needs --target-error");
     if (!asked && st.confidence_given) throw Error("--confidence: needs --target-error or --error-output");
 }
 

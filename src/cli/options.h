@@ -46,6 +46,7 @@ struct Options {
     std::string kernel_dir;             // load kernels from here instead of the embedded copies
     std::string dump_kernel_source;     // write the assembled kernel source and build options here
     double target_error = 0.0;          // --target-error E: stop once the estimated error is <= E; 0 = off
+    bool error_bound = false;           // --error-bound: --target-error stops on the conservative bound
     double confidence = 0.95;           // --confidence P of the error bound, in (0, 1)
     std::string error_output;           // --error-output FILE.exr: the per-pixel relative error bound
     bool help = false;                  // -h/--help: print usage() and exit

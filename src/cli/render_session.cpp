@@ -103,14 +103,20 @@ struct ErrorTracking {
     ErrorImage last;
     ErrorTrend trend;
 
+    // The estimate --target-error halts on: the calibrated one, or with --error-bound the bound.
+    static double measure(const Options& opt, const ErrorImage& e) {
+        return opt.error_bound ? e.image_error : e.expected_error;
+    }
     void update(const Options& opt, Progress& progress, uint64_t pass, double seconds) {
         if (!integ) return;
         last = integ->error_estimate(opt.confidence);
-        trend.add(pass, seconds, last.image_error);
-        progress.set_error(last.image_error, opt.target_error, trend.eta_seconds(opt.target_error));
+        trend.add(pass, seconds, measure(opt, last));
+        progress.set_error(measure(opt, last), opt.target_error, trend.eta_seconds(opt.target_error));
     }
+    // Not before kMinPassesToStop passes: the spread of fewer says little.
     bool reached(const Options& opt) const {
-        return integ && opt.target_error > 0 && last.image_error <= opt.target_error;
+        return integ && opt.target_error > 0 && last.passes >= kMinPassesToStop &&
+               measure(opt, last) <= opt.target_error;
     }
 };
 
@@ -397,9 +403,11 @@ int render_session(const Options& opt) {
     save_images(opt, img, errors);
     if (!opt.error_output.empty() && !errors.last.relative.empty()) save_error_images(opt, errors.last);
     if (errors.integ) {
-        char line[160];
-        std::snprintf(line, sizeof line, "estimated error %.4g (90th percentile, confidence %g)%s",
-                      errors.last.image_error, opt.confidence, errors.reached(opt) ? ": reached the target" : "");
+        char line[200];
+        std::snprintf(line, sizeof line,
+                      "estimated error %.4g (90th percentile of the relative error), bound %.4g (confidence %g)%s",
+                      errors.last.expected_error, errors.last.image_error, opt.confidence,
+                      errors.reached(opt) ? ": reached the target" : "");
         note(opt, line);
     }
     if (!opt.checkpoint.empty()) save_checkpoint(opt, *integ, fingerprint, dc);
@@ -412,9 +420,14 @@ int render_session(const Options& opt) {
     if (!opt.stats_json.empty()) {
         Json j = make_stats(opt, dc, ds, scene, *integ, build, render_s, total.seconds(), img, signal);
         if (errors.integ)
-            j["error"] = {{"estimated", errors.last.image_error}, {"target", opt.target_error},
-                          {"reached", errors.reached(opt)},       {"confidence", opt.confidence},
-                          {"percentile", kErrorPercentile},       {"passes", errors.last.passes}};
+            j["error"] = {{"estimated", errors.last.expected_error},
+                          {"bound", errors.last.image_error},
+                          {"target", opt.target_error},
+                          {"stops_on", opt.error_bound ? "bound" : "estimate"},
+                          {"reached", errors.reached(opt)},
+                          {"confidence", opt.confidence},
+                          {"percentile", kErrorPercentile},
+                          {"passes", errors.last.passes}};
         write_stats_json(opt.stats_json, j);
     }
     note(opt, "wrote " + opt.output + (opt.write_png ? " and " + png_path_for(opt.output) : std::string()) +

@@ -87,7 +87,8 @@ CLPPM_CHECK_OFFSET(GridInfo, inv_cell, 16);
 
 CLPPM_CHECK_SIZE(ErrorStats, 48);
 CLPPM_CHECK_OFFSET(ErrorStats, mean_l, 8);
-CLPPM_CHECK_OFFSET(ErrorStats, mean_r2, 24);
+CLPPM_CHECK_OFFSET(ErrorStats, mean_bias, 24);
+CLPPM_CHECK_OFFSET(ErrorStats, m2_bias, 32);
 CLPPM_CHECK_OFFSET(ErrorStats, direct_y, 40);
 static_assert(alignof(ErrorStats) == 8, "ErrorStats holds doubles only");
 

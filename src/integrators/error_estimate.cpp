@@ -80,6 +80,59 @@ std::vector<float> relative_bounds(const std::vector<float>& absolute, const std
     return rel;
 }
 
+double expected_image_error(const std::vector<float>& sigma, const std::vector<float>& bias,
+                            const std::vector<float>& luminance, double percentile) {
+    const size_t n = sigma.size();
+    if (n == 0) return std::numeric_limits<double>::infinity();
+    double mean = 0;
+    for (float l : luminance) mean += std::max(0.0, double(l));
+    const double floor = kRelativeFloor * mean / double(n);
+    // At most kMaxPixels pixels, evenly strided: the quantile of a mixture is a smooth function
+    // of it, and the bisection below evaluates every pixel ~60 times.
+    constexpr size_t kMaxPixels = 1u << 14;
+    const size_t stride = (n + kMaxPixels - 1) / kMaxPixels;
+    std::vector<double> s, b; // per pixel, relative to its denominator
+    for (size_t i = 0; i < n; i += stride) {
+        const double d = std::max(double(luminance[i]), floor);
+        if (!(d > 0)) return std::numeric_limits<double>::infinity();
+        s.push_back(double(sigma[i]) / d);
+        b.push_back(bias.empty() ? 0.0 : double(bias[i]) / d);
+        if (std::isnan(s.back()) || std::isnan(b.back())) return std::numeric_limits<double>::infinity();
+    }
+    // P(|b + s Z| > q) for Z ~ N(0, 1); s = +Inf: 1; s = 0: the bias alone.
+    auto exceed = [](double q, double bi, double si) {
+        if (std::isinf(si)) return 1.0;
+        if (si == 0) return std::fabs(bi) > q ? 1.0 : 0.0;
+        const double k = 1.0 / (si * std::sqrt(2.0));
+        return 0.5 * std::erfc((q - bi) * k) + 0.5 * std::erfc((q + bi) * k);
+    };
+    const double tail = 1 - percentile;
+    auto tail_at = [&](double q) {
+        double sum = 0;
+        for (size_t i = 0; i < s.size(); ++i) sum += exceed(q, b[i], s[i]);
+        return sum / double(s.size());
+    };
+    // The fraction of pixels above q falls from 1 to 0 as q grows: bracket, then bisect in log q.
+    double hi = 1;
+    while (tail_at(hi) > tail) {
+        hi *= 4;
+        if (hi > 1e30) return std::numeric_limits<double>::infinity();
+    }
+    double lo = hi / 4;
+    while (lo > 1e-30 && tail_at(lo) <= tail) lo /= 4;
+    for (int it = 0; it < 40 && hi > lo * (1 + 1e-4); ++it) {
+        const double mid = std::sqrt(lo * hi);
+        (tail_at(mid) > tail ? lo : hi) = mid;
+    }
+    return hi;
+}
+
+double c4(uint64_t n) {
+    if (n < 2) return 0;
+    const double m = double(n);
+    return std::sqrt(2 / (m - 1)) * std::exp(std::lgamma(m / 2) - std::lgamma((m - 1) / 2));
+}
+
 double image_error(std::vector<float> v, double percentile) {
     if (v.empty()) return std::numeric_limits<double>::infinity();
     for (float& x : v)
@@ -91,8 +144,8 @@ double image_error(std::vector<float> v, double percentile) {
 }
 
 ErrorEstimator::ErrorEstimator(const DeviceContext& dc, const cl::Program& program, uint32_t num_pixels,
-                               IntegratorStats& stats)
-    : dc_(dc), stats_(stats), n_(num_pixels) {
+                               IntegratorStats& stats, const PixelHitpoints& layout)
+    : dc_(dc), stats_(stats), n_(num_pixels), layout_(layout) {
     k_gather_ = cl::Kernel(program, "error_gather");
     k_reset_ = cl::Kernel(program, "error_reset");
     k_update_ = cl::Kernel(program, "error_update");
@@ -101,43 +154,57 @@ ErrorEstimator::ErrorEstimator(const DeviceContext& dc, const cl::Program& progr
         stats_.device_bytes += bytes;
         return cl::Buffer(dc_.context, CL_MEM_READ_WRITE, std::max<size_t>(bytes, 1));
     };
-    laplacian_ = make(size_t(n_) * sizeof(cl_long));
+    laplacian_ = make(size_t(layout_.num_hitpoints ? layout_.num_hitpoints : n_) * sizeof(cl_long));
     error_stats_ = make(size_t(n_) * sizeof(dev::ErrorStats));
-    bound_ = make(size_t(n_) * sizeof(cl_float4));
+    bound_ = make(size_t(n_) * sizeof(cl_float8));
 }
 
 void ErrorEstimator::reset(const cl::Buffer& hit_stats) {
-    set_args(k_reset_, 0, hit_stats, cl_uint(n_), error_stats_);
+    set_args(k_reset_, 0, hit_stats, layout_.pixel_first, cl_uint(n_), error_stats_);
     enqueue_1d(dc_.queue, k_reset_, n_);
     passes_ = 0;
 }
 
 void ErrorEstimator::update(const cl::Buffer& passflux, const cl::Buffer& hitpoints, const cl::Buffer& hit_stats,
                             double global_r2, double power_per_photon) {
-    set_args(k_update_, 0, passflux, laplacian_, hitpoints, hit_stats, cl_uint(n_), cl_double(global_r2),
-             cl_double(power_per_photon), error_stats_);
+    set_args(k_update_, 0, passflux, laplacian_, hitpoints, hit_stats, layout_.pixel_first, layout_.emitted,
+             cl_uint(n_), cl_uint(layout_.spp), cl_double(global_r2), cl_double(power_per_photon), error_stats_);
     cl::Event ev;
     enqueue_1d(dc_.queue, k_update_, n_, &ev);
     add_event_time(stats_, "error_estimate", ev);
     ++passes_;
 }
 
-ErrorImage ErrorEstimator::estimate(double confidence, int width, int height) {
+ErrorImage ErrorEstimator::estimate(double confidence, int width, int height, const std::vector<float>* min_sigma) {
     if (!(confidence > 0 && confidence < 1)) throw Error("error estimate: the confidence must be in (0, 1)");
-    set_args(k_bound_, 0, error_stats_, cl_uint(n_), cl_double(confidence_multiplier(confidence, passes_)), bound_);
+    const double t = confidence_multiplier(confidence, passes_);
+    set_args(k_bound_, 0, error_stats_, cl_uint(n_), cl_double(t), bound_);
     enqueue_1d(dc_.queue, k_bound_, n_);
-    std::vector<cl_float4> b = read_buffer<cl_float4>(dc_.queue, bound_, n_);
+    std::vector<cl_float8> b = read_buffer<cl_float8>(dc_.queue, bound_, n_);
     ErrorImage e;
     e.width = width, e.height = height, e.passes = passes_;
-    e.absolute.resize(n_), e.luminance.resize(n_), e.bias.resize(n_), e.noise.resize(n_);
+    for (auto* v : {&e.absolute, &e.luminance, &e.bias, &e.noise, &e.bias_clean, &e.sigma}) v->resize(n_);
     for (uint32_t i = 0; i < n_; ++i) {
         e.absolute[i] = b[i].s[0];
         e.luminance[i] = b[i].s[1];
         e.bias[i] = b[i].s[2];
         e.noise[i] = b[i].s[3];
+        e.bias_clean[i] = b[i].s[4];
+        e.sigma[i] = b[i].s[5];
+        if (min_sigma && (*min_sigma)[i] > e.sigma[i]) {
+            e.sigma[i] = (*min_sigma)[i];
+            e.noise[i] = float(t * double(e.sigma[i]));
+            e.absolute[i] = std::fabs(e.bias[i]) + e.noise[i];
+        }
     }
     e.relative = relative_bounds(e.absolute, e.luminance);
     e.image_error = image_error(e.relative);
+    if (passes_ >= 2) {
+        std::vector<float> sigma = e.sigma;
+        const double k = 1 / c4(passes_);
+        for (float& s : sigma) s = float(s * k);
+        e.expected_error = kErrorCalibration * expected_image_error(sigma, e.bias_clean, e.luminance);
+    }
     return e;
 }
 

@@ -26,13 +26,37 @@ double confidence_multiplier(double confidence, uint64_t n);
 
 // E / max(L, kRelativeFloor * mean L) per pixel.
 std::vector<float> relative_bounds(const std::vector<float>& absolute, const std::vector<float>& luminance);
+// The expected `percentile` quantile over pixels of the actual relative error |L_i - L| / d_i
+// (d_i = max(L_i, kRelativeFloor * mean L)) when pixel i's error is bias_i + sigma_i Z, Z standard
+// normal: the q where the mean over pixels of P(|bias_i + sigma_i Z| > q d_i) is 1 - percentile.
+// An empty `bias` means none. +Inf when any sigma is +Inf or NaN.
+double expected_image_error(const std::vector<float>& sigma, const std::vector<float>& bias,
+                            const std::vector<float>& luminance, double percentile = kErrorPercentile);
+// The calibrated estimate multiplies expected_image_error (of sigma_i / c4(n) and the de-noised
+// bias) by this factor, fitted against references on the benchmark scenes so that the actual
+// error at a stop lies in [0.5, 1] times the estimate (bench/ERROR_CALIBRATION.md): unscaled, the
+// estimate is 0.85 to 1.4 times the actual error there.
+constexpr double kErrorCalibration = 1.2;
+// c4(n) = E[s] / sigma for the sample standard deviation s of n normal samples: the estimate
+// divides by it, or it would be low by 8% at n = 4.
+double c4(uint64_t n);
 // The `percentile` quantile (nearest rank) of v; +Inf for an empty v or when it is not finite.
 double image_error(std::vector<float> v, double percentile = kErrorPercentile);
 
-// The device side: the Laplacian gather's output, the per-pixel ErrorStats and the bound image.
+// The device side: the Laplacian gather's output (per hit point), the per-pixel ErrorStats and
+// the bound image. A pixel's hit points: SPPM's visible point p (no pixel_first), or PPM's
+// [pixel_first[p], pixel_first[p + 1]) with `spp` samples per pixel and its constant seen emission.
+struct PixelHitpoints {
+    uint32_t num_hitpoints = 0; // 0: one per pixel
+    cl::Buffer pixel_first;     // PPM: num_pixels + 1 offsets
+    cl::Buffer emitted;         // PPM: float4 seen emission summed over the pixel's samples
+    unsigned spp = 1;
+};
+
 class ErrorEstimator {
 public:
-    ErrorEstimator(const DeviceContext& dc, const cl::Program& program, uint32_t num_pixels, IntegratorStats& stats);
+    ErrorEstimator(const DeviceContext& dc, const cl::Program& program, uint32_t num_pixels, IntegratorStats& stats,
+                   const PixelHitpoints& layout = PixelHitpoints());
 
     // The second gather (PhotonMap::set_second_gather) and the buffer it fills.
     const cl::Kernel& gather_kernel() const { return k_gather_; }
@@ -44,18 +68,20 @@ public:
     // global_r2 > 0 is PPPM's radius; power_per_photon = total power / photons per pass.
     void update(const cl::Buffer& passflux, const cl::Buffer& hitpoints, const cl::Buffer& hit_stats, double global_r2,
                 double power_per_photon);
-    // The bounds at `confidence` in (0, 1).
-    ErrorImage estimate(double confidence, int width, int height);
+    // The bounds at `confidence` in (0, 1). min_sigma: per pixel, a lower limit on the standard
+    // deviation of its error that the passes' spread cannot see (PPM's fixed samples).
+    ErrorImage estimate(double confidence, int width, int height, const std::vector<float>* min_sigma = nullptr);
 
     std::vector<dev::ErrorStats> read() const;
     // Device bytes per pixel: the Laplacian sums, the statistics and the bound image.
-    static constexpr size_t bytes_per_pixel() { return sizeof(cl_long) + sizeof(dev::ErrorStats) + sizeof(cl_float4); }
+    static constexpr size_t bytes_per_pixel() { return sizeof(cl_long) + sizeof(dev::ErrorStats) + sizeof(cl_float8); }
     void write(const std::vector<dev::ErrorStats>& v);
 
 private:
     const DeviceContext& dc_;
     IntegratorStats& stats_;
     uint32_t n_;
+    PixelHitpoints layout_;
     uint64_t passes_ = 0;
     cl::Kernel k_gather_, k_reset_, k_update_, k_bound_;
     cl::Buffer laplacian_, error_stats_, bound_;

@@ -15,16 +15,24 @@ constexpr double kErrorPercentile = 0.9;
 // A pixel's bound is relative to max(L, kRelativeFloor * mean L): black pixels have no
 // meaningful relative error.
 constexpr double kRelativeFloor = 0.01;
+// --target-error stops no earlier: the spread of fewer passes says little.
+constexpr uint64_t kMinPassesToStop = 4;
 
 struct ErrorImage {
     int width = 0, height = 0;
-    uint64_t passes = 0;          // passes the statistics hold
-    std::vector<float> absolute;  // E per pixel, in luminance units (+Inf before two passes)
-    std::vector<float> luminance; // the pixel's estimate L_i (luminance)
-    std::vector<float> bias;      // B_i, signed: > 0 where the estimate is too bright
-    std::vector<float> noise;     // t sqrt(V_i / i)
-    std::vector<float> relative;  // E / max(L, floor): the per-pixel error image
-    double image_error = std::numeric_limits<double>::infinity(); // kErrorPercentile of `relative`
+    uint64_t passes = 0;           // passes the statistics hold
+    std::vector<float> absolute;   // E per pixel, in luminance units (+Inf before two passes)
+    std::vector<float> luminance;  // the pixel's estimate L_i (luminance)
+    std::vector<float> bias;       // B_i, signed: > 0 where the estimate is too bright
+    std::vector<float> noise;      // t sqrt(V_i / i)
+    std::vector<float> sigma;      // sqrt(V_i / i): the estimated standard deviation of L_i (+Inf before two passes)
+    std::vector<float> bias_clean; // B_i with the bias estimate's own noise taken out (error_bound)
+    std::vector<float> relative;   // E / max(L, floor): the per-pixel error image
+    double image_error = std::numeric_limits<double>::infinity(); // kErrorPercentile of `relative`: the bound
+    // The calibrated estimate of the image's actual error by the same measure (kErrorPercentile of
+    // |L_i - L| / max(L, floor)): expected_image_error of the noise and de-noised bias, times
+    // kErrorCalibration (error_estimate.h).
+    double expected_error = std::numeric_limits<double>::infinity();
 };
 
 } // namespace clppm

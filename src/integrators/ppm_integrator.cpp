@@ -24,7 +24,7 @@ size_t eye_batch(size_t pixels, unsigned spp) { return std::min<size_t>(kEyeBatc
 
 } // namespace
 
-IntegratorMemory PpmIntegrator::memory_needed(const RenderSettings& settings, size_t pixels) {
+IntegratorMemory PpmIntegrator::memory_needed(const RenderSettings& settings, size_t pixels, bool error_estimation) {
     const size_t hitpoints = size_t(kHitpointsPerSample * double(pixels) * settings.spp);
     const size_t per_hitpoint = sizeof(dev::HitPoint) + sizeof(dev::HitStats) + sizeof(dev::PassFlux);
     const size_t batch = eye_batch(pixels, settings.spp);
@@ -33,12 +33,20 @@ IntegratorMemory PpmIntegrator::memory_needed(const RenderSettings& settings, si
               (pixels + 1) * sizeof(uint32_t) + pixels * (sizeof(cl_float4) + kFilmBytesPerPixel) +
               batch * (PPM_EYE_SLOTS * sizeof(dev::HitPoint) + sizeof(cl_float4));
     m.largest_buffer = std::max(hitpoints * sizeof(dev::HitStats), batch * PPM_EYE_SLOTS * sizeof(dev::HitPoint));
+    if (error_estimation) {
+        // The Laplacian sums and sample indices per hit point; statistics, bounds and spread per
+        // pixel; the seen emission per sample.
+        m.bytes += hitpoints * (sizeof(cl_long) + sizeof(uint32_t)) +
+                   pixels * (sizeof(dev::ErrorStats) + sizeof(cl_float8) + sizeof(float)) +
+                   pixels * settings.spp * sizeof(float);
+        m.largest_buffer = std::max(m.largest_buffer, pixels * sizeof(cl_float8));
+    }
     return m;
 }
 
 PpmIntegrator::PpmIntegrator(const DeviceContext& dc, const DeviceScene& scene, const RenderSettings& settings,
                              const cl::Program& program, const SecondaryDevices& secondaries)
-    : dc_(dc), scene_(scene), settings_(settings) {
+    : dc_(dc), scene_(scene), settings_(settings), program_(program) {
     photons_ = std::make_unique<PhotonPasses>(dc, scene, settings_, program, stats_, secondaries.devices,
                                               secondaries.program_file, secondaries.build_options);
     photons_->set_hitpoints_fixed(true);
@@ -49,7 +57,39 @@ PpmIntegrator::PpmIntegrator(const DeviceContext& dc, const DeviceScene& scene, 
     num_pixels_ = scene.camera.width * scene.camera.height;
 }
 
-void PpmIntegrator::prepare() { eye_pass(); }
+void PpmIntegrator::prepare() {
+    eye_pass();
+    if (wants_errors_) make_error_estimator();
+}
+
+void PpmIntegrator::enable_error_estimation() {
+    // The sample spread needs what the eye pass keeps only when asked.
+    if (hitpoints_() && !errors_) throw Error("ppm: error estimation must be enabled before prepare()");
+    wants_errors_ = true;
+}
+
+// The hit points exist only after the eye pass: it sizes the Laplacian sums.
+void PpmIntegrator::make_error_estimator() {
+    PixelHitpoints layout;
+    layout.num_hitpoints = std::max<uint32_t>(1, num_hitpoints_);
+    layout.pixel_first = pixel_first_;
+    layout.emitted = emitted_;
+    layout.spp = settings_.spp;
+    errors_ = std::make_unique<ErrorEstimator>(dc_, program_, num_pixels_, stats_, layout);
+    k_spread_ = cl::Kernel(program_, "error_sample_spread");
+    photons_->set_second_gather(errors_->gather_kernel(), errors_->laplacian(), "error_estimate");
+    errors_->reset(stats_buf_);
+}
+
+ErrorImage PpmIntegrator::error_estimate(double confidence) {
+    if (!errors_) throw Error("error estimation is not enabled");
+    set_args(k_spread_, 0, stats_buf_, pixel_first_, hit_sample_, sample_y_, cl_uint(num_pixels_),
+             cl_uint(settings_.spp), cl_double(scene_.info.total_power), cl_double(double(stats_.photons_emitted)),
+             cl_double(double(settings_.direct == DirectLighting::Sample ? stats_.passes : 0)), spread_);
+    enqueue_1d(dc_.queue, k_spread_, num_pixels_);
+    const std::vector<float> spread = read_buffer<float>(dc_.queue, spread_, num_pixels_);
+    return errors_->estimate(confidence, int(scene_.camera.width), int(scene_.camera.height), &spread);
+}
 
 // Sec. 4.1: hit points for every pixel sample, compacted on the host in pixel order so each
 // pixel owns the range [pixel_first[p], pixel_first[p+1]).
@@ -64,6 +104,10 @@ void PpmIntegrator::eye_pass() {
 
     std::vector<dev::HitPoint> hitpoints;
     std::vector<uint32_t> pixel_count(num_pixels_, 0);
+    // For the error estimate's sample spread: each hit point's sample within its pixel, and each
+    // sample's seen emission (luminance).
+    std::vector<uint32_t> hit_sample;
+    std::vector<float> sample_y;
     std::vector<cl_float4> emitted(num_pixels_, cl_float4{{0, 0, 0, 0}});
     const int first_arg =
         set_args(k_eye_, scene_.set_scene_args(k_eye_), scene_.camera_buf, cl_ulong(settings_.seed), cl_ulong(0));
@@ -79,10 +123,15 @@ void PpmIntegrator::eye_pass() {
         for (uint32_t i = 0; i < n; ++i) {
             uint32_t pixel = uint32_t((first + i) / settings_.spp);
             for (int c = 0; c < 3; ++c) emitted[pixel].s[c] += host_emission[i].s[c];
+            if (wants_errors_) {
+                const cl_float4& e = host_emission[i];
+                sample_y.push_back(0.2126f * e.s[0] + 0.7152f * e.s[1] + 0.0722f * e.s[2]);
+            }
             for (uint32_t k = 0; k < PPM_EYE_SLOTS; ++k) {
                 const dev::HitPoint& hp = host_slots[size_t(i) * PPM_EYE_SLOTS + k];
                 if (hp.pixel == HITPOINT_NONE) continue;
                 hitpoints.push_back(hp);
+                if (wants_errors_) hit_sample.push_back(uint32_t((first + i) % settings_.spp));
                 ++pixel_count[pixel];
             }
         }
@@ -116,6 +165,12 @@ void PpmIntegrator::eye_pass() {
     emitted_ = make(CL_MEM_READ_ONLY, emitted.size() * sizeof(cl_float4), emitted.data());
     image_buf_ = make(CL_MEM_WRITE_ONLY, size_t(num_pixels_) * kFilmBytesPerPixel, nullptr);
     radius_partials_ = make(CL_MEM_WRITE_ONLY, radius_partials_bytes(num_hitpoints_), nullptr);
+    if (wants_errors_) {
+        hit_sample.resize(hitpoints.size(), 0);
+        hit_sample_ = make(CL_MEM_READ_ONLY, hit_sample.size() * sizeof(uint32_t), hit_sample.data());
+        sample_y_ = make(CL_MEM_READ_ONLY, sample_y.size() * sizeof(float), sample_y.data());
+        spread_ = make(CL_MEM_WRITE_ONLY, size_t(num_pixels_) * sizeof(float), nullptr);
+    }
 }
 
 // Explicit direct light, then Eqs. 7-10 with this pass's M(x) and Phi_M(x).
@@ -123,6 +178,9 @@ void PpmIntegrator::update() {
     if (settings_.direct == DirectLighting::Sample)
         enqueue_direct_light(dc_, scene_, k_direct_, settings_.seed, stats_.passes + 1, hitpoints_, stats_buf_,
                              num_hitpoints_, stats_);
+    // Before the update: the statistics still hold the radii this pass gathered with.
+    if (errors_)
+        errors_->update(passflux_, hitpoints_, stats_buf_, 0.0, scene_.info.total_power / double(settings_.photons));
     auto [mean, mx] = enqueue_ppm_update(dc_, k_update_, passflux_, hitpoints_, stats_buf_, num_hitpoints_,
                                          settings_.alpha, radius_partials_, stats_);
     if (num_hitpoints_ > 0) stats_.mean_radius = typical_radius_ = mean, max_radius_ = mx;
@@ -145,6 +203,7 @@ void PpmIntegrator::save(Checkpoint& ck) {
     ck.put("stats", read_buffer<dev::HitStats>(dc_.queue, stats_buf_, n));
     ck.header["typical_radius"] = typical_radius_;
     ck.header["max_radius"] = max_radius_;
+    if (errors_) ck.put("error_stats2", errors_->read());
 }
 
 void PpmIntegrator::restore(const Checkpoint& ck) {
@@ -158,6 +217,12 @@ void PpmIntegrator::restore(const Checkpoint& ck) {
     write_buffer(dc_.queue, stats_buf_, hstats);
     typical_radius_ = checkpoint_number(ck, "typical_radius", 0, r0 * (1 + 1e-9));
     max_radius_ = checkpoint_number(ck, "max_radius", 0, r0 * (1 + 1e-9));
+    if (!errors_) return;
+    // A checkpoint saved without error estimation: the estimate starts over from here.
+    auto blob = ck.blobs.find("error_stats2");
+    if (blob != ck.blobs.end() && blob->second.size() == size_t(num_pixels_) * sizeof(dev::ErrorStats))
+        errors_->write(ck.get<dev::ErrorStats>("error_stats2", num_pixels_));
+    else errors_->reset(stats_buf_);
 }
 
 Image PpmIntegrator::image() {

@@ -139,7 +139,7 @@ void SppmIntegrator::save(Checkpoint& ck) {
     ck.header["pppm_r2"] = r2_;
     ck.header["typical_radius"] = typical_radius_;
     ck.header["max_radius"] = max_radius_;
-    if (errors_) ck.put("error_stats", errors_->read());
+    if (errors_) ck.put("error_stats2", errors_->read());
 }
 
 void SppmIntegrator::restore(const Checkpoint& ck) {
@@ -155,9 +155,9 @@ void SppmIntegrator::restore(const Checkpoint& ck) {
     max_radius_ = checkpoint_number(ck, "max_radius", 0, r0 * (1 + 1e-9));
     if (!errors_) return;
     // A checkpoint saved without error estimation: the estimate starts over from here.
-    auto blob = ck.blobs.find("error_stats");
+    auto blob = ck.blobs.find("error_stats2");
     if (blob != ck.blobs.end() && blob->second.size() == size_t(num_pixels_) * sizeof(dev::ErrorStats))
-        errors_->write(ck.get<dev::ErrorStats>("error_stats", num_pixels_));
+        errors_->write(ck.get<dev::ErrorStats>("error_stats2", num_pixels_));
     else errors_->reset(stats_buf_);
 }
 

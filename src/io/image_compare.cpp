@@ -5,7 +5,9 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <limits>
 #include <string>
+#include <vector>
 
 #include "io/stats_json.h"
 #include "util/error.h"
@@ -52,6 +54,27 @@ ImageDifference compare_images(const Image& a, const Image& b) {
         d.rmse = std::sqrt(se / n);
         d.rel_rmse = d.mean_b > 0 ? d.rmse / d.mean_b : 0;
         d.rmse_srgb = std::sqrt(se_srgb / n);
+    }
+    // The relative luminance error per finite pixel, against 1% of the reference's mean
+    // luminance where the reference is darker than that.
+    auto luminance = [](const Image& im, size_t p) {
+        return 0.2126 * im.rgb[3 * p] + 0.7152 * im.rgb[3 * p + 1] + 0.0722 * im.rgb[3 * p + 2];
+    };
+    double mean_y = 0;
+    std::vector<double> rel_y;
+    for (size_t p = 0; p < d.pixels; ++p)
+        if (finite_pixel(a, p) && finite_pixel(b, p)) mean_y += std::max(0.0, luminance(b, p)), rel_y.push_back(0);
+    if (!rel_y.empty()) {
+        const double floor = 0.01 * mean_y / double(rel_y.size());
+        size_t k = 0;
+        for (size_t p = 0; p < d.pixels; ++p) {
+            if (!finite_pixel(a, p) || !finite_pixel(b, p)) continue;
+            const double denom = std::max(luminance(b, p), floor), diff = std::fabs(luminance(a, p) - luminance(b, p));
+            rel_y[k++] = diff == 0 ? 0 : denom > 0 ? diff / denom : std::numeric_limits<double>::infinity();
+        }
+        const size_t rank = std::clamp<size_t>(size_t(std::ceil(0.9 * double(rel_y.size()))), 1, rel_y.size()) - 1;
+        std::nth_element(rel_y.begin(), rel_y.begin() + rank, rel_y.end());
+        d.p90_rel_error = rel_y[rank];
     }
     return d;
 }
@@ -102,7 +125,8 @@ std::string compare_usage() {
     return "Usage: clppm compare IMAGE.exr REFERENCE.exr [--diff OUT.png] [--box K]\n"
            "Prints, as JSON, how far IMAGE is from REFERENCE: both means and their ratio, the relative MSE\n"
            "(per pixel and channel, (a - b)^2 / (b^2 + 0.01)), RMSE, relative RMSE, the RMSE of the sRGB\n"
-           "codes, and NaN/Inf counts.\n\n"
+           "codes, p90_rel_error (the 90th percentile over pixels of |Y_a - Y_b| / max(Y_b, 1% of the mean Y_b)\n"
+           "on luminance: the measure --target-error states) and NaN/Inf counts.\n\n"
            "  --diff OUT.png   also write a false-colour difference image\n"
            "  --box K          also the relative MSE of both images box-filtered over K x K pixels\n"
            "                   (box_rel_mse: bias more than noise); K in 1..1024\n"
@@ -161,6 +185,7 @@ int compare_command(int argc, char** argv) {
     j["rmse"] = d.rmse;
     j["rel_rmse"] = d.rel_rmse;
     j["rmse_srgb"] = d.rmse_srgb;
+    j["p90_rel_error"] = d.p90_rel_error;
     if (box > 0) {
         j["box"] = box;
         j["box_rel_mse"] = compare_images(box_filter(a, box), box_filter(b, box)).rel_mse;

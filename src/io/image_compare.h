@@ -16,6 +16,9 @@ struct ImageDifference {
     double rmse = 0;               // of the radiance
     double rel_rmse = 0;           // rmse / mean_b
     double rmse_srgb = 0;          // of the 8-bit-style tonemapped images, in [0, 1]
+    // The measure --target-error states: the 90th percentile over pixels of |Y_a - Y_b| /
+    // max(Y_b, 1% of the mean Y_b), on luminance Y (Rec. 709 weights).
+    double p90_rel_error = 0;
 };
 
 // Compares a with the reference b (same size, or Error naming both sizes). Non-finite pixels are

@@ -1,0 +1,46 @@
+#!/bin/bash
+# Which integrator, with every other setting at its command-line default, reaches a given error
+# first (issue 16: the default integrator by measurement). For each scene, a reference (SPPM, or
+# the path tracer where no photon is needed: a scene lit only by its environment) of REF_SECONDS,
+# then each integrator for each of TIMES seconds at 128x128, compared with `clppm compare --box 4`:
+# the mean ratio, the box-4 relative MSE (bias more than noise) and p90_rel_error (the measure
+# --target-error states). CPU time is reported with the wall time: these machines are shared.
+#   bench/default_integrator.sh [BUILD_DIR]   (env: TIMES="10 30", REF_SECONDS=240, SCENES=...)
+set -euo pipefail
+here=$(cd "$(dirname "$0")/.." && pwd)
+bin=${1:-$here/build}/clppm
+times=${TIMES:-10 30}
+ref_seconds=${REF_SECONDS:-240}
+scenes=${SCENES:-"cornell_box $here/scenes/caustic.gltf $here/scenes/bunny_100k.gltf $here/tests/data/env_outdoor.gltf"}
+out=$(mktemp -d)
+common="--width 128 --height 128 --quiet --no-png"
+echo "Reference: $ref_seconds s each; $(nproc) cores; $(date -u +%F)"
+echo
+echo "| scene | integrator | seconds | CPU s | passes | mean ratio | box-4 relative MSE | p90 relative error |"
+echo "|---|---|---:|---:|---:|---:|---:|---:|"
+for scene in $scenes; do
+  name=$(basename "$scene" .gltf)
+  arg=$scene
+  [ "$scene" = cornell_box ] && arg=""
+  ref_integ=sppm
+  [ "$name" = env_outdoor ] && ref_integ=pt
+  "$bin" $arg $common --integrator $ref_integ --time "$ref_seconds" --seed 1000 -o "$out/$name-ref.exr"
+  for integ in ppm sppm pppm pt; do
+    for t in $times; do
+      /usr/bin/time -f "%U %S" -o "$out/time" "$bin" $arg $common --integrator "$integ" --time "$t" \
+        -o "$out/$name-$integ$t.exr" --stats-json "$out/$name-$integ$t.json"
+      python3 - "$out" "$name" "$integ" "$t" "$bin" <<'PY'
+import json, subprocess, sys
+out, name, integ, t, binary = sys.argv[1:]
+st = json.load(open("%s/%s-%s%s.json" % (out, name, integ, t)))
+cpu = sum(float(x) for x in open(out + "/time").read().split()[-2:])
+c = json.loads(subprocess.run([binary, "compare", "%s/%s-%s%s.exr" % (out, name, integ, t),
+                               "%s/%s-ref.exr" % (out, name), "--box", "4"],
+                              capture_output=True, text=True, check=True).stdout)
+print("| %s | %s | %s | %.0f | %d | %.4f | %.2e | %.4f |" % (name, integ, t, cpu, st["passes"], c["mean_ratio"],
+                                                         c["box_rel_mse"], c["p90_rel_error"]))
+PY
+    done
+  done
+done
+rm -rf "$out"
