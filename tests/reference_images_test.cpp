@@ -108,32 +108,49 @@ double p90_relative_error(const Image& a, const Image& ref) {
 
 } // namespace
 
-// The stopping rule on a scene it was not calibrated on (bench/ERROR_CALIBRATION.md fits the
-// factor on the benchmark scenes): when --target-error E stops a render, the image's actual
-// error against Mitsuba, by the measure the option states, lies in [E/2, E], for each
-// photon-mapping integrator.
+// The stopping rule against Mitsuba (bench/ERROR_CALIBRATION.md fits its factor against SPPM
+// references): when --target-error E stops a render, the image's actual error, by the measure the
+// option states, lies in [E/2, E], for each photon-mapping integrator, on the textured floor and
+// on the rough glass block, a scene the calibration never saw. PPM's four fixed samples per pixel
+// cannot reach 0.15 on the rough glass (blurred refraction varies within a pixel): there it must
+// not stop, and it is right not to.
 TEST(ReferenceImages, TargetErrorStopsWithinTheStatedBand) {
-    const double target = 0.1;
-    const Image ref = read_exr(std::string(CLPPM_TEST_DATA) + "/../references/ref_textured.exr");
-    for (const char* integrator : {"ppm", "sppm", "pppm"}) {
+    struct Case {
+        const char* scene;
+        const char* integrator;
+        double target;
+        bool reachable;
+    };
+    for (const Case& c : {Case{"ref_textured", "ppm", 0.1, true}, Case{"ref_textured", "sppm", 0.1, true},
+                          Case{"ref_textured", "pppm", 0.1, true}, Case{"ref_rough_glass", "sppm", 0.15, true},
+                          Case{"ref_rough_glass", "pppm", 0.15, true}, Case{"ref_rough_glass", "ppm", 0.15, false}}) {
+        const std::string what = std::string(c.scene) + " " + c.integrator;
+        const Image ref = read_exr(std::string(CLPPM_TEST_DATA) + "/../references/" + c.scene + ".exr");
         const std::string d = make_temp_dir("target_error"), out_file = d + "/out.exr";
         std::string out;
-        ASSERT_EQ(run_clppm(std::string(CLPPM_TEST_DATA) +
-                                "/ref_textured.gltf --width 64 --height 64 --quiet --no-png " +
-                                "--photons 50000 --passes 2000 --integrator " + integrator + " --target-error " +
-                                std::to_string(target) + " --stats-json " + d + "/stats.json -o " + out_file,
+        ASSERT_EQ(run_clppm(std::string(CLPPM_TEST_DATA) + "/" + c.scene + ".gltf --width 64 --height 64 --quiet " +
+                                "--no-png --photons 50000 --passes " + (c.reachable ? "2000" : "60") +
+                                " --integrator " + c.integrator + " --target-error " + std::to_string(c.target) +
+                                " --stats-json " + d + "/stats.json -o " + out_file,
                             &out),
                   0)
             << out;
         std::ifstream in(d + "/stats.json");
         const nlohmann::json j = nlohmann::json::parse(in);
-        EXPECT_TRUE(j["error"]["reached"].get<bool>()) << integrator;
+        // Out of reach, the user is told why.
+        EXPECT_EQ(out.find("out of PPM's reach") != std::string::npos, !c.reachable) << what << ": " << out;
         const Image img = read_exr(out_file);
         const double actual = p90_relative_error(img, ref);
         EXPECT_NEAR(compare_images(img, ref).p90_rel_error, actual, 1e-9 * actual); // clppm compare's figure
-        std::printf("%s: --target-error %.2f stopped after %d passes (estimate %.4f), actual %.4f\n", integrator,
-                    target, j["passes"].get<int>(), j["error"]["estimated"].get<double>(), actual);
-        EXPECT_LE(actual, target) << integrator;
-        EXPECT_GE(actual, 0.5 * target) << integrator;
+        std::printf("%s: --target-error %.2f, %d passes, estimate %.4f, actual %.4f\n", what.c_str(), c.target,
+                    j["passes"].get<int>(), j["error"]["estimated"].get<double>(), actual);
+        EXPECT_EQ(j["error"]["reached"].get<bool>(), c.reachable) << what;
+        if (c.reachable) {
+            EXPECT_LE(actual, c.target) << what;
+            EXPECT_GE(actual, 0.5 * c.target) << what;
+        } else {
+            EXPECT_GT(actual, c.target) << what;
+            EXPECT_GT(j["error"]["estimated"].get<double>(), 0.5 * actual) << what;
+        }
     }
 }

@@ -403,12 +403,23 @@ int render_session(const Options& opt) {
     save_images(opt, img, errors);
     if (!opt.error_output.empty() && !errors.last.relative.empty()) save_error_images(opt, errors.last);
     if (errors.integ) {
-        char line[200];
+        char line[300];
         std::snprintf(line, sizeof line,
                       "estimated error %.4g (90th percentile of the relative error), bound %.4g (confidence %g)%s",
                       errors.last.expected_error, errors.last.image_error, opt.confidence,
                       errors.reached(opt) ? ": reached the target" : "");
         note(opt, line);
+        // PPM's fixed samples leave an error no pass removes: say so when it is what stopped the
+        // estimate short of the target.
+        const ErrorImage& e = errors.last;
+        if (opt.target_error > 0 && !errors.reached(opt) && e.sample_floor > opt.target_error &&
+            e.sample_floor >= 0.8 * e.expected_error) {
+            std::snprintf(line, sizeof line,
+                          "--target-error %g: out of PPM's reach here; its %d fixed samples per pixel alone leave an "
+                          "estimated error of %.3g (--spp more, or --integrator sppm, which samples anew every pass)",
+                          opt.target_error, opt.spp, e.sample_floor);
+            warn(line);
+        }
     }
     if (!opt.checkpoint.empty()) save_checkpoint(opt, *integ, fingerprint, dc);
     // Radiance is finite and never negative: a pixel that is not is a defect, said loudly (the

@@ -205,6 +205,7 @@ ErrorImage ErrorEstimator::estimate(double confidence, int width, int height, co
         for (float& s : sigma) s = float(s * k);
         e.expected_error = kErrorCalibration * expected_image_error(sigma, e.bias_clean, e.luminance);
     }
+    if (min_sigma) e.sample_floor = kErrorCalibration * expected_image_error(*min_sigma, {}, e.luminance);
     return e;
 }
 

@@ -33,6 +33,9 @@ struct ErrorImage {
     // |L_i - L| / max(L, floor)): expected_image_error of the noise and de-noised bias, times
     // kErrorCalibration (error_estimate.h).
     double expected_error = std::numeric_limits<double>::infinity();
+    // PPM: the calibrated estimate from the spread of its fixed samples alone, an error more
+    // passes do not remove (0 for the others).
+    double sample_floor = 0;
 };
 
 } // namespace clppm
