@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <sstream>
+
 #include "util/error.h"
 
 namespace clppm {
@@ -362,6 +364,36 @@ TEST(Options, UsageListsEveryOptionWithDefaultAndRange) {
          {"Default: clppm.exr", "Default: 0.7", "in (0, 1]", "Default: 200000", "Default: 16", "1..256", "Default: ppm",
           "Default: sample", "Default: 64", "Default: 0.95", "in (0, 1)"})
         EXPECT_NE(text.find(fragment), std::string::npos) << fragment;
+}
+
+// --help comes from the CLI11 App: sections by group, in this order, the subcommands and the
+// environment variables.
+TEST(Options, UsageIsGroupedWithSubcommandsAndEnvironment) {
+    const std::string text = usage();
+    size_t at = 0;
+    for (const char* section : {"Usage: clppm [render] [options]", "Positionals:", "Output:", "Image and camera:",
+                                "Integrator:", "Error estimation:", "Lighting:", "Checkpoints:",
+                                "Devices and kernels:", "Other:", "Subcommands:", "Environment:"}) {
+        const size_t p = text.find(section, at);
+        EXPECT_NE(p, std::string::npos) << section << " (in order)";
+        if (p != std::string::npos) at = p;
+    }
+    for (const char* fragment : {"  render ", "  compare ", "CLPPM_CACHE_DIR", "POCL_DEVICES"})
+        EXPECT_NE(text.find(fragment), std::string::npos) << fragment;
+    // Every line fits in 100 columns.
+    std::istringstream lines(text);
+    for (std::string line; std::getline(lines, line);) EXPECT_LE(line.size(), 100u) << line;
+}
+
+// `clppm render ...` is `clppm ...`.
+TEST(Options, RenderSubcommand) {
+    Options o = parse_options(Args{"render", "--passes", "3", "x.gltf"});
+    EXPECT_EQ(o.passes, 3u);
+    EXPECT_EQ(o.scene, "x.gltf");
+    EXPECT_EQ(error_of({"render", "--alpha", "2"}), "--alpha 2: must be in (0, 1]");
+    // Repeated options: the last wins, --device collects every one.
+    EXPECT_EQ(parse_options(Args{"--passes", "3", "--passes=5"}).passes, 5u);
+    EXPECT_EQ(parse_options(Args{"--device", "a", "--device", "b"}).devices, (std::vector<std::string>{"a", "b"}));
 }
 
 TEST(Options, EnumNames) {

@@ -3,10 +3,10 @@
 #include <cstdio>
 #include <string>
 
+#include "cli/compare_command.h"
 #include "cli/options.h"
 #include "cli/render_session.h"
 #include "device/device.h"
-#include "io/image_compare.h"
 #include "util/error.h"
 #include "util/version.h"
 

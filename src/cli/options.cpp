@@ -7,20 +7,26 @@
 #include <climits>
 #include <cmath>
 #include <cstdlib>
+#include <map>
+#include <memory>
 #include <sstream>
 
+#include <CLI/CLI.hpp>
+
+#include "cli/help_formatter.h"
 #include "util/error.h"
 
 namespace clppm {
 namespace {
 
+struct OptionSpec;
+
 struct ParseState {
     Options options;
     bool passes_given = false;
     bool confidence_given = false;
+    std::map<const OptionSpec*, std::string> shown; // the spelling typed last ("-o" or "--output"), for messages
 };
-
-struct OptionSpec;
 
 // One option occurrence: the spec, the spelling the user typed ("-o" or "--output") and its value.
 struct Arg {
@@ -29,9 +35,11 @@ struct Arg {
     const std::string& value;
 };
 
-// One table drives both the parser and usage(), so the help text cannot drift from what is
-// accepted. `range` is also the tail of every error message: "--alpha 1.5: must be <range>".
+// One table drives both the parser (a CLI11 App built from it) and usage(), so the help text
+// cannot drift from what is accepted. `range` is also the tail of every error message:
+// "--alpha 1.5: must be <range>". Entries are in --help order, grouped.
 struct OptionSpec {
+    const char* group;      // the --help section: "Output", "Integrator", ...
     const char* name;       // "--alpha"
     const char* short_name; // "-o", or nullptr
     const char* metavar;    // "A"; nullptr for a flag
@@ -127,65 +135,63 @@ void set_scene(ParseState& st, const std::string& path) {
 }
 
 const OptionSpec kOptions[] = {
-    {"--output", "-o", "FILE", "Output image (a PNG preview is written beside it)", "a file name ending in .exr",
-     "clppm.exr",
+    {"Output", "--output", "-o", "FILE", "Output image (a PNG preview is written beside it)",
+     "a file name ending in .exr", "clppm.exr",
      [](ParseState& st, const Arg& a) {
          if (!ends_with_ci(a.value, ".exr") || a.value.size() <= 4) bad_value(a);
          st.options.output = a.value;
      }},
-    {"--no-png", nullptr, nullptr, "Do not write the PNG preview", nullptr, nullptr,
+    {"Output", "--no-png", nullptr, nullptr, "Do not write the PNG preview", nullptr, nullptr,
      [](ParseState& st, const Arg&) { st.options.write_png = false; }},
-    {"--tonemap", nullptr, "CURVE",
+    {"Output", "--tonemap", nullptr, "CURVE",
      "The PNG's tone curve: clip = linear up to white, aces = a filmic curve (Narkowicz's ACES fit), "
      "reinhard = x / (1 + x); the EXR stays linear",
      "clip, aces or reinhard", "aces",
      [](ParseState& st, const Arg& a) {
          if (!parse_tone_curve(a.value, &st.options.tone.curve)) bad_value(a);
      }},
-    {"--exposure", nullptr, "EV",
+    {"Output", "--exposure", nullptr, "EV",
      "The PNG's exposure in stops (x 2^EV before the tone curve; with --auto-exposure, added to it)",
      "a number in -64..64", "0",
      [](ParseState& st, const Arg& a) {
          st.options.tone.exposure_ev = parse_real(a, [](double x) { return x >= -64 && x <= 64; });
      }},
-    {"--auto-exposure", nullptr, nullptr,
+    {"Output", "--auto-exposure", nullptr, nullptr,
      "Expose the PNG so that the image's log-average luminance shows as middle grey (0.18)", nullptr, nullptr,
      [](ParseState& st, const Arg&) { st.options.tone.auto_exposure = true; }},
-    {"--width", nullptr, "N", "Image width in pixels", "an integer in 0..16384 (0 = from the camera)", "0",
-     [](ParseState& st, const Arg& a) { st.options.width = static_cast<int>(parse_int(a, 0, 16384)); }},
-    {"--height", nullptr, "N", "Image height in pixels", "an integer in 0..16384 (0 = from the camera)", "0",
-     [](ParseState& st, const Arg& a) { st.options.height = static_cast<int>(parse_int(a, 0, 16384)); }},
-    {"--passes", nullptr, "N", "Stop after N passes (with --time: whichever comes first)",
-     "an integer >= 1 (0 = unlimited, with --time)", "64, or unlimited with --time",
-     [](ParseState& st, const Arg& a) {
-         st.options.passes = static_cast<uint64_t>(parse_int(a, 0, INT64_MAX));
-         st.passes_given = true;
-     }},
-    {"--time", nullptr, "SECONDS", "Stop after this much render time", "a number of seconds > 0", "none",
-     [](ParseState& st, const Arg& a) { st.options.time_limit = parse_real(a, [](double x) { return x > 0; }); }},
-    {"--photons", nullptr, "N", "Photons traced per pass", "an integer in 1..2147483647", "200000",
-     [](ParseState& st, const Arg& a) {
-         st.options.photons_per_pass = static_cast<uint32_t>(parse_int(a, 1, INT32_MAX));
-     }},
-    // alpha of Hachisuka et al. 2008 (radius reduction): R^2 <- R^2 (N + alpha M) / (N + M).
-    {"--alpha", nullptr, "A", "Fraction of new photons kept per pass (radius reduction)", "in (0, 1]", "0.7",
-     [](ParseState& st, const Arg& a) { st.options.alpha = parse_real(a, [](double x) { return x > 0 && x <= 1; }); }},
-    {"--radius", nullptr, "R", "Initial gather radius R0 in scene units", "a finite number >= 0 (0 = heuristic)", "0",
-     [](ParseState& st, const Arg& a) { st.options.radius = parse_real(a, [](double x) { return x >= 0; }); }},
-    {"--seed", nullptr, "S", "Random seed", "an integer in 0..18446744073709551615", "1",
-     [](ParseState& st, const Arg& a) { st.options.seed = parse_u64(a); }},
-    {"--list-devices", nullptr, nullptr, "List the OpenCL devices and exit", nullptr, nullptr,
-     [](ParseState& st, const Arg&) { st.options.list_devices = true; }},
-    {"--device", nullptr, "SPEC", "Device to render on; repeatable (see --list-devices)",
-     "a device index, cpu, gpu or part of a device name", "automatic",
-     [](ParseState& st, const Arg& a) { st.options.devices.push_back(non_empty(a)); }},
-    {"--camera", nullptr, "N", "Index of the glTF camera to render through", "an integer >= 0", "0",
-     [](ParseState& st, const Arg& a) { st.options.camera = static_cast<int>(parse_int(a, 0, INT_MAX)); }},
-    {"--quiet", nullptr, nullptr, "No progress output", nullptr, nullptr,
-     [](ParseState& st, const Arg&) { st.options.quiet = true; }},
-    {"--stats-json", nullptr, "FILE", "Write render statistics as JSON", "a file name", "none",
+    {"Output", "--stats-json", nullptr, "FILE", "Write render statistics as JSON", "a file name", "none",
      [](ParseState& st, const Arg& a) { st.options.stats_json = non_empty(a); }},
-    {"--integrator", nullptr, "NAME",
+    {"Output", "--progressive-output", nullptr, "K", "Also save the images every K passes", "an integer >= 0 (0 = off)",
+     "0",
+     [](ParseState& st, const Arg& a) {
+         st.options.progressive_output = static_cast<uint64_t>(parse_int(a, 0, INT64_MAX));
+     }},
+    {"Output", "--quiet", nullptr, nullptr, "No progress output", nullptr, nullptr,
+     [](ParseState& st, const Arg&) { st.options.quiet = true; }},
+    {"Image and camera", "--width", nullptr, "N", "Image width in pixels",
+     "an integer in 0..16384 (0 = from the camera)", "0",
+     [](ParseState& st, const Arg& a) { st.options.width = static_cast<int>(parse_int(a, 0, 16384)); }},
+    {"Image and camera", "--height", nullptr, "N", "Image height in pixels",
+     "an integer in 0..16384 (0 = from the camera)", "0",
+     [](ParseState& st, const Arg& a) { st.options.height = static_cast<int>(parse_int(a, 0, 16384)); }},
+    {"Image and camera", "--camera", nullptr, "N", "Index of the glTF camera to render through", "an integer >= 0", "0",
+     [](ParseState& st, const Arg& a) { st.options.camera = static_cast<int>(parse_int(a, 0, INT_MAX)); }},
+    {"Image and camera", "--aperture", nullptr, "R", "Thin-lens aperture radius in scene units (depth of field)",
+     "a finite number >= 0 (0 = pinhole)", "the camera's, else 0",
+     [](ParseState& st, const Arg& a) { st.options.aperture = parse_real(a, [](double x) { return x >= 0; }); }},
+    {"Image and camera", "--focus-distance", nullptr, "D", "Distance to the plane in focus, in scene units",
+     "a finite number > 0", "the camera's, else the scene centre's distance",
+     [](ParseState& st, const Arg& a) { st.options.focus_distance = parse_real(a, [](double x) { return x > 0; }); }},
+    {"Image and camera", "--filter", nullptr, "NAME",
+     "Pixel filter, importance-sampled: box = the pixel's square, tent = separable tent of radius 1 pixel",
+     "box or tent", "box",
+     [](ParseState& st, const Arg& a) {
+         const std::string v = lower(a.value);
+         if (v == "box") st.options.filter = PixelFilter::Box;
+         else if (v == "tent") st.options.filter = PixelFilter::Tent;
+         else bad_value(a);
+     }},
+    {"Integrator", "--integrator", nullptr, "NAME",
      "Integrator: ppm = progressive photon mapping, sppm = stochastic PPM, pppm = probabilistic PPM "
      "(independent passes), pt = path-traced reference",
      "ppm, sppm, pppm or pt", "ppm",
@@ -197,97 +203,57 @@ const OptionSpec kOptions[] = {
          else if (v == "pt") st.options.integrator = Integrator::PT;
          else bad_value(a);
      }},
-    {"--direct", nullptr, "MODE", "Direct light from photons (density estimate) or by sampling lights at hit points",
-     "photons or sample", "sample",
+    {"Integrator", "--passes", nullptr, "N", "Stop after N passes (with --time: whichever comes first)",
+     "an integer >= 1 (0 = unlimited, with --time)", "64, or unlimited with --time",
+     [](ParseState& st, const Arg& a) {
+         st.options.passes = static_cast<uint64_t>(parse_int(a, 0, INT64_MAX));
+         st.passes_given = true;
+     }},
+    {"Integrator", "--time", nullptr, "SECONDS", "Stop after this much render time", "a number of seconds > 0", "none",
+     [](ParseState& st, const Arg& a) { st.options.time_limit = parse_real(a, [](double x) { return x > 0; }); }},
+    {"Integrator", "--photons", nullptr, "N", "Photons traced per pass", "an integer in 1..2147483647", "200000",
+     [](ParseState& st, const Arg& a) {
+         st.options.photons_per_pass = static_cast<uint32_t>(parse_int(a, 1, INT32_MAX));
+     }},
+    // alpha of Hachisuka et al. 2008 (radius reduction): R^2 <- R^2 (N + alpha M) / (N + M).
+    {"Integrator", "--alpha", nullptr, "A", "Fraction of new photons kept per pass (radius reduction)", "in (0, 1]",
+     "0.7",
+     [](ParseState& st, const Arg& a) { st.options.alpha = parse_real(a, [](double x) { return x > 0 && x <= 1; }); }},
+    {"Integrator", "--radius", nullptr, "R", "Initial gather radius R0 in scene units",
+     "a finite number >= 0 (0 = heuristic)", "0",
+     [](ParseState& st, const Arg& a) { st.options.radius = parse_real(a, [](double x) { return x >= 0; }); }},
+    {"Integrator", "--spp", nullptr, "N", "Hit points (samples) per pixel per pass", "an integer in 1..256", "4",
+     [](ParseState& st, const Arg& a) { st.options.spp = static_cast<int>(parse_int(a, 1, 256)); }},
+    {"Integrator", "--direct", nullptr, "MODE",
+     "Direct light from photons (density estimate) or by sampling lights at hit points", "photons or sample", "sample",
      [](ParseState& st, const Arg& a) {
          const std::string v = lower(a.value);
          if (v == "photons") st.options.direct = DirectLighting::Photons;
          else if (v == "sample") st.options.direct = DirectLighting::Sample;
          else bad_value(a);
      }},
-    {"--spp", nullptr, "N", "Hit points (samples) per pixel per pass", "an integer in 1..256", "4",
-     [](ParseState& st, const Arg& a) { st.options.spp = static_cast<int>(parse_int(a, 1, 256)); }},
-    {"--filter", nullptr, "NAME",
-     "Pixel filter, importance-sampled: box = the pixel's square, tent = separable tent of radius 1 pixel",
-     "box or tent", "box",
-     [](ParseState& st, const Arg& a) {
-         const std::string v = lower(a.value);
-         if (v == "box") st.options.filter = PixelFilter::Box;
-         else if (v == "tent") st.options.filter = PixelFilter::Tent;
-         else bad_value(a);
-     }},
-    {"--aperture", nullptr, "R", "Thin-lens aperture radius in scene units (depth of field)",
-     "a finite number >= 0 (0 = pinhole)", "the camera's, else 0",
-     [](ParseState& st, const Arg& a) { st.options.aperture = parse_real(a, [](double x) { return x >= 0; }); }},
-    {"--focus-distance", nullptr, "D", "Distance to the plane in focus, in scene units", "a finite number > 0",
-     "the camera's, else the scene centre's distance",
-     [](ParseState& st, const Arg& a) { st.options.focus_distance = parse_real(a, [](double x) { return x > 0; }); }},
-    {"--env", nullptr, "FILE",
-     "Light the scene with an equirectangular environment map (top row +Y, centre -Z, u towards +X)",
-     "an .exr or .hdr file", "none", [](ParseState& st, const Arg& a) { st.options.env.file = non_empty(a); }},
-    {"--env-color", nullptr, "R,G,B", "Light the scene with a uniform environment of this radiance",
-     "three numbers >= 0, comma-separated", "none",
-     [](ParseState& st, const Arg& a) {
-         st.options.env.color = parse_rgb(a);
-         st.options.env.has_color = true;
-     }},
-    {"--env-strength", nullptr, "S", "Scale the environment (also the default one)", "a finite number >= 0", "1",
-     [](ParseState& st, const Arg& a) { st.options.env.strength = parse_real(a, [](double x) { return x >= 0; }); }},
-    {"--env-rotate", nullptr, "DEG", "Turn the environment about +Y (right-handed: +X towards -Z)",
-     "a finite number of degrees", "0",
-     [](ParseState& st, const Arg& a) { st.options.env.rotate_degrees = parse_real(a, [](double) { return true; }); }},
-    {"--env-hidden", nullptr, nullptr, "Camera rays that leave the scene see black; the environment still lights it",
-     nullptr, nullptr, [](ParseState& st, const Arg&) { st.options.env.hidden = true; }},
-    {"--no-default-light", nullptr, nullptr,
-     "Refuse a scene without lights instead of lighting it with a uniform white environment of radiance 1", nullptr,
-     nullptr, [](ParseState& st, const Arg&) { st.options.env.default_light = false; }},
-    {"--max-bounces", nullptr, "N", "Longest eye or photon path", "an integer in 1..1024", "16",
+    {"Integrator", "--max-bounces", nullptr, "N", "Longest eye or photon path", "an integer in 1..1024", "16",
      [](ParseState& st, const Arg& a) { st.options.max_bounces = static_cast<int>(parse_int(a, 1, 1024)); }},
-    {"--progressive-output", nullptr, "K", "Also save the images every K passes", "an integer >= 0 (0 = off)", "0",
-     [](ParseState& st, const Arg& a) {
-         st.options.progressive_output = static_cast<uint64_t>(parse_int(a, 0, INT64_MAX));
-     }},
-    {"--checkpoint", nullptr, "FILE",
-     "Save the complete progressive state to FILE (atomically) periodically, on Ctrl-C and at the end", "a file name",
-     "none", [](ParseState& st, const Arg& a) { st.options.checkpoint = non_empty(a); }},
-    {"--checkpoint-every", nullptr, "K", "Save the checkpoint every K passes", "an integer >= 0 (0 = off)", "0",
-     [](ParseState& st, const Arg& a) {
-         st.options.checkpoint_every = static_cast<uint64_t>(parse_int(a, 0, INT64_MAX));
-     }},
-    {"--checkpoint-interval", nullptr, "SECONDS", "Save the checkpoint every SECONDS of rendering",
-     "a number of seconds > 0", "300",
-     [](ParseState& st, const Arg& a) {
-         st.options.checkpoint_interval = parse_real(a, [](double x) { return x > 0; });
-     }},
-    {"--resume", nullptr, "FILE",
-     "Continue the render saved in checkpoint FILE (same scene and image-shaping options; --passes "
-     "counts from the start of the original render, --time this run only)",
-     "a checkpoint file", "none", [](ParseState& st, const Arg& a) { st.options.resume = non_empty(a); }},
-    {"--generic-kernels", nullptr, nullptr,
-     "Build the generic kernels instead of ones specialised for the scene's materials, lights and camera", nullptr,
-     nullptr, [](ParseState& st, const Arg&) { st.options.generic_kernels = true; }},
-    {"--kernel-dir", nullptr, "DIR", "Load kernels from DIR instead of the embedded copies", "a directory", "embedded",
-     [](ParseState& st, const Arg& a) { st.options.kernel_dir = non_empty(a); }},
-    {"--dump-kernel-source", nullptr, "FILE", "Write the assembled kernel source and build options to FILE",
-     "a file name", "none", [](ParseState& st, const Arg& a) { st.options.dump_kernel_source = non_empty(a); }},
+    {"Integrator", "--seed", nullptr, "S", "Random seed", "an integer in 0..18446744073709551615", "1",
+     [](ParseState& st, const Arg& a) { st.options.seed = parse_u64(a); }},
     // Hachisuka, Jarosz and Jensen 2010: per-pixel bias and noise (integrators/error_estimate.h).
-    {"--target-error", nullptr, "E",
+    {"Error estimation", "--target-error", nullptr, "E",
      "Stop once the estimated error is at most E: the 90th percentile over pixels of |L - L_true| / L, "
      "calibrated so that the actual error at the stop is between E/2 and E; --passes and --time still "
      "bound the render (ppm, sppm, pppm)",
      "a number > 0", "none",
      [](ParseState& st, const Arg& a) { st.options.target_error = parse_real(a, [](double x) { return x > 0; }); }},
-    {"--error-bound", nullptr, nullptr,
+    {"Error estimation", "--error-bound", nullptr, nullptr,
      "With --target-error: stop on the conservative bound instead (the 90th percentile of per-pixel bounds "
      "that hold at --confidence; typically 3 to 4 times the actual error)",
      nullptr, nullptr, [](ParseState& st, const Arg&) { st.options.error_bound = true; }},
-    {"--confidence", nullptr, "P", "Confidence of the per-pixel error bounds (with --target-error or --error-output)",
-     "in (0, 1)", "0.95",
+    {"Error estimation", "--confidence", nullptr, "P",
+     "Confidence of the per-pixel error bounds (with --target-error or --error-output)", "in (0, 1)", "0.95",
      [](ParseState& st, const Arg& a) {
          st.options.confidence = parse_real(a, [](double x) { return x > 0 && x < 1; });
          st.confidence_given = true;
      }},
-    {"--error-output", nullptr, "FILE",
+    {"Error estimation", "--error-output", nullptr, "FILE",
      "Write the per-pixel relative error bound to FILE (EXR) and a false-colour PNG beside it; the main "
      "EXR gets an \"error\" layer too (sppm, pppm)",
      "a file name ending in .exr", "none",
@@ -295,9 +261,60 @@ const OptionSpec kOptions[] = {
          if (!ends_with_ci(a.value, ".exr") || a.value.size() <= 4) bad_value(a);
          st.options.error_output = a.value;
      }},
-    {"--help", "-h", nullptr, "Print this help and exit", nullptr, nullptr,
+    {"Lighting", "--env", nullptr, "FILE",
+     "Light the scene with an equirectangular environment map (top row +Y, centre -Z, u towards +X)",
+     "an .exr or .hdr file", "none", [](ParseState& st, const Arg& a) { st.options.env.file = non_empty(a); }},
+    {"Lighting", "--env-color", nullptr, "R,G,B", "Light the scene with a uniform environment of this radiance",
+     "three numbers >= 0, comma-separated", "none",
+     [](ParseState& st, const Arg& a) {
+         st.options.env.color = parse_rgb(a);
+         st.options.env.has_color = true;
+     }},
+    {"Lighting", "--env-strength", nullptr, "S", "Scale the environment (also the default one)", "a finite number >= 0",
+     "1",
+     [](ParseState& st, const Arg& a) { st.options.env.strength = parse_real(a, [](double x) { return x >= 0; }); }},
+    {"Lighting", "--env-rotate", nullptr, "DEG", "Turn the environment about +Y (right-handed: +X towards -Z)",
+     "a finite number of degrees", "0",
+     [](ParseState& st, const Arg& a) { st.options.env.rotate_degrees = parse_real(a, [](double) { return true; }); }},
+    {"Lighting", "--env-hidden", nullptr, nullptr,
+     "Camera rays that leave the scene see black; the environment still lights it", nullptr, nullptr,
+     [](ParseState& st, const Arg&) { st.options.env.hidden = true; }},
+    {"Lighting", "--no-default-light", nullptr, nullptr,
+     "Refuse a scene without lights instead of lighting it with a uniform white environment of radiance 1", nullptr,
+     nullptr, [](ParseState& st, const Arg&) { st.options.env.default_light = false; }},
+    {"Checkpoints", "--checkpoint", nullptr, "FILE",
+     "Save the complete progressive state to FILE (atomically) periodically, on Ctrl-C and at the end", "a file name",
+     "none", [](ParseState& st, const Arg& a) { st.options.checkpoint = non_empty(a); }},
+    {"Checkpoints", "--checkpoint-every", nullptr, "K", "Save the checkpoint every K passes",
+     "an integer >= 0 (0 = off)", "0",
+     [](ParseState& st, const Arg& a) {
+         st.options.checkpoint_every = static_cast<uint64_t>(parse_int(a, 0, INT64_MAX));
+     }},
+    {"Checkpoints", "--checkpoint-interval", nullptr, "SECONDS", "Save the checkpoint every SECONDS of rendering",
+     "a number of seconds > 0", "300",
+     [](ParseState& st, const Arg& a) {
+         st.options.checkpoint_interval = parse_real(a, [](double x) { return x > 0; });
+     }},
+    {"Checkpoints", "--resume", nullptr, "FILE",
+     "Continue the render saved in checkpoint FILE (same scene and image-shaping options; --passes "
+     "counts from the start of the original render, --time this run only)",
+     "a checkpoint file", "none", [](ParseState& st, const Arg& a) { st.options.resume = non_empty(a); }},
+    {"Devices and kernels", "--list-devices", nullptr, nullptr, "List the OpenCL devices and exit", nullptr, nullptr,
+     [](ParseState& st, const Arg&) { st.options.list_devices = true; }},
+    {"Devices and kernels", "--device", nullptr, "SPEC", "Device to render on; repeatable (see --list-devices)",
+     "a device index, cpu, gpu or part of a device name", "automatic",
+     [](ParseState& st, const Arg& a) { st.options.devices.push_back(non_empty(a)); }},
+    {"Devices and kernels", "--generic-kernels", nullptr, nullptr,
+     "Build the generic kernels instead of ones specialised for the scene's materials, lights and camera", nullptr,
+     nullptr, [](ParseState& st, const Arg&) { st.options.generic_kernels = true; }},
+    {"Devices and kernels", "--kernel-dir", nullptr, "DIR", "Load kernels from DIR instead of the embedded copies",
+     "a directory", "embedded", [](ParseState& st, const Arg& a) { st.options.kernel_dir = non_empty(a); }},
+    {"Devices and kernels", "--dump-kernel-source", nullptr, "FILE",
+     "Write the assembled kernel source and build options to FILE", "a file name", "none",
+     [](ParseState& st, const Arg& a) { st.options.dump_kernel_source = non_empty(a); }},
+    {"Other", "--help", "-h", nullptr, "Print this help and exit", nullptr, nullptr,
      [](ParseState& st, const Arg&) { st.options.help = true; }},
-    {"--version", nullptr, nullptr, "Print the version and exit", nullptr, nullptr,
+    {"Other", "--version", nullptr, nullptr, "Print the version and exit", nullptr, nullptr,
      [](ParseState& st, const Arg&) { st.options.version = true; }},
 };
 
@@ -365,73 +382,151 @@ void check_error_options(const ParseState& st) {
     if (!asked && st.confidence_given) throw Error("--confidence: needs --target-error or --error-output");
 }
 
-// Handles args[i], an option; returns the index of the last argument it consumed.
-size_t parse_option(ParseState& st, const std::vector<std::string>& args, size_t i) {
-    const std::string& arg = args[i];
-    // "--name=value", and "-o=value" for the short forms.
-    size_t eq = arg.rfind("--", 0) == 0 ? arg.find('=') : (arg.size() > 2 && arg[2] == '=' ? 2 : std::string::npos);
-    std::string name = arg.substr(0, eq);
-    const OptionSpec* spec = find_option(name);
-    if (!spec) unknown_option(name);
-    std::string value;
-    if (!spec->metavar) {
-        if (eq != std::string::npos) throw Error(name + " takes no value");
-    } else if (eq != std::string::npos) {
-        value = arg.substr(eq + 1);
-    } else if (i + 1 < args.size() && !is_option_token(args[i + 1])) {
-        value = args[++i];
-    } else {
-        throw Error(name + ": missing value " + spec->metavar + " (must be " + spec->range + ")");
+constexpr size_t kHelpColumn = 30, kHelpWidth = 100;
+
+// The environment variables clppm reads, for the end of --help.
+std::string environment_help() {
+    const char* env[][2] = {
+        {"CLPPM_KERNEL_DIR", "load the kernel sources from this folder instead of the embedded copies"},
+        {"CLPPM_CACHE_DIR", "where built programs are cached (else $XDG_CACHE_HOME/clppm, else ~/.cache/clppm)"},
+        {"CLPPM_NO_CACHE", "1: build the kernels every time, cache nothing"},
+        {"CLPPM_BUILD_LOG", "1: print the compiler's log of successful kernel builds"},
+        {"CLPPM_LOCAL_SIZE", "force this work-group size (the image does not change)"},
+        {"CLPPM_PHOTON_BATCH", "trace each pass's photons in batches of at most this many (the image does not change)"},
+        {"POCL_DEVICES", "PoCL's devices, e.g. \"pthread pthread\" for two CPU devices (--device all)"}};
+    std::string out = "Environment:\n";
+    for (const auto& [name, what] : env) {
+        std::string line = std::string("  ") + name;
+        line += std::string(kHelpColumn > line.size() ? kHelpColumn - line.size() : 1, ' ');
+        std::string text = wrapped(what, kHelpWidth - kHelpColumn);
+        for (size_t p = text.find('\n'); p != std::string::npos; p = text.find('\n', p + 1))
+            text.insert(p + 1, std::string(kHelpColumn, ' '));
+        out += line + text + "\n";
     }
-    spec->apply(st, Arg{*spec, name, value});
-    return i;
+    return out;
 }
 
-std::string option_column(const OptionSpec& spec) {
-    std::string col = "  ";
-    col += spec.short_name ? std::string(spec.short_name) + ", " : "    ";
-    col += spec.name;
-    if (spec.metavar) col += std::string(" ") + spec.metavar;
-    return col;
+// The description column of an option: its help, range and default, wrapped.
+std::string option_description(const OptionSpec& spec) {
+    std::string text = spec.help;
+    if (spec.range && spec.metavar) text += std::string(". Must be ") + spec.range;
+    if (spec.default_text) text += std::string(". Default: ") + spec.default_text;
+    return wrapped(text + ".", kHelpWidth - kHelpColumn - 2);
 }
 
-// Appends `text` word-wrapped to `width` columns, continuation lines indented by `indent`.
-void append_wrapped(std::string& out, const std::string& text, size_t indent, size_t width) {
-    std::istringstream words(text);
-    std::string word;
-    size_t column = indent;
-    bool first = true;
-    while (words >> word) {
-        if (!first && column + 1 + word.size() > width) {
-            out += "\n" + std::string(indent, ' ');
-            column = indent;
-        } else if (!first) {
-            out += ' ';
-            ++column;
+// The command line as a CLI11 App over `st`: one option per table entry, its callback the entry's
+// apply, run as each occurrence is parsed (so, as before, left to right, the last one winning and
+// --device collecting every one); the scene files as a positional; render and compare as
+// subcommands (render is the default; compare has its own parser, compare_command).
+std::unique_ptr<CLI::App> make_app(ParseState& st, std::vector<std::string>& scenes) {
+    auto app = std::make_unique<CLI::App>(
+        "Renders SCENE (default: the built-in Cornell box) with progressive photon mapping in OpenCL.\n"
+        "Values may be given as --opt VALUE or --opt=VALUE (-o FILE or -o=FILE); choices ignore case.",
+        "clppm");
+    app->set_help_flag(); // --help is a table entry: it stops parsing, as --version does
+    app->formatter(
+        std::make_shared<HelpFormatter>("Usage: clppm [render] [options] [SCENE.gltf|SCENE.glb]\n"
+                                        "       clppm compare IMAGE.exr REFERENCE.exr [--diff OUT.png] [--box K]\n",
+                                        kHelpColumn));
+    app->add_subcommand("render", "Render a scene (the default: `clppm [options] SCENE` is the same)");
+    app->add_subcommand("compare", "How far an image is from a reference, as JSON (clppm compare --help)");
+    app->add_option("SCENE", scenes, "A .gltf or .glb file; none renders the built-in Cornell box")
+        ->group("Scene")
+        ->type_name("");
+    for (const OptionSpec& spec : kOptions) {
+        const std::string names = spec.short_name ? std::string(spec.short_name) + "," + spec.name : spec.name;
+        st.shown.emplace(&spec, spec.name);
+        const std::string& typed = st.shown.at(&spec); // map nodes stay put
+        CLI::Option* opt;
+        if (spec.metavar) {
+            opt = app->add_option_function<std::string>(
+                names,
+                [&st, &spec, &typed](const std::string& v) {
+                    spec.apply(st, Arg{spec, typed, v});
+                },
+                option_description(spec));
+            opt->type_name(spec.metavar);
+        } else {
+            opt = app->add_flag_function(
+                names,
+                [&st, &spec, &typed](int64_t) {
+                    spec.apply(st, Arg{spec, typed, std::string()});
+                },
+                option_description(spec));
         }
-        out += word;
-        column += word.size();
-        first = false;
+        opt->group(spec.group)->trigger_on_parse()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
     }
-    out += '\n';
+    app->footer(environment_help());
+    return app;
 }
 
-} // namespace
-
-Options parse_options(const std::vector<std::string>& args) {
-    ParseState st;
+// What CLI11 leaves to us, checked before it parses, left to right, so that the messages are
+// clppm's: an unknown option (with a suggestion), a flag given a value, a missing value (an
+// option where the value should be is not taken as the value: "--passes --quiet"), and -h,
+// --help or --version, which end the parse (what follows is not looked at). The result is the
+// arguments in one canonical form for CLI11: "--name VALUE" or "--flag", the scene files last
+// after "--" (so no file name is taken for an option or a subcommand).
+std::vector<std::string> canonical_arguments(ParseState& st, const std::vector<std::string>& args) {
+    std::vector<std::string> out, scenes;
     bool options_ended = false; // after "--" everything is a scene file
     for (size_t i = 0; i < args.size(); ++i) {
         const std::string& arg = args[i];
         if (!options_ended && arg == "--") {
             options_ended = true;
-        } else if (options_ended || arg.size() < 2 || arg[0] != '-') {
-            set_scene(st, arg);
-        } else {
-            i = parse_option(st, args, i);
-            if (st.options.help || st.options.version) return st.options;
+            continue;
         }
+        if (options_ended || arg.size() < 2 || arg[0] != '-') {
+            scenes.push_back(arg);
+            continue;
+        }
+        // "--name=value", and "-o=value" for the short forms.
+        const size_t eq =
+            arg.rfind("--", 0) == 0 ? arg.find('=') : (arg.size() > 2 && arg[2] == '=' ? 2 : std::string::npos);
+        const std::string name = arg.substr(0, eq);
+        const OptionSpec* spec = find_option(name);
+        if (!spec) unknown_option(name);
+        if (spec->name == std::string("--help") || spec->name == std::string("--version")) {
+            if (eq != std::string::npos) throw Error(name + " takes no value");
+            (spec->name == std::string("--help") ? st.options.help : st.options.version) = true;
+            break;
+        }
+        out.push_back(spec->name);
+        if (!spec->metavar) {
+            if (eq != std::string::npos) throw Error(name + " takes no value");
+        } else if (eq != std::string::npos) {
+            out.push_back(arg.substr(eq + 1));
+        } else if (i + 1 < args.size() && !is_option_token(args[i + 1])) {
+            out.push_back(args[++i]);
+        } else {
+            throw Error(name + ": missing value " + spec->metavar + " (must be " + spec->range + ")");
+        }
+        // The spelling the messages name; CLI11 applies the occurrences in order, so the
+        // spelling of each would need a token of its own: the last one typed is a fair name.
+        st.shown[spec] = name;
     }
+    out.push_back("--");
+    out.insert(out.end(), scenes.begin(), scenes.end());
+    return out;
+}
+
+} // namespace
+
+Options parse_options(const std::vector<std::string>& given) {
+    std::vector<std::string> args = given;
+    if (!args.empty() && args[0] == "render") args.erase(args.begin()); // `clppm render ...` = `clppm ...`
+    ParseState st;
+    std::vector<std::string> scenes;
+    std::unique_ptr<CLI::App> app = make_app(st, scenes);
+    std::vector<std::string> tokens = canonical_arguments(st, args);
+    std::reverse(tokens.begin(), tokens.end()); // CLI11 takes a vector last argument first
+    try {
+        app->parse(tokens);
+    } catch (const CLI::ParseError& e) {
+        // canonical_arguments leaves CLI11 nothing to refuse; should it, the message is one line.
+        throw Error(std::string("command line: ") + e.what());
+    }
+    for (const std::string& scene : scenes) set_scene(st, scene);
+    if (st.options.help || st.options.version) return st.options;
     resolve_limits(st);
     check_error_options(st);
     return st.options;
@@ -446,39 +541,9 @@ Options parse_options(int argc, char** argv) {
 }
 
 std::string usage() {
-    const size_t indent = 30, width = 100;
-    std::string out = "Usage: clppm [options] [SCENE.gltf|SCENE.glb]\n"
-                      "       clppm compare IMAGE.exr REFERENCE.exr [--diff OUT.png] [--box K]\n"
-                      "Renders SCENE (default: the built-in Cornell box) with progressive photon mapping in OpenCL.\n"
-                      "Values may be given as --opt VALUE or --opt=VALUE (-o FILE or -o=FILE).\n\n"
-                      "Commands:\n"
-                      "  compare                     How far an image is from a reference, as JSON "
-                      "(clppm compare --help)\n\nOptions:\n";
-    for (const OptionSpec& spec : kOptions) {
-        std::string col = option_column(spec);
-        out += col;
-        out += col.size() + 2 <= indent ? std::string(indent - col.size(), ' ') : "\n" + std::string(indent, ' ');
-        std::string text = spec.help;
-        if (spec.range && spec.metavar) text += std::string(". Must be ") + spec.range;
-        if (spec.default_text) text += std::string(". Default: ") + spec.default_text;
-        text += ".";
-        append_wrapped(out, text, indent, width);
-    }
-    out += "\nEnvironment:\n";
-    const char* env[][2] = {
-        {"CLPPM_KERNEL_DIR", "load the kernel sources from this folder instead of the embedded copies"},
-        {"CLPPM_CACHE_DIR", "where built programs are cached (else $XDG_CACHE_HOME/clppm, else ~/.cache/clppm)"},
-        {"CLPPM_NO_CACHE", "1: build the kernels every time, cache nothing"},
-        {"CLPPM_BUILD_LOG", "1: print the compiler's log of successful kernel builds"},
-        {"CLPPM_LOCAL_SIZE", "force this work-group size (the image does not change)"},
-        {"CLPPM_PHOTON_BATCH", "trace each pass's photons in batches of at most this many (the image does not change)"},
-        {"POCL_DEVICES", "PoCL's devices, e.g. \"pthread pthread\" for two CPU devices (--device all)"}};
-    for (const auto& [name, what] : env) {
-        std::string col = std::string("  ") + name;
-        out += col + std::string(indent > col.size() ? indent - col.size() : 1, ' ');
-        append_wrapped(out, what, indent, width);
-    }
-    return out;
+    ParseState st;
+    std::vector<std::string> scenes;
+    return make_app(st, scenes)->help();
 }
 
 } // namespace clppm

@@ -9,7 +9,6 @@
 #include <string>
 #include <vector>
 
-#include "io/stats_json.h"
 #include "util/error.h"
 
 namespace clppm {
@@ -119,79 +118,6 @@ Image box_filter(const Image& a, int k) {
                 b.rgb[(size_t(y / k) * size_t(b.width) + size_t(x / k)) * 3 + size_t(c)] +=
                     a.rgb[(size_t(y) * size_t(a.width) + size_t(x)) * 3 + size_t(c)] / float(k * k);
     return b;
-}
-
-std::string compare_usage() {
-    return "Usage: clppm compare IMAGE.exr REFERENCE.exr [--diff OUT.png] [--box K]\n"
-           "Prints, as JSON, how far IMAGE is from REFERENCE: both means and their ratio, the relative MSE\n"
-           "(per pixel and channel, (a - b)^2 / (b^2 + 0.01)), RMSE, relative RMSE, the RMSE of the sRGB\n"
-           "codes, p90_rel_error (the 90th percentile over pixels of |Y_a - Y_b| / max(Y_b, 1% of the mean Y_b)\n"
-           "on luminance: the measure --target-error states) and NaN/Inf counts.\n\n"
-           "  --diff OUT.png   also write a false-colour difference image\n"
-           "  --box K          also the relative MSE of both images box-filtered over K x K pixels\n"
-           "                   (box_rel_mse: bias more than noise); K in 1..1024\n"
-           "  -h, --help       print this help and exit\n";
-}
-
-int compare_command(int argc, char** argv) {
-    const char* usage = " (usage: clppm compare A.exr REFERENCE.exr [--diff OUT.png] [--box K])";
-    std::vector<std::string> files;
-    std::string diff_png;
-    int box = 0;
-    for (int i = 0; i < argc; ++i) {
-        std::string s = argv[i];
-        if (s == "--help" || s == "-h") {
-            std::fputs(compare_usage().c_str(), stdout);
-            return 0;
-        }
-        if (s == "--diff") {
-            if (i + 1 >= argc) throw Error("compare --diff: missing value OUT.png");
-            diff_png = argv[++i];
-            const size_t n = diff_png.size();
-            std::string tail = n >= 4 ? diff_png.substr(n - 4) : "";
-            for (char& ch : tail) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
-            if (n <= 4 || tail != ".png")
-                throw Error("compare --diff " + diff_png +
-                            ": must be a file name ending in .png (it is written as PNG)");
-        } else if (s == "--box") {
-            const std::string v = i + 1 < argc ? argv[++i] : "";
-            char* end = nullptr;
-            const long k = std::strtol(v.c_str(), &end, 10);
-            if (v.empty() || *end != '\0' || k < 1 || k > 1024)
-                throw Error("compare --box " + (v.empty() ? std::string("''") : v) + ": must be an integer in 1..1024");
-            box = int(k);
-        } else if (s.rfind("--", 0) == 0) {
-            throw Error("compare: unknown option " + s + usage);
-        } else {
-            files.push_back(s);
-        }
-    }
-    if (files.size() != 2) throw Error(std::string("compare: expected two EXR files") + usage);
-    Image a = read_exr(files[0]), b = read_exr(files[1]);
-    ImageDifference d = compare_images(a, b);
-    if (box > 0 && (a.width < box || a.height < box))
-        throw Error("compare --box " + std::to_string(box) + ": larger than the images");
-    if (!diff_png.empty()) write_png(diff_png, difference_image(a, b));
-    Json j;
-    j["image"] = files[0];
-    j["reference"] = files[1];
-    j["pixels"] = d.pixels;
-    j["nonfinite_image"] = d.nonfinite_a;
-    j["nonfinite_reference"] = d.nonfinite_b;
-    j["mean_image"] = d.mean_a;
-    j["mean_reference"] = d.mean_b;
-    j["mean_ratio"] = d.mean_b > 0 ? d.mean_a / d.mean_b : 0.0;
-    j["rel_mse"] = d.rel_mse;
-    j["rmse"] = d.rmse;
-    j["rel_rmse"] = d.rel_rmse;
-    j["rmse_srgb"] = d.rmse_srgb;
-    j["p90_rel_error"] = d.p90_rel_error;
-    if (box > 0) {
-        j["box"] = box;
-        j["box_rel_mse"] = compare_images(box_filter(a, box), box_filter(b, box)).rel_mse;
-    }
-    std::fputs(to_json_text(j).c_str(), stdout);
-    return 0;
 }
 
 } // namespace clppm

@@ -1,5 +1,5 @@
-// `clppm compare A.exr B.exr`: how far an image is from a reference, in the metrics the
-// benchmarks report (relative MSE of the radiance, RMSE of the tonemapped image), with a count of
+// How far an image is from a reference (`clppm compare`, cli/compare_command.h), in the metrics
+// the benchmarks report (relative MSE of the radiance, RMSE of the tonemapped image), with a count of
 // non-finite pixels and an optional false-colour difference image.
 #pragma once
 #include <string>
@@ -32,13 +32,5 @@ Image difference_image(const Image& a, const Image& b, double scale = 0);
 // The mean over k x k blocks of pixels (a remainder of fewer than k rows or columns is left out):
 // compared with a reference, it measures bias rather than pixel noise.
 Image box_filter(const Image& a, int k);
-
-// The compare command: args are [A.exr, B.exr, optional --diff OUT.png, optional --box K];
-// prints the metrics as JSON on stdout (with --box also box_rel_mse, the relative MSE of the
-// images box-filtered over K x K pixels); returns the exit status.
-// The compare command's help text (clppm compare --help).
-std::string compare_usage();
-
-int compare_command(int argc, char** argv);
 
 } // namespace clppm
