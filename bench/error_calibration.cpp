@@ -33,14 +33,14 @@ struct Args {
     std::string out = "error_calibration", device, ref_cache, integrators = "sppm,pppm,ppm";
     std::string scenes = "cornell_box,caustic";
     unsigned size = 48;
-    uint64_t photons = 50000, passes = 200, ref_passes = 1600, ref_photon_factor = 4;
+    uint64_t photons = 50000, passes = 200, ref_passes = 1600, ref_photon_factor = 4, pt_pass_factor = 16;
     double confidence = 0.95;
 };
 
 Integrator parse_integrator(const std::string& name) {
-    for (Integrator i : {Integrator::PPM, Integrator::SPPM, Integrator::PPPM})
+    for (Integrator i : {Integrator::PPM, Integrator::SPPM, Integrator::PPPM, Integrator::PT})
         if (name == to_string(i)) return i;
-    throw Error("--integrators: " + name + " is not ppm, sppm or pppm");
+    throw Error("--integrators: " + name + " is not ppm, sppm, pppm or pt");
 }
 
 // A file name part for a scene name or path.
@@ -87,6 +87,7 @@ int main(int argc, char** argv) {
         else if (k == "--ref-cache") a.ref_cache = next();
         else if (k == "--ref-photon-factor") a.ref_photon_factor = std::stoull(next());
         else if (k == "--integrators") a.integrators = next();
+        else if (k == "--pt-pass-factor") a.pt_pass_factor = std::stoull(next());
         else if (k == "--scenes") a.scenes = next();
         else if (k == "--quick") a.size = 16, a.photons = 5000, a.passes = 8, a.ref_passes = 32;
         else {
@@ -130,7 +131,15 @@ int main(int argc, char** argv) {
                 if (s.integrator == Integrator::PPM) s.spp = 4;
                 Render r(device, scene, s, false, true);
                 const double t0 = now_s();
-                for (uint64_t p = 1; p <= a.passes; ++p) {
+                // The path tracer's passes are one sample per pixel each, far cheaper than a photon
+                // pass: it runs --pt-pass-factor times as many (the table shows its real count).
+                const uint64_t factor = s.integrator == Integrator::PT ? a.pt_pass_factor : 1;
+                for (uint64_t q = 1; q <= a.passes * factor; ++q) {
+                    const uint64_t p = (q + factor - 1) / factor;
+                    if (q % factor) {
+                        r.integ->run_pass();
+                        continue;
+                    }
                     r.integ->run_pass();
                     const bool sample = p == a.passes || (p >= 4 && (p & (p - 1)) == 0); // 4, 8, 16, ...
                     if (!sample) continue;
@@ -144,7 +153,7 @@ int main(int argc, char** argv) {
                         ratio.push_back(e.absolute[i] > 0 ? actual[i] / e.absolute[i] : 0.0);
                     }
                     std::nth_element(ratio.begin(), ratio.begin() + ratio.size() / 2, ratio.end());
-                    rows.push_back({scene_tag(scene), name, p, now_s() - t0, e.image_error,
+                    rows.push_back({scene_tag(scene), name, r.integ->stats().passes, now_s() - t0, e.image_error,
                                     expected_image_error(e.sigma, {}, e.luminance),
                                     expected_image_error(e.sigma, e.bias_clean, e.luminance), e.expected_error,
                                     image_error(relative_bounds(actual, ref_y)), double(within) / double(actual.size()),
@@ -153,8 +162,8 @@ int main(int argc, char** argv) {
                     std::fprintf(stderr,
                                  "%s %s pass %llu: bound %.4f noise %.4f (+bias %.4f) calibrated %.4f actual %.4f "
                                  "(calibrated/actual %.2f)\n",
-                                 scene_tag(scene).c_str(), name.c_str(), (unsigned long long)p, w.bound, w.expected,
-                                 w.expected_clean, w.calibrated, w.actual, w.calibrated / w.actual);
+                                 scene_tag(scene).c_str(), name.c_str(), (unsigned long long)w.pass, w.bound,
+                                 w.expected, w.expected_clean, w.calibrated, w.actual, w.calibrated / w.actual);
                 }
             }
         }

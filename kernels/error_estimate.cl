@@ -12,16 +12,9 @@
  * 24/pi (2|t|^2 - 1) (K and K' vanish at |t| = 1, so no boundary term). Per pixel for SPPM and
  * PPPM (one visible point each) and for PPM (a pixel's spp fixed hit points); only launched when
  * error estimation is on. */
+#include "error_bound.cl"
 #include "gather_common.cl"
 #include "radiance_estimate.cl"
-
-#define ERROR_LUMINANCE_R 0.2126
-#define ERROR_LUMINANCE_G 0.7152
-#define ERROR_LUMINANCE_B 0.0722
-
-double error_luminance(double r, double g, double b) {
-    return ERROR_LUMINANCE_R * r + ERROR_LUMINANCE_G * g + ERROR_LUMINANCE_B * b;
-}
 
 /* A second gather over this pass's grid, with gather's arguments and photons: per hit point the
  * sum over accepted photons of (2 rho^2 - 1) Y(w f Phi_p), rho = |x_p - x| / R, in fixed point
@@ -114,24 +107,6 @@ __kernel void error_update(__global const PassFlux* pass, __global const long* l
     e->m2_l += d * (L - e->mean_l);
     e->mean_bias += db / k;
     e->m2_bias += db * (bias_j - e->mean_bias);
-}
-
-/* Per pixel, for the Student-t quantile t of the pass count: (E_i, L_i, B_i, t sigma_i) and
- * (B_i with its own noise taken out, sigma_i). sigma_i = sqrt(V_i / i) is the standard deviation
- * of the mean L_i; E_i is +Inf until two passes give a variance. The de-noised bias:
- * E[B_est^2] = B^2 + Var(B_est), so |B| ~ sqrt(max(0, B_est^2 - Var(B_est))), with the sign of
- * B_est. */
-__kernel void error_bound(__global const ErrorStats* es, uint n, double t, __global float8* out) {
-    uint i = get_global_id(0);
-    if (i >= n) return;
-    __global const ErrorStats* e = &es[i];
-    const double bias = e->mean_bias;
-    const double sigma = e->n >= 2.0 ? sqrt(e->m2_l / (e->n - 1.0) / e->n) : INFINITY;
-    const double var_bias = e->n >= 2.0 ? e->m2_bias / (e->n - 1.0) / e->n : INFINITY;
-    const double bias_clean = copysign(sqrt(fmax(0.0, bias * bias - var_bias)), bias);
-    const double noise = t * sigma;
-    out[i] = (float8)((float)(fabs(bias) + noise), (float)e->mean_l, (float)bias, (float)noise, (float)bias_clean,
-                      (float)sigma, 0.0f, 0.0f);
 }
 
 /* PPM: the spread of a pixel's fixed samples. Its spp samples are frozen for the whole render,

@@ -7,6 +7,7 @@
 #include "rng.cl"
 #include "camera.cl"
 #include "next_event.cl"
+#include "pt_error.cl"
 
 __kernel void path_trace(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong pass, uint num_pixels,
                          __global double* accum) {

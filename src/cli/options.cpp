@@ -240,7 +240,7 @@ const OptionSpec kOptions[] = {
     {"Error estimation", "--target-error", nullptr, "E",
      "Stop once the estimated error is at most E: the 90th percentile over pixels of |L - L_true| / L, "
      "calibrated so that the actual error at the stop is between E/2 and E; --passes and --time still "
-     "bound the render (ppm, sppm, pppm)",
+     "bound the render",
      "a number > 0", "none",
      [](ParseState& st, const Arg& a) { st.options.target_error = parse_real(a, [](double x) { return x > 0; }); }},
     {"Error estimation", "--error-bound", nullptr, nullptr,
@@ -255,7 +255,7 @@ const OptionSpec kOptions[] = {
      }},
     {"Error estimation", "--error-output", nullptr, "FILE",
      "Write the per-pixel relative error bound to FILE (EXR) and a false-colour PNG beside it; the main "
-     "EXR gets an \"error\" layer too (sppm, pppm)",
+     "EXR gets an \"error\" layer too",
      "a file name ending in .exr", "none",
      [](ParseState& st, const Arg& a) {
          if (!ends_with_ci(a.value, ".exr") || a.value.size() <= 4) bad_value(a);
@@ -370,14 +370,11 @@ void resolve_limits(ParseState& st) {
     if (!st.passes_given) o.passes = o.time_limit > 0 ? 0 : 64;
 }
 
-// The photon-mapping integrators estimate their error; --confidence means nothing without an
-// estimate, --error-bound nothing without a target.
+// Every integrator estimates its error; --confidence means nothing without an estimate,
+// --error-bound nothing without a target.
 void check_error_options(const ParseState& st) {
     const Options& o = st.options;
     const char* asked = o.target_error > 0 ? "--target-error" : !o.error_output.empty() ? "--error-output" : nullptr;
-    if (asked && o.integrator == Integrator::PT)
-        throw Error(std::string(asked) + ": error estimation needs a photon-mapping integrator (ppm, sppm or pppm), "
-                                         "not pt");
     if (o.error_bound && !(o.target_error > 0)) throw Error("--error-bound: needs --target-error");
     if (!asked && st.confidence_given) throw Error("--confidence: needs --target-error or --error-output");
 }

@@ -146,15 +146,16 @@ double image_error(std::vector<float> v, double percentile) {
 ErrorEstimator::ErrorEstimator(const DeviceContext& dc, const cl::Program& program, uint32_t num_pixels,
                                IntegratorStats& stats, const PixelHitpoints& layout)
     : dc_(dc), stats_(stats), n_(num_pixels), layout_(layout) {
-    k_gather_ = cl::Kernel(program, "error_gather");
-    k_reset_ = cl::Kernel(program, "error_reset");
-    k_update_ = cl::Kernel(program, "error_update");
+    if (!layout_.path_traced) k_gather_ = cl::Kernel(program, "error_gather");
+    k_reset_ = cl::Kernel(program, layout_.path_traced ? "pt_error_reset" : "error_reset");
+    k_update_ = cl::Kernel(program, layout_.path_traced ? "pt_error_update" : "error_update");
     k_bound_ = cl::Kernel(program, "error_bound");
     auto make = [&](size_t bytes) {
         stats_.device_bytes += bytes;
         return cl::Buffer(dc_.context, CL_MEM_READ_WRITE, std::max<size_t>(bytes, 1));
     };
-    laplacian_ = make(size_t(layout_.num_hitpoints ? layout_.num_hitpoints : n_) * sizeof(cl_long));
+    if (!layout_.path_traced)
+        laplacian_ = make(size_t(layout_.num_hitpoints ? layout_.num_hitpoints : n_) * sizeof(cl_long));
     error_stats_ = make(size_t(n_) * sizeof(dev::ErrorStats));
     bound_ = make(size_t(n_) * sizeof(cl_float8));
 }
@@ -163,6 +164,20 @@ void ErrorEstimator::reset(const cl::Buffer& hit_stats) {
     set_args(k_reset_, 0, hit_stats, layout_.pixel_first, cl_uint(n_), error_stats_);
     enqueue_1d(dc_.queue, k_reset_, n_);
     passes_ = 0;
+}
+
+void ErrorEstimator::reset_accum(const cl::Buffer& accum) {
+    set_args(k_reset_, 0, accum, cl_uint(n_), error_stats_);
+    enqueue_1d(dc_.queue, k_reset_, n_);
+    passes_ = 0;
+}
+
+void ErrorEstimator::update_accum(const cl::Buffer& accum) {
+    set_args(k_update_, 0, accum, cl_uint(n_), error_stats_);
+    cl::Event ev;
+    enqueue_1d(dc_.queue, k_update_, n_, &ev);
+    add_event_time(stats_, "error_estimate", ev);
+    ++passes_;
 }
 
 void ErrorEstimator::update(const cl::Buffer& passflux, const cl::Buffer& hitpoints, const cl::Buffer& hit_stats,

@@ -45,9 +45,10 @@ double c4(uint64_t n);
 double image_error(std::vector<float> v, double percentile = kErrorPercentile);
 
 // The device side: the Laplacian gather's output (per hit point), the per-pixel ErrorStats and
-// the bound image. A pixel's hit points: SPPM's visible point p (no pixel_first), or PPM's
+// the bound image; for the path tracer only the statistics of its passes (unbiased: no bias term). A pixel's hit points: SPPM's visible point p (no pixel_first), or PPM's
 // [pixel_first[p], pixel_first[p + 1]) with `spp` samples per pixel and its constant seen emission.
 struct PixelHitpoints {
+    bool path_traced = false;   // the path tracer: no hit points, statistics from its running sums
     uint32_t num_hitpoints = 0; // 0: one per pixel
     cl::Buffer pixel_first;     // PPM: num_pixels + 1 offsets
     cl::Buffer emitted;         // PPM: float4 seen emission summed over the pixel's samples
@@ -65,6 +66,9 @@ public:
 
     // Fresh statistics (at the start, or resuming a checkpoint that has none).
     void reset(const cl::Buffer& hit_stats);
+    // The path tracer: fresh statistics from its running RGB sums, and a pass's growth of them.
+    void reset_accum(const cl::Buffer& accum);
+    void update_accum(const cl::Buffer& accum);
     // After a pass's gathers and before ppm_update: hit_stats still hold this pass's radii.
     // global_r2 > 0 is PPPM's radius; power_per_photon = total power / photons per pass.
     void update(const cl::Buffer& passflux, const cl::Buffer& hitpoints, const cl::Buffer& hit_stats, double global_r2,

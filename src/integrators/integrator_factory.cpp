@@ -57,10 +57,10 @@ IntegratorMemory integrator_memory(const RenderSettings& settings, unsigned widt
                                    bool error_estimation) {
     const size_t pixels = size_t(width) * height;
     switch (settings.integrator) {
-    case Integrator::PPM: return PpmIntegrator::memory_needed(settings, pixels);
+    case Integrator::PPM: return PpmIntegrator::memory_needed(settings, pixels, error_estimation);
     case Integrator::SPPM:
     case Integrator::PPPM: return SppmIntegrator::memory_needed(pixels, error_estimation);
-    case Integrator::PT: return PtIntegrator::memory_needed(pixels);
+    case Integrator::PT: return PtIntegrator::memory_needed(pixels, error_estimation);
     }
     throw Error("unknown integrator");
 }

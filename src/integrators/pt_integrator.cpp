@@ -1,14 +1,17 @@
 #include "integrators/pt_integrator.h"
 
+#include <algorithm>
+
 #include "device/kernel_launch.h"
 #include "integrators/checkpoint_checks.h"
 #include "integrators/film.h"
+#include "util/error.h"
 
 namespace clppm {
 
 PtIntegrator::PtIntegrator(const DeviceContext& dc, const DeviceScene& scene, const RenderSettings& settings,
                            const cl::Program& program)
-    : dc_(dc), scene_(scene), settings_(settings) {
+    : dc_(dc), scene_(scene), settings_(settings), program_(program) {
     k_trace_ = cl::Kernel(program, "path_trace");
     k_film_ = cl::Kernel(program, "pt_film");
     num_pixels_ = scene.camera.width * scene.camera.height;
@@ -20,8 +23,26 @@ constexpr size_t kAccumBytesPerPixel = 3 * sizeof(cl_double); // the running RGB
 
 } // namespace
 
-IntegratorMemory PtIntegrator::memory_needed(size_t pixels) {
-    return {pixels * (kAccumBytesPerPixel + kFilmBytesPerPixel), pixels * kAccumBytesPerPixel};
+IntegratorMemory PtIntegrator::memory_needed(size_t pixels, bool error_estimation) {
+    IntegratorMemory m{pixels * (kAccumBytesPerPixel + kFilmBytesPerPixel), pixels * kAccumBytesPerPixel};
+    if (error_estimation) {
+        m.bytes += pixels * (sizeof(dev::ErrorStats) + sizeof(cl_float8));
+        m.largest_buffer = std::max(m.largest_buffer, pixels * sizeof(dev::ErrorStats));
+    }
+    return m;
+}
+
+void PtIntegrator::enable_error_estimation() {
+    if (errors_) return;
+    PixelHitpoints layout;
+    layout.path_traced = true;
+    errors_ = std::make_unique<ErrorEstimator>(dc_, program_, num_pixels_, stats_, layout);
+    if (accum_()) errors_->reset_accum(accum_); // after prepare(): the estimate starts here
+}
+
+ErrorImage PtIntegrator::error_estimate(double confidence) {
+    if (!errors_) throw Error("error estimation is not enabled");
+    return errors_->estimate(confidence, int(scene_.camera.width), int(scene_.camera.height));
 }
 
 void PtIntegrator::prepare() {
@@ -31,6 +52,7 @@ void PtIntegrator::prepare() {
     image_buf_ = cl::Buffer(dc_.context, CL_MEM_WRITE_ONLY, size_t(num_pixels_) * kFilmBytesPerPixel);
     stats_.device_bytes = bytes + size_t(num_pixels_) * kFilmBytesPerPixel;
     stats_.hitpoints = num_pixels_;
+    if (errors_) errors_->reset_accum(accum_);
 }
 
 void PtIntegrator::run_pass() {
@@ -39,6 +61,7 @@ void PtIntegrator::run_pass() {
     cl::Event ev;
     enqueue_1d(dc_.queue, k_trace_, num_pixels_, &ev);
     add_event_time(stats_, "path_trace", ev);
+    if (errors_) errors_->update_accum(accum_);
     collect_event_times(stats_);
     stats_.passes += 1;
 }
@@ -46,6 +69,7 @@ void PtIntegrator::run_pass() {
 void PtIntegrator::save(Checkpoint& ck) {
     IntegratorBase::save(ck);
     ck.put("accum", read_buffer<cl_double>(dc_.queue, accum_, size_t(num_pixels_) * 3));
+    if (errors_) ck.put("error_stats2", errors_->read());
 }
 
 void PtIntegrator::restore(const Checkpoint& ck) {
@@ -54,6 +78,12 @@ void PtIntegrator::restore(const Checkpoint& ck) {
     std::vector<cl_double> accum = ck.get<cl_double>("accum", size_t(num_pixels_) * 3);
     check_radiance_sums(ck, accum, "accum");
     write_buffer(dc_.queue, accum_, accum);
+    if (!errors_) return;
+    // A checkpoint saved without error estimation: the estimate starts over from here.
+    auto blob = ck.blobs.find("error_stats2");
+    if (blob != ck.blobs.end() && blob->second.size() == size_t(num_pixels_) * sizeof(dev::ErrorStats))
+        errors_->write(ck.get<dev::ErrorStats>("error_stats2", num_pixels_));
+    else errors_->reset_accum(accum_);
 }
 
 Image PtIntegrator::image() {

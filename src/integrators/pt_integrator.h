@@ -1,6 +1,9 @@
 // Path tracing on the same scene kernels: one sample per pixel per pass, for equal-time
 // comparisons with photon mapping and for cross-checking diffuse scenes.
 #pragma once
+#include <memory>
+
+#include "integrators/error_estimate.h"
 #include "integrators/integrator.h"
 #include "integrators/render_settings.h"
 #include "scene/device_scene.h"
@@ -17,16 +20,23 @@ public:
     Image image() override;
     void save(Checkpoint& ck) override;
     void restore(const Checkpoint& ck) override;
+    // Progressive error estimation from the spread of the passes' samples (no bias: the path
+    // tracer is unbiased), from the next pass on.
+    bool estimates_error() const override { return true; }
+    void enable_error_estimation() override;
+    ErrorImage error_estimate(double confidence) override;
 
-    // The buffers prepare() allocates for `pixels` pixels.
-    static IntegratorMemory memory_needed(size_t pixels);
+    // The buffers prepare() (and enable_error_estimation()) allocate for `pixels` pixels.
+    static IntegratorMemory memory_needed(size_t pixels, bool error_estimation = false);
 
 private:
     const DeviceContext& dc_;
     const DeviceScene& scene_;
     RenderSettings settings_;
     cl::Kernel k_trace_, k_film_;
+    cl::Program program_; // for the error estimation kernels
     cl::Buffer accum_, image_buf_;
+    std::unique_ptr<ErrorEstimator> errors_;
     uint32_t num_pixels_ = 0;
 };
 

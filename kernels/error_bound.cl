@@ -1,0 +1,35 @@
+/* error_bound.cl: what every integrator's progressive error estimate shares (error_estimate.cl for
+ * the photon-mapping ones, pt_error.cl for the path tracer): the luminance the estimate works on
+ * and the per-pixel bound from the statistics (ErrorStats, kernels/shared_types.h). */
+#ifndef CLPPM_ERROR_BOUND_CL
+#define CLPPM_ERROR_BOUND_CL
+
+#include "shared_types.h"
+
+#define ERROR_LUMINANCE_R 0.2126
+#define ERROR_LUMINANCE_G 0.7152
+#define ERROR_LUMINANCE_B 0.0722
+
+double error_luminance(double r, double g, double b) {
+    return ERROR_LUMINANCE_R * r + ERROR_LUMINANCE_G * g + ERROR_LUMINANCE_B * b;
+}
+
+/* Per pixel, for the Student-t quantile t of the pass count: (E_i, L_i, B_i, t sigma_i) and
+ * (B_i with its own noise taken out, sigma_i). sigma_i = sqrt(V_i / i) is the standard deviation
+ * of the mean L_i; E_i is +Inf until two passes give a variance. The de-noised bias:
+ * E[B_est^2] = B^2 + Var(B_est), so |B| ~ sqrt(max(0, B_est^2 - Var(B_est))), with the sign of
+ * B_est. */
+__kernel void error_bound(__global const ErrorStats* es, uint n, double t, __global float8* out) {
+    uint i = get_global_id(0);
+    if (i >= n) return;
+    __global const ErrorStats* e = &es[i];
+    const double bias = e->mean_bias;
+    const double sigma = e->n >= 2.0 ? sqrt(e->m2_l / (e->n - 1.0) / e->n) : INFINITY;
+    const double var_bias = e->n >= 2.0 ? e->m2_bias / (e->n - 1.0) / e->n : INFINITY;
+    const double bias_clean = copysign(sqrt(fmax(0.0, bias * bias - var_bias)), bias);
+    const double noise = t * sigma;
+    out[i] = (float8)((float)(fabs(bias) + noise), (float)e->mean_l, (float)bias, (float)noise, (float)bias_clean,
+                      (float)sigma, 0.0f, 0.0f);
+}
+
+#endif
