@@ -32,6 +32,7 @@ namespace {
 struct Args {
     std::string out = "error_calibration", device, ref_cache, integrators = "sppm,pppm,ppm";
     std::string scenes = "cornell_box,caustic";
+    std::string ref_integrator = "sppm"; // pt: an unbiased reference (its passes are one sample each)
     unsigned size = 48;
     uint64_t photons = 50000, passes = 200, ref_passes = 1600, ref_photon_factor = 4, pt_pass_factor = 16;
     double confidence = 0.95;
@@ -88,6 +89,7 @@ int main(int argc, char** argv) {
         else if (k == "--ref-photon-factor") a.ref_photon_factor = std::stoull(next());
         else if (k == "--integrators") a.integrators = next();
         else if (k == "--pt-pass-factor") a.pt_pass_factor = std::stoull(next());
+        else if (k == "--ref-integrator") a.ref_integrator = next();
         else if (k == "--scenes") a.scenes = next();
         else if (k == "--quick") a.size = 16, a.photons = 5000, a.passes = 8, a.ref_passes = 32;
         else {
@@ -103,14 +105,15 @@ int main(int argc, char** argv) {
             // The reference: SPPM with ref_photon_factor times the photons per pass and another
             // seed, optionally cached as an EXR (it dominates the run time).
             RenderSettings s;
-            s.integrator = Integrator::SPPM;
+            s.integrator = parse_integrator(a.ref_integrator);
             s.width = s.height = a.size;
             s.photons = a.photons * a.ref_photon_factor;
             s.seed = 1000;
             const std::string cache = a.ref_cache.empty()
                                           ? std::string()
-                                          : a.ref_cache + "/" + scene_tag(scene) + "_" + std::to_string(a.size) + "_" +
-                                                std::to_string(s.photons) + "x" + std::to_string(a.ref_passes) + ".exr";
+                                          : a.ref_cache + "/" + scene_tag(scene) + "_" + a.ref_integrator + "_" +
+                                                std::to_string(a.size) + "_" + std::to_string(s.photons) + "x" +
+                                                std::to_string(a.ref_passes) + ".exr";
             std::vector<float> ref_y;
             if (!cache.empty() && std::ifstream(cache).good()) {
                 ref_y = luminance(read_exr(cache));

@@ -39,7 +39,8 @@ TEST(Options, Defaults) {
     EXPECT_EQ(o.camera, 0);
     EXPECT_FALSE(o.quiet);
     EXPECT_EQ(o.stats_json, "");
-    EXPECT_EQ(o.integrator, Integrator::PPM);
+    EXPECT_TRUE(o.integrator_auto); // the scene decides (tests/default_integrator_test.cpp)
+    EXPECT_TRUE(o.passes_default);
     EXPECT_EQ(o.direct, DirectLighting::Sample);
     EXPECT_EQ(o.spp, 4);
     EXPECT_EQ(o.max_bounces, 16);
@@ -58,6 +59,10 @@ TEST(Options, ChoicesIgnoreCaseAndToneOptions) {
     Options o = parse_options(Args{"--integrator", "SPPM", "--direct", "Photons", "--filter", "TENT", "--tonemap",
                                    "Clip", "--exposure=-2.5", "--auto-exposure"});
     EXPECT_EQ(o.integrator, Integrator::SPPM);
+    EXPECT_FALSE(o.integrator_auto);
+    EXPECT_TRUE(parse_options(Args{"--integrator", "ppm", "--integrator=Auto"}).integrator_auto);
+    EXPECT_FALSE(parse_options(Args{"--passes", "64"}).passes_default);
+    EXPECT_FALSE(parse_options(Args{"--time", "5"}).passes_default);
     EXPECT_EQ(o.direct, DirectLighting::Photons);
     EXPECT_EQ(o.filter, PixelFilter::Tent);
     EXPECT_EQ(o.tone.curve, ToneCurve::Clip);
@@ -156,6 +161,7 @@ TEST_P(BothForms, RangeEnds) {
     EXPECT_EQ(o.alpha, 1.0);
     EXPECT_EQ(o.seed, 0u);
     EXPECT_EQ(o.integrator, Integrator::PPM);
+    EXPECT_FALSE(o.integrator_auto);
     EXPECT_EQ(o.direct, DirectLighting::Sample);
     EXPECT_EQ(o.spp, 1);
     EXPECT_EQ(o.max_bounces, 1);
@@ -269,7 +275,7 @@ INSTANTIATE_TEST_SUITE_P(
         BadValue{{"--device", ""}, "--device '': must be a device index, cpu, gpu or part of a device name"},
         BadValue{{"--camera", "-1"}, "--camera -1: must be an integer >= 0"},
         BadValue{{"--stats-json="}, "--stats-json '': must be a file name"},
-        BadValue{{"--integrator", "bdpt"}, "--integrator bdpt: must be ppm, sppm, pppm or pt"},
+        BadValue{{"--integrator", "bdpt"}, "--integrator bdpt: must be auto, ppm, sppm, pppm or pt"},
         BadValue{{"--filter", "mitchell"}, "--filter mitchell: must be box or tent"},
         BadValue{{"--aperture", "-1"}, "--aperture -1: must be a finite number >= 0 (0 = pinhole)"},
         BadValue{{"--focus-distance", "0"}, "--focus-distance 0: must be a finite number > 0"},
@@ -358,8 +364,8 @@ TEST(Options, UsageListsEveryOptionWithDefaultAndRange) {
                              "--version"})
         EXPECT_NE(text.find(name), std::string::npos) << name;
     for (const char* fragment :
-         {"Default: clppm.exr", "Default: 0.7", "in (0, 1]", "Default: 200000", "Default: 16", "1..256", "Default: ppm",
-          "Default: sample", "Default: 64", "Default: 0.95", "in (0, 1)"})
+         {"Default: clppm.exr", "Default: 0.7", "in (0, 1]", "Default: 200000", "Default: 16", "1..256",
+          "Default: auto", "Default: sample", "Default: 64", "Default: 0.95", "in (0, 1)"})
         EXPECT_NE(text.find(fragment), std::string::npos) << fragment;
 }
 

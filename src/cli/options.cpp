@@ -192,19 +192,22 @@ const OptionSpec kOptions[] = {
          else bad_value(a);
      }},
     {"Integrator", "--integrator", nullptr, "NAME",
-     "Integrator: ppm = progressive photon mapping, sppm = stochastic PPM, pppm = probabilistic PPM "
-     "(independent passes), pt = path-traced reference",
-     "ppm, sppm, pppm or pt", "ppm",
+     "Integrator: auto = sppm for a scene with lights of its own, pt for one lit only by an environment "
+     "(measured: bench/RESULTS.md); ppm = progressive photon mapping, sppm = stochastic PPM, pppm = "
+     "probabilistic PPM (independent passes), pt = path tracing",
+     "auto, ppm, sppm, pppm or pt", "auto",
      [](ParseState& st, const Arg& a) {
          const std::string v = lower(a.value);
-         if (v == "ppm") st.options.integrator = Integrator::PPM;
+         st.options.integrator_auto = false;
+         if (v == "auto") st.options.integrator_auto = true, st.options.integrator = Integrator::SPPM;
+         else if (v == "ppm") st.options.integrator = Integrator::PPM;
          else if (v == "sppm") st.options.integrator = Integrator::SPPM;
          else if (v == "pppm") st.options.integrator = Integrator::PPPM;
          else if (v == "pt") st.options.integrator = Integrator::PT;
          else bad_value(a);
      }},
     {"Integrator", "--passes", nullptr, "N", "Stop after N passes (with --time: whichever comes first)",
-     "an integer >= 1 (0 = unlimited, with --time)", "64, or unlimited with --time",
+     "an integer >= 1 (0 = unlimited, with --time)", "64 (512 for pt), or unlimited with --time",
      [](ParseState& st, const Arg& a) {
          st.options.passes = static_cast<uint64_t>(parse_int(a, 0, INT64_MAX));
          st.passes_given = true;
@@ -367,7 +370,8 @@ bool is_option_token(const std::string& token) {
 void resolve_limits(ParseState& st) {
     Options& o = st.options;
     if (st.passes_given && o.passes == 0 && o.time_limit <= 0) throw Error("--passes 0: unlimited passes need --time");
-    if (!st.passes_given) o.passes = o.time_limit > 0 ? 0 : 64;
+    if (!st.passes_given) o.passes = o.time_limit > 0 ? 0 : kDefaultPasses;
+    o.passes_default = !st.passes_given && !(o.time_limit > 0);
 }
 
 // Every integrator estimates its error; --confidence means nothing without an estimate,

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <memory>
 
+#include "cli/default_integrator.h"
 #include "cli/interrupt.h"
 #include "cli/progress.h"
 #include "device/device.h"
@@ -43,6 +44,7 @@ void note(const Options& opt, const std::string& msg) {
 // What the user must know about the result: always shown, --quiet or not.
 void warn(const std::string& msg) { std::fprintf(stderr, "clppm: warning: %s\n", msg.c_str()); }
 
+// o.integrator is settled by now (--integrator, or default_integrator's choice).
 RenderSettings settings_from(const Options& o) {
     RenderSettings s;
     s.integrator = o.integrator;
@@ -161,7 +163,8 @@ void save_error_images(const Options& opt, const ErrorImage& e) {
 }
 
 // What a checkpoint must agree on to be resumed: everything that shapes the image.
-Json image_fingerprint(const Options& o, const DeviceScene& ds, uint64_t scene_hash, const std::string& kernel_source) {
+Json image_fingerprint(const Options& o, const RenderSettings& settings, const DeviceScene& ds, uint64_t scene_hash,
+                       const std::string& kernel_source) {
     char hex[17];
     std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(scene_hash));
     char khex[17];
@@ -169,7 +172,7 @@ Json image_fingerprint(const Options& o, const DeviceScene& ds, uint64_t scene_h
     Json j;
     j["scene"] = hex;
     j["kernels"] = khex;
-    j["--integrator"] = to_string(o.integrator);
+    j["--integrator"] = to_string(settings.integrator);
     j["--direct"] = to_string(o.direct);
     j["--width"] = ds.camera.width;
     j["--height"] = ds.camera.height;
@@ -267,7 +270,8 @@ void save_checkpoint(const Options& opt, IntegratorBase& integ, const Json& fing
 
 } // namespace
 
-int render_session(const Options& opt) {
+int render_session(const Options& given) {
+    Options opt = given; // the integrator and its default pass count are settled with the scene
     Clock total;
     install_interrupt_handlers();
     if (!opt.kernel_dir.empty()) set_kernel_dir(opt.kernel_dir);
@@ -287,6 +291,13 @@ int render_session(const Options& opt) {
     apply_environment(scene, opt.env, &env_note);
     if (!env_note.empty()) note(opt, env_note);
     const uint64_t scene_hash = scene_fingerprint(scene);
+    std::string integrator_note; // said once the render is set up, after anything that can fail
+    if (opt.integrator_auto) {
+        const IntegratorChoice choice = default_integrator(scene);
+        opt.integrator = choice.integrator;
+        integrator_note = std::string("integrator ") + to_string(opt.integrator) + ": " + choice.reason;
+    }
+    if (opt.passes_default && opt.integrator == Integrator::PT) opt.passes = kPtDefaultPasses;
     RenderSettings settings = settings_from(opt);
     // Refuse a render the device cannot hold before allocating anything.
     const ImageResolution res = image_resolution(scene, settings);
@@ -311,7 +322,7 @@ int render_session(const Options& opt) {
     const std::string kernel_source = assemble_kernel_source(program_file);
     if (!opt.dump_kernel_source.empty())
         write_file_atomic(opt.dump_kernel_source, "// build options: " + build_options + "\n" + kernel_source);
-    const Json fingerprint = image_fingerprint(opt, ds, scene_hash, kernel_source + build_options);
+    const Json fingerprint = image_fingerprint(opt, settings, ds, scene_hash, kernel_source + build_options);
     Checkpoint resume_from;
     if (!opt.resume.empty()) resume_from = open_resume(opt, fingerprint);
 
@@ -324,6 +335,13 @@ int render_session(const Options& opt) {
                   (opt.generic_kernels ? std::string("generic") : "for " + describe_features(features)) + " " +
                   (build.from_cache ? "cached" : "built") + " in " + std::to_string(build.seconds).substr(0, 5) + " s");
 
+    if (!integrator_note.empty()) note(opt, integrator_note);
+    // Light the path tracer cannot find: a point, spot or directional light seen through glass or
+    // a mirror (a caustic) is a path of two delta events it never samples.
+    if (settings.integrator == Integrator::PT && (features.glass || features.metal) &&
+        (features.point_lights || features.spot_lights || features.directional_lights))
+        warn("the path tracer cannot find caustics of point, spot or directional lights through glass or mirrors: "
+             "that light is missing from its image and from its error estimate (--integrator sppm finds it)");
     SecondaryDevices secondaries{std::vector<DeviceInfo>(chosen.begin() + 1, chosen.end()), program_file,
                                  build_options};
     if (!secondaries.devices.empty() && settings.integrator == Integrator::PT) {

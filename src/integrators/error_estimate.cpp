@@ -44,6 +44,44 @@ double student_t_cdf(double t, double nu) {
     return t >= 0 ? 1 - tail : tail;
 }
 
+// The path tracer's samples are heavy-tailed (a rare path to a small bright light or through
+// rough glass carries much of a pixel's value), so a pixel that has not met such a path yet
+// underestimates its variance (and its mean) with high probability: against Mitsuba on a rough
+// glass block, sigma alone stopped at 1.15 times the target after 196 passes. Its neighbours
+// have likely met one: each pixel takes the larger of its own relative variance and the mean over
+// its 3 x 3 neighbourhood, which nine times the samples make far less likely to have missed it.
+void pool_path_traced_sigma(ErrorImage& e, double t) {
+    const int w = e.width, h = e.height;
+    if (w <= 0 || h <= 0) return;
+    double mean = 0;
+    for (float l : e.luminance) mean += std::max(0.0, double(l));
+    const double floor = kRelativeFloor * mean / double(e.luminance.size());
+    std::vector<double> v(e.sigma.size());
+    for (size_t i = 0; i < v.size(); ++i) {
+        const double d = std::max(double(e.luminance[i]), floor);
+        v[i] = d > 0 ? double(e.sigma[i]) * double(e.sigma[i]) / (d * d) : 0.0;
+    }
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            double sum = 0;
+            int n = 0;
+            for (int dy = -1; dy <= 1; ++dy)
+                for (int dx = -1; dx <= 1; ++dx) {
+                    const int xx = x + dx, yy = y + dy;
+                    if (xx < 0 || yy < 0 || xx >= w || yy >= h) continue;
+                    sum += v[size_t(yy) * size_t(w) + size_t(xx)];
+                    ++n;
+                }
+            const size_t i = size_t(y) * size_t(w) + size_t(x);
+            const double pooled = sum / n;
+            if (!(pooled > v[i])) continue; // also keeps +Inf and NaN as they are
+            const double d = std::max(double(e.luminance[i]), floor);
+            e.sigma[i] = float(d * std::sqrt(pooled));
+            e.noise[i] = float(t * double(e.sigma[i]));
+            e.absolute[i] = std::fabs(e.bias[i]) + e.noise[i];
+        }
+}
+
 } // namespace
 
 double student_t_quantile(double p, double nu) {
@@ -212,6 +250,7 @@ ErrorImage ErrorEstimator::estimate(double confidence, int width, int height, co
             e.absolute[i] = std::fabs(e.bias[i]) + e.noise[i];
         }
     }
+    if (layout_.path_traced) pool_path_traced_sigma(e, t);
     e.relative = relative_bounds(e.absolute, e.luminance);
     e.image_error = image_error(e.relative);
     if (passes_ >= 2) {
