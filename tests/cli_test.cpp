@@ -75,6 +75,27 @@ TEST(Cli, DefaultIntegratorDependsOnTheLights) {
     EXPECT_EQ(jb["passes"].get<int>(), 512);
 }
 
+// The path tracer cannot find a spot light's caustic through glass: asked for on such a scene, it
+// says so; on the Cornell box (an area light: its caustic is found by BSDF sampling) it does not.
+TEST(Cli, PathTracerWarnsOfCausticsItCannotFind) {
+    const std::string dir = make_temp_dir("cli");
+    std::string out;
+    ASSERT_EQ(run_clppm(std::string(CLPPM_SCENES_DIR) +
+                            "/caustic.gltf --integrator pt --passes 1 --width 8 "
+                            "--height 8 --quiet --no-png -o " +
+                            dir + "/c.exr",
+                        &out),
+              0)
+        << out;
+    EXPECT_NE(out.find("warning: the path tracer cannot find caustics of point, spot or directional lights"),
+              std::string::npos)
+        << out;
+    ASSERT_EQ(run_clppm("--integrator pt --passes 1 --width 8 --height 8 --quiet --no-png -o " + dir + "/d.exr", &out),
+              0)
+        << out;
+    EXPECT_EQ(out.find("warning"), std::string::npos) << out;
+}
+
 // The default render anti-aliases and its mean is right where a light's edge is in view (the
 // Cornell box's ceiling light): within 1% of the path tracer's (unbiased; it agrees with Mitsuba
 // in reference_images_test) at 64 x 64. PPM with one hit point per pixel, the old default, was

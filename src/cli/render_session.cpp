@@ -162,6 +162,15 @@ void save_error_images(const Options& opt, const ErrorImage& e) {
     write_png(png_path_for(opt.error_output), false_colour(e.relative, e.width, e.height, scale));
 }
 
+// Whether some material is smooth glass or a mirror (roughness below 0.01, where kernels/bsdf.cl
+// makes the lobe a delta): light from a delta light by way of it is a path the path tracer never
+// samples.
+bool has_smooth_glass_or_mirror(const Scene& scene) {
+    for (const dev::Material& m : scene.materials)
+        if (m.roughness < 0.01f && (m.metallic > 0.f || m.transmission > 0.f)) return true;
+    return false;
+}
+
 // What a checkpoint must agree on to be resumed: everything that shapes the image.
 Json image_fingerprint(const Options& o, const RenderSettings& settings, const DeviceScene& ds, uint64_t scene_hash,
                        const std::string& kernel_source) {
@@ -338,7 +347,7 @@ int render_session(const Options& given) {
     if (!integrator_note.empty()) note(opt, integrator_note);
     // Light the path tracer cannot find: a point, spot or directional light seen through glass or
     // a mirror (a caustic) is a path of two delta events it never samples.
-    if (settings.integrator == Integrator::PT && (features.glass || features.metal) &&
+    if (settings.integrator == Integrator::PT && has_smooth_glass_or_mirror(scene) &&
         (features.point_lights || features.spot_lights || features.directional_lights))
         warn("the path tracer cannot find caustics of point, spot or directional lights through glass or mirrors: "
              "that light is missing from its image and from its error estimate (--integrator sppm finds it)");
