@@ -7,7 +7,7 @@ set -euo pipefail
 required=(
   pocl-opencl-icd ocl-icd-opencl-dev opencl-headers opencl-clhpp-headers clinfo
   libglm-dev libopenexr-dev libtinygltf-dev nlohmann-json3-dev libstb-dev libdraco-dev libwebp-dev
-  libgtest-dev googletest libcli11-dev cmake g++ make pkg-config python3
+  libgtest-dev googletest libcli11-dev libcpp-httplib-dev cmake g++ make pkg-config python3
   clang-format cppcheck
 )
 # Optional, for the benchmarks only: Embree (the CPU traversal yardstick) and gnuplot (plots).

@@ -14,6 +14,7 @@
 #include <CLI/CLI.hpp>
 
 #include "cli/help_formatter.h"
+#include "cli/live_view.h"
 #include "util/error.h"
 
 namespace clppm {
@@ -166,6 +167,18 @@ const OptionSpec kOptions[] = {
      [](ParseState& st, const Arg& a) {
          st.options.progressive_output = static_cast<uint64_t>(parse_int(a, 0, INT64_MAX));
      }},
+    {"Output", "--serve", nullptr, "[ADDR:]PORT",
+     "Serve a live view of the render at http://ADDR:PORT/ (image, progress, error map, save and stop buttons); "
+     "ADDR defaults to 127.0.0.1, PORT 0 picks a free port",
+     "[ADDR:]PORT with a port in 0..65535", "off",
+     [](ParseState& st, const Arg& a) {
+         parse_serve_address(a.value); // checked now: a typo fails before the scene loads
+         st.options.serve = a.value;
+     }},
+    {"Output", "--display-server", nullptr, "HOST:PORT",
+     "Send the image as it converges to the tev viewer listening at HOST:PORT (tev's own protocol, as pbrt-v4's "
+     "--display-server; tev listens on 127.0.0.1:14158)",
+     "HOST:PORT", "off", [](ParseState& st, const Arg& a) { st.options.display_server = non_empty(a); }},
     {"Output", "--quiet", nullptr, nullptr, "No progress output", nullptr, nullptr,
      [](ParseState& st, const Arg&) { st.options.quiet = true; }},
     {"Image and camera", "--width", nullptr, "N", "Image width in pixels",

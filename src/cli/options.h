@@ -55,6 +55,8 @@ struct Options {
     bool error_bound = false;           // --error-bound: --target-error stops on the conservative bound
     double confidence = 0.95;           // --confidence P of the error bound, in (0, 1)
     std::string error_output;           // --error-output FILE.exr: the per-pixel relative error bound
+    std::string serve;                  // --serve [ADDR:]PORT: the live view (cli/live_view.h); empty = off
+    std::string display_server;         // --display-server HOST:PORT: updates to tev (cli/tev_client.h)
     bool help = false;                  // -h/--help: print usage() and exit
     bool version = false;               // --version: print the version and exit
 };

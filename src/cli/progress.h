@@ -70,6 +70,10 @@ public:
     void set_resumed(uint64_t passes);
     // Draws the final line unconditionally (and ends it on a terminal).
     void finish(uint64_t pass, uint64_t photons, double radius, double elapsed_s);
+    // What the next line would show (the live view's progress).
+    ProgressInfo snapshot(uint64_t pass, uint64_t photons, double radius, double elapsed_s) const {
+        return info(pass, photons, radius, elapsed_s);
+    }
 
 private:
     ProgressInfo info(uint64_t pass, uint64_t photons, double radius, double elapsed_s) const;

@@ -6,7 +6,9 @@
 
 #include "cli/default_integrator.h"
 #include "cli/interrupt.h"
+#include "cli/live_view.h"
 #include "cli/progress.h"
+#include "cli/tev_client.h"
 #include "device/device.h"
 #include "device/kernel_program.h"
 #include "integrators/error_estimate.h"
@@ -294,6 +296,21 @@ int render_session(const Options& given) {
     for (const std::string* p : {&opt.stats_json, &opt.checkpoint, &opt.error_output})
         if (!p->empty()) outputs.push_back(*p);
     const OutputLock lock(outputs);
+    // The live view listens from here on, so that a bad address fails before any work.
+    std::unique_ptr<LiveView> live;
+    if (!opt.serve.empty()) {
+        const ServeAddress address = parse_serve_address(opt.serve);
+        live = std::make_unique<LiveView>(address, opt.tone);
+        std::fprintf(stderr, "clppm: live view at %s\n", live->url().c_str());
+        if (!is_loopback(address.host))
+            warn("--serve " + opt.serve + ": anyone who can reach this address can watch and stop the render");
+    }
+    std::unique_ptr<TevClient> tev;
+    if (!opt.display_server.empty()) {
+        const std::string name = opt.output.substr(opt.output.find_last_of('/') + 1);
+        tev = std::make_unique<TevClient>(opt.display_server, name);
+    }
+    double last_tev_s = -1e9;
 
     Scene scene = load_scene(opt);
     std::string env_note;
@@ -391,12 +408,34 @@ int render_session(const Options& given) {
     if (!opt.resume.empty()) progress.set_resumed(integ->stats().passes);
     double last_checkpoint = 0;
     int signal = 0;
+    bool stopped_by_viewer = false;
     auto more = [&] {
         const uint64_t p = integ->stats().passes;
         if (opt.passes > 0 && p >= opt.passes) return false;
         if (opt.time_limit > 0 && render_clock.seconds() >= opt.time_limit) return false;
         if (errors.reached(opt)) return false;
+        if (live && live->stop_requested()) return !(stopped_by_viewer = true);
         return (signal = interrupt_signal()) == 0;
+    };
+    // The live view's copy of the state: the film (a readback, which changes nothing), the error
+    // map and the progress, as the progress line has them.
+    auto publish = [&] {
+        const IntegratorStats& st = integ->stats();
+        const ProgressInfo p = progress.snapshot(st.passes, st.photons_emitted, st.mean_radius, render_clock.seconds());
+        const nlohmann::json j = {{"pass", p.pass},
+                                  {"pass_limit", p.pass_limit},
+                                  {"time_limit", p.time_limit},
+                                  {"photons", p.photons},
+                                  {"radius", p.radius},
+                                  {"elapsed_s", p.elapsed_s},
+                                  {"passes_per_second", progress_rate(p)},
+                                  {"eta_s", progress_eta(p)},
+                                  {"error", errors.integ ? ErrorTracking::measure(opt, errors.last) : -1.0},
+                                  {"target_error", opt.target_error},
+                                  {"integrator", integ->name()}};
+        const std::vector<float> none;
+        live->publish(current_image(opt, *integ, 0), errors.integ ? errors.last.relative : none,
+                      opt.target_error > 0 ? 2 * opt.target_error : 0.2, j);
     };
     while (more()) {
         try {
@@ -410,6 +449,18 @@ int render_session(const Options& given) {
         progress.update(st.passes, st.photons_emitted, st.mean_radius, render_clock.seconds());
         if (opt.progressive_output > 0 && st.passes % opt.progressive_output == 0)
             save_images(opt, current_image(opt, *integ, 0), errors);
+        if (tev && tev->connected() && render_clock.seconds() - last_tev_s >= 1.0 / LiveView::kPublishHz) {
+            tev->send(current_image(opt, *integ, 0));
+            last_tev_s = render_clock.seconds();
+        }
+        if (live) {
+            if (live->due()) publish();
+            if (live->take_save_request()) {
+                save_images(opt, current_image(opt, *integ, 0), errors);
+                note(opt,
+                     "saved " + opt.output + " at pass " + std::to_string(st.passes) + " (asked by the live view)");
+            }
+        }
         if (!opt.checkpoint.empty() && ((opt.checkpoint_every > 0 && st.passes % opt.checkpoint_every == 0) ||
                                         render_clock.seconds() - last_checkpoint >= opt.checkpoint_interval)) {
             save_checkpoint(opt, *integ, fingerprint, dc);
@@ -419,6 +470,12 @@ int render_session(const Options& given) {
     const double render_s = render_clock.seconds();
     const IntegratorStats& st = integ->stats();
     progress.finish(st.passes, st.photons_emitted, st.mean_radius, render_s);
+    if (stopped_by_viewer) note(opt, "stopped after pass " + std::to_string(st.passes) + " from the live view");
+    if (tev && st.passes > 0) tev->send(current_image(opt, *integ, 0)); // the final image
+    if (live && st.passes > 0) {
+        publish(); // the final image, for whoever still watches while the outputs are written
+        live->set_state(signal ? "interrupted" : "finished");
+    }
     if (signal && st.passes == 0) {
         // Stopped before a single pass (during the kernel build, say): an image of zero passes
         // must not replace whatever the outputs hold.
@@ -457,6 +514,8 @@ int render_session(const Options& given) {
                      nonfinite, negative, opt.output.c_str());
     if (!opt.stats_json.empty()) {
         Json j = make_stats(opt, dc, ds, scene, *integ, build, render_s, total.seconds(), img, signal);
+        if (live)
+            j["live_view"] = {{"url", live->url()}, {"requests", live->requests()}, {"stopped_it", stopped_by_viewer}};
         if (errors.integ)
             j["error"] = {{"estimated", errors.last.expected_error},
                           {"bound", errors.last.image_error},

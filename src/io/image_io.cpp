@@ -153,12 +153,23 @@ void write_exr(const std::string& path, const Image& img, const std::vector<ExrL
     write_file_atomic(path, bytes);
 }
 
-void write_png(const std::string& path, const Image& img, const ToneMapping& tone) {
-    check_image(path, img);
+std::string encode_png(const Image& img, const ToneMapping& tone) {
+    check_image("the PNG", img);
     std::vector<unsigned char> pixels = to_srgb8(img, tone);
     std::string bytes;
     if (!stbi_write_png_to_func(append_bytes, &bytes, img.width, img.height, 3, pixels.data(), img.width * 3))
+        throw Error("PNG encoding failed");
+    return bytes;
+}
+
+void write_png(const std::string& path, const Image& img, const ToneMapping& tone) {
+    check_image(path, img);
+    std::string bytes;
+    try {
+        bytes = encode_png(img, tone);
+    } catch (const Error&) {
         throw Error("cannot write " + path + ": PNG encoding failed");
+    }
     write_file_atomic(path, bytes);
 }
 

@@ -31,6 +31,8 @@ void write_exr(const std::string& path, const Image& img, const std::vector<ExrL
 // curve (tone_map.h) and encoded with the sRGB OETF, rounded to nearest; the default mapping is a
 // plain clip at 1. A pixel with any NaN or Inf channel is drawn magenta so that it stands out.
 void write_png(const std::string& path, const Image& img, const ToneMapping& tone = {});
+// The same PNG as bytes in memory (the live view serves them).
+std::string encode_png(const Image& img, const ToneMapping& tone = {});
 
 // Reads R,G,B of an EXR as float; a file without all three channels is an error.
 Image read_exr(const std::string& path);

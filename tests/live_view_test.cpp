@@ -1,0 +1,253 @@
+// --serve: the live view's server on its own (addresses, endpoints, status codes, what publishing
+// changes), and in a render (the endpoints answer while it runs, the image changes between
+// passes, save and stop do what they say, a bad request leaves the render going, and being
+// watched changes no pixel).
+#include <gtest/gtest.h>
+
+#include <arpa/inet.h>
+#include <chrono>
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <unistd.h>
+#include <fstream>
+#include <thread>
+
+#include <httplib.h>
+#include <nlohmann/json.hpp>
+
+#include "cli/live_view.h"
+#include "io/image_io.h"
+#include "test_util.h"
+#include "util/error.h"
+
+using namespace clppm;
+using namespace clppm::test;
+
+namespace {
+
+Image flat(int w, int h, float v) {
+    Image img;
+    img.width = w, img.height = h;
+    img.rgb.assign(size_t(w) * size_t(h) * 3, v);
+    return img;
+}
+
+bool is_png(const std::string& body) { return body.size() > 8 && body.compare(1, 3, "PNG") == 0; }
+
+// Polls `path` on 127.0.0.1:port until it answers (the render starts its server after loading).
+httplib::Result get_when_up(httplib::Client& c, const std::string& path, double seconds = 60) {
+    const auto t0 = std::chrono::steady_clock::now();
+    for (;;) {
+        httplib::Result r = c.Get(path.c_str());
+        if (r || std::chrono::steady_clock::now() - t0 > std::chrono::duration<double>(seconds)) return r;
+        std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    }
+}
+
+// A port nobody uses now: bind one, read it, let it go.
+int free_port() {
+    const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
+    sockaddr_in a{};
+    a.sin_family = AF_INET;
+    a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    socklen_t len = sizeof a;
+    const bool ok = ::bind(fd, reinterpret_cast<sockaddr*>(&a), sizeof a) == 0 &&
+                    ::getsockname(fd, reinterpret_cast<sockaddr*>(&a), &len) == 0;
+    ::close(fd);
+    return ok ? ntohs(a.sin_port) : -1;
+}
+
+} // namespace
+
+TEST(LiveView, AddressesAreParsedOrRefused) {
+    ServeAddress a = parse_serve_address("8080");
+    EXPECT_EQ(a.host, "127.0.0.1");
+    EXPECT_EQ(a.port, 8080);
+    a = parse_serve_address("0.0.0.0:0");
+    EXPECT_EQ(a.host, "0.0.0.0");
+    EXPECT_EQ(a.port, 0);
+    a = parse_serve_address("[::1]:9000");
+    EXPECT_EQ(a.host, "::1");
+    EXPECT_EQ(a.port, 9000);
+    for (const char* bad : {"", "x", "65536", "-1", ":80", "host:", "1.2.3.4:http"}) {
+        try {
+            parse_serve_address(bad);
+            ADD_FAILURE() << bad << " was accepted";
+        } catch (const Error& e) {
+            EXPECT_EQ(std::string(e.what()).rfind("--serve ", 0), 0u) << e.what();
+        }
+    }
+    EXPECT_TRUE(is_loopback("127.0.0.1"));
+    EXPECT_TRUE(is_loopback("localhost"));
+    EXPECT_TRUE(is_loopback("::1"));
+    EXPECT_FALSE(is_loopback("0.0.0.0"));
+    EXPECT_FALSE(is_loopback("192.168.1.2"));
+}
+
+// The server alone: the page, /stats, the image as PNG (503 before the first publication, new
+// bytes after the next), the error map only when there is one, 400 for a bad exposure, 404 for
+// an unknown path, 405 for a wrong method; /save and /stop only raise flags.
+TEST(LiveView, EndpointsAnswerAndPublishingShows) {
+    LiveView view(parse_serve_address("127.0.0.1:0"), ToneMapping{});
+    ASSERT_GT(view.port(), 0);
+    EXPECT_EQ(view.url(), "http://127.0.0.1:" + std::to_string(view.port()) + "/");
+    httplib::Client c("127.0.0.1", view.port());
+    auto page = c.Get("/");
+    ASSERT_TRUE(page);
+    EXPECT_EQ(page->status, 200);
+    EXPECT_NE(page->body.find("<img id=\"img\""), std::string::npos);
+    EXPECT_EQ(page->body.find("http://"), std::string::npos); // no external resources
+    EXPECT_EQ(page->body.find("https://"), std::string::npos);
+
+    auto stats = c.Get("/stats");
+    ASSERT_TRUE(stats);
+    nlohmann::json j = nlohmann::json::parse(stats->body);
+    EXPECT_EQ(j["version"], 0);
+    EXPECT_EQ(j["state"], "starting");
+    EXPECT_EQ(c.Get("/image.png")->status, 503);
+    EXPECT_TRUE(view.due()); // someone asked, nothing published yet
+
+    view.publish(flat(4, 2, 0.25f), {}, 0.2, {{"pass", 1}});
+    EXPECT_FALSE(view.due()); // not again before 1 / kPublishHz
+    auto img1 = c.Get("/image.png");
+    ASSERT_TRUE(img1);
+    EXPECT_EQ(img1->status, 200);
+    EXPECT_TRUE(is_png(img1->body));
+    EXPECT_EQ(img1->get_header_value("Content-Type"), "image/png");
+    auto brighter = c.Get("/image.png?ev=2");
+    ASSERT_TRUE(brighter);
+    EXPECT_NE(brighter->body, img1->body);
+    EXPECT_EQ(c.Get("/image.png?ev=abc")->status, 400);
+    EXPECT_EQ(c.Get("/image.png?ev=100")->status, 400);
+    EXPECT_EQ(c.Get("/image.png?map=error")->status, 404); // no error estimate
+    EXPECT_EQ(c.Get("/image.png?map=foo")->status, 400);
+
+    view.publish(flat(4, 2, 0.5f), std::vector<float>(8, 0.1f), 0.2, {{"pass", 2}});
+    auto img2 = c.Get("/image.png");
+    ASSERT_TRUE(img2);
+    EXPECT_NE(img2->body, img1->body);
+    auto map = c.Get("/image.png?map=error");
+    ASSERT_TRUE(map);
+    EXPECT_EQ(map->status, 200);
+    EXPECT_TRUE(is_png(map->body));
+    j = nlohmann::json::parse(c.Get("/stats")->body);
+    EXPECT_EQ(j["version"], 2);
+    EXPECT_EQ(j["state"], "rendering");
+    EXPECT_EQ(j["has_error_map"], true);
+    EXPECT_EQ(j["progress"]["pass"], 2);
+    EXPECT_EQ(j["width"], 4);
+
+    EXPECT_EQ(c.Get("/nope")->status, 404);
+    EXPECT_EQ(c.Post("/image.png", "", "text/plain")->status, 405);
+    EXPECT_EQ(c.Get("/stop")->status, 405);
+    EXPECT_FALSE(view.stop_requested());
+    EXPECT_FALSE(view.take_save_request());
+    EXPECT_EQ(c.Post("/save", "", "text/plain")->status, 202);
+    EXPECT_TRUE(view.take_save_request());
+    EXPECT_FALSE(view.take_save_request()); // once per request
+    EXPECT_EQ(c.Post("/stop", "", "text/plain")->status, 202);
+    EXPECT_TRUE(view.stop_requested());
+    view.set_state("finished");
+    EXPECT_EQ(nlohmann::json::parse(c.Get("/stats")->body)["state"], "finished");
+    EXPECT_GE(view.requests(), 15u);
+}
+
+TEST(LiveView, AnAddressInUseIsAOneLineError) {
+    LiveView first(parse_serve_address("127.0.0.1:0"), ToneMapping{});
+    try {
+        LiveView second(parse_serve_address("127.0.0.1:" + std::to_string(first.port())), ToneMapping{});
+        ADD_FAILURE() << "bound the same port twice";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("--serve 127.0.0.1:" + std::to_string(first.port()) +
+                                             ": cannot listen there"),
+                  std::string::npos)
+            << e.what();
+    }
+}
+
+// A render with --serve: while it runs the page, stats and image answer, the image changes from
+// pass to pass, a bad request gets a 4xx and the render goes on, /save writes the outputs, /stop
+// ends it cleanly (exit 0, the image written, the stats say who stopped it).
+TEST(LiveView, ARenderCanBeWatchedSavedAndStopped) {
+    const std::string dir = make_temp_dir("live");
+    const int port = free_port();
+    ASSERT_GT(port, 0);
+    std::string out;
+    int status = -1;
+    std::thread render([&] {
+        status = run_clppm("--integrator sppm --width 32 --height 32 --photons 20000 --passes 100000 --no-png -o " +
+                               dir + "/live.exr --stats-json " + dir + "/stats.json --serve 127.0.0.1:" +
+                               std::to_string(port),
+                           &out);
+    });
+    httplib::Client c("127.0.0.1", port);
+    auto page = get_when_up(c, "/");
+    ASSERT_TRUE(page) << "the server never answered";
+    EXPECT_EQ(page->status, 200);
+    // Two images from different passes differ.
+    std::string first_png;
+    int first_pass = 0;
+    const auto t0 = std::chrono::steady_clock::now();
+    while (std::chrono::steady_clock::now() - t0 < std::chrono::seconds(60)) {
+        const nlohmann::json j = nlohmann::json::parse(c.Get("/stats")->body);
+        const int pass = j["progress"].value("pass", 0);
+        if (j["version"].get<int>() > 0) {
+            auto img = c.Get("/image.png");
+            ASSERT_TRUE(img);
+            if (first_png.empty() && img->status == 200) first_png = img->body, first_pass = pass;
+            else if (!first_png.empty() && pass > first_pass + 1 && img->body != first_png) break;
+        }
+        std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    }
+    ASSERT_FALSE(first_png.empty());
+    auto later = c.Get("/image.png");
+    ASSERT_TRUE(later);
+    EXPECT_NE(later->body, first_png) << "the image did not change between passes";
+    EXPECT_EQ(c.Get("/image.png?ev=zzz")->status, 400); // and the render goes on:
+    EXPECT_EQ(c.Get("/stats")->status, 200);
+    // Save: the outputs appear while the render still runs.
+    EXPECT_EQ(c.Post("/save", "", "text/plain")->status, 202);
+    for (int i = 0; i < 200 && !std::ifstream(dir + "/live.exr").good(); ++i)
+        std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    EXPECT_TRUE(std::ifstream(dir + "/live.exr").good()) << "/save wrote nothing";
+    EXPECT_EQ(c.Post("/stop", "", "text/plain")->status, 202);
+    render.join();
+    EXPECT_EQ(status, 0) << out;
+    EXPECT_NE(out.find("live view at http://127.0.0.1:" + std::to_string(port) + "/"), std::string::npos) << out;
+    EXPECT_NE(out.find("from the live view"), std::string::npos) << out;
+    std::ifstream js(dir + "/stats.json");
+    const nlohmann::json st = nlohmann::json::parse(js);
+    EXPECT_EQ(st["live_view"]["stopped_it"], true);
+    EXPECT_LT(st["passes"].get<int>(), 100000);
+    EXPECT_EQ(read_exr(dir + "/live.exr").width, 32);
+}
+
+// Watching changes nothing: the same render with a viewer pulling images all along and without
+// --serve gives the same pixels, bit for bit.
+TEST(LiveView, BeingWatchedChangesNoPixel) {
+    const std::string dir = make_temp_dir("live_same");
+    const std::string common = "--integrator sppm --width 32 --height 32 --photons 20000 --passes 40 --quiet --no-png";
+    std::string out;
+    ASSERT_EQ(run_clppm(common + " -o " + dir + "/plain.exr", &out), 0) << out;
+    const int port = free_port();
+    int status = -1;
+    std::atomic<bool> done{false};
+    std::thread render([&] {
+        status = run_clppm(common + " -o " + dir + "/watched.exr --serve 127.0.0.1:" + std::to_string(port), &out);
+        done = true;
+    });
+    httplib::Client c("127.0.0.1", port);
+    int images = 0;
+    while (!done) {
+        auto r = c.Get("/image.png");
+        if (r && r->status == 200) ++images;
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+    render.join();
+    ASSERT_EQ(status, 0) << out;
+    std::printf("%d images pulled during the watched render\n", images);
+    EXPECT_GT(images, 0);
+    const Image a = read_exr(dir + "/plain.exr"), b = read_exr(dir + "/watched.exr");
+    ASSERT_EQ(a.rgb.size(), b.rgb.size());
+    EXPECT_TRUE(a.rgb == b.rgb) << "the watched render differs";
+}

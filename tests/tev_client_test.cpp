@@ -1,0 +1,161 @@
+// --display-server: the bytes of tev's packets, written out here from the protocol as tev's own
+// client documents it (src/python/ipc.py in tev: a little-endian uint32 length of the whole
+// packet, a type byte, then the fields; strings end in a 0 byte), and a render sending to a
+// listening socket: CreateImage once, then UpdateImage tiles whose last full image is the EXR.
+#include <gtest/gtest.h>
+
+#include <arpa/inet.h>
+#include <cstring>
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <thread>
+#include <unistd.h>
+
+#include "cli/tev_client.h"
+#include "io/image_io.h"
+#include "test_util.h"
+#include "util/error.h"
+
+using namespace clppm;
+using namespace clppm::test;
+
+namespace {
+
+std::string bytes(std::initializer_list<int> v) {
+    std::string s;
+    for (int b : v) s.push_back(char(b));
+    return s;
+}
+
+uint32_t u32(const std::string& s, size_t at) {
+    uint32_t v = 0;
+    for (int i = 3; i >= 0; --i) v = (v << 8) | uint8_t(s[at + size_t(i)]);
+    return v;
+}
+
+} // namespace
+
+TEST(Tev, CreateImagePacketIsTheProtocolsBytes) {
+    const std::string expected = bytes({
+        30, 0,   0,   0,   // length of the whole packet
+        4,                 // CreateImage
+        1,                 // grab focus
+        'a', '.', 'e', 'x', 'r', 0,
+        2,   0,   0,   0,  // width
+        1,   0,   0,   0,  // height
+        3,   0,   0,   0,  // channels
+        'R', 0,   'G', 0,   'B', 0});
+    EXPECT_EQ(tev::create_image_packet("a.exr", 2, 1, true), expected);
+}
+
+TEST(Tev, UpdateImagePacketIsTheProtocolsBytes) {
+    Image img;
+    img.width = 2, img.height = 1;
+    img.rgb = {1.f, 2.f, 0.5f, 0.f, -0.f, 4.f};
+    std::string expected = bytes({
+        0, 0, 0, 0,             // length, below
+        6,                      // UpdateImage version 3
+        0,                      // grab focus
+        'a', 0,                 // name
+        3, 0, 0, 0,             // channels
+        'R', 0, 'G', 0, 'B', 0, // their names
+        1, 0, 0, 0,             // x
+        0, 0, 0, 0,             // y
+        1, 0, 0, 0,             // width
+        1, 0, 0, 0,             // height
+        0, 0, 0, 0, 0, 0, 0, 0, 1, 0, 0, 0, 0, 0, 0, 0, 2, 0, 0, 0, 0, 0, 0, 0, // offsets 0, 1, 2
+        3, 0, 0, 0, 0, 0, 0, 0, 3, 0, 0, 0, 0, 0, 0, 0, 3, 0, 0, 0, 0, 0, 0, 0, // strides 3, 3, 3
+        0, 0, 0, 0,             // 0.0f
+        0, 0, 0, 0x80,          // -0.0f
+        0, 0, 0x80, 0x40});     // 4.0f
+    expected[0] = char(expected.size());
+    EXPECT_EQ(tev::update_image_packet("a", img, 1, 0, 1, 1), expected);
+}
+
+TEST(Tev, BadAddressesAreOneLineErrors) {
+    for (const char* bad : {"nohost", ":14158", "localhost:", "localhost:x", "localhost:70000"}) {
+        try {
+            TevClient c(bad, "x");
+            ADD_FAILURE() << bad;
+        } catch (const Error& e) {
+            EXPECT_EQ(std::string(e.what()).rfind(std::string("--display-server ") + bad + ": must be HOST:PORT", 0),
+                      0u)
+                << e.what();
+        }
+    }
+    // A port nobody listens on.
+    const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
+    sockaddr_in a{};
+    a.sin_family = AF_INET;
+    a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    ASSERT_EQ(::bind(fd, reinterpret_cast<sockaddr*>(&a), sizeof a), 0);
+    socklen_t len = sizeof a;
+    ::getsockname(fd, reinterpret_cast<sockaddr*>(&a), &len);
+    const int port = ntohs(a.sin_port);
+    ::close(fd);
+    try {
+        TevClient c("127.0.0.1:" + std::to_string(port), "x");
+        ADD_FAILURE() << "connected to nothing";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("nothing listens there"), std::string::npos) << e.what();
+    }
+}
+
+// A render sends to a socket standing in for tev: the stream is CreateImage (40 x 24, R G B) and
+// then UpdateImage tiles; the last update of each pixel is the final EXR's value, bit for bit.
+TEST(Tev, ARenderSendsItsImage) {
+    const int server = ::socket(AF_INET, SOCK_STREAM, 0);
+    sockaddr_in a{};
+    a.sin_family = AF_INET;
+    a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    ASSERT_EQ(::bind(server, reinterpret_cast<sockaddr*>(&a), sizeof a), 0);
+    ASSERT_EQ(::listen(server, 1), 0);
+    socklen_t len = sizeof a;
+    ::getsockname(server, reinterpret_cast<sockaddr*>(&a), &len);
+    std::string stream;
+    std::thread reader([&] {
+        const int c = ::accept(server, nullptr, nullptr);
+        char buf[65536];
+        for (ssize_t n; (n = ::read(c, buf, sizeof buf)) > 0;) stream.append(buf, size_t(n));
+        ::close(c);
+    });
+    const std::string dir = make_temp_dir("tev");
+    std::string out;
+    EXPECT_EQ(run_clppm("--width 40 --height 24 --passes 3 --quiet --no-png -o " + dir + "/t.exr --display-server 127.0.0.1:" +
+                            std::to_string(ntohs(a.sin_port)),
+                        &out),
+              0)
+        << out;
+    reader.join();
+    ::close(server);
+    const Image img = read_exr(dir + "/t.exr");
+    ASSERT_GE(stream.size(), 5u);
+    // Walk the packets.
+    std::vector<float> last(img.rgb.size(), -1.f);
+    size_t at = 0, creates = 0, updates = 0;
+    while (at + 5 <= stream.size()) {
+        const uint32_t n = u32(stream, at);
+        ASSERT_GE(n, 5u);
+        ASSERT_LE(at + n, stream.size());
+        const std::string p = stream.substr(at, n);
+        if (p[4] == 4) {
+            ++creates;
+            EXPECT_EQ(p, tev::create_image_packet("t.exr", 40, 24, true));
+        } else {
+            ASSERT_EQ(p[4], 6);
+            ++updates;
+            size_t q = 6 + std::strlen(&p[6]) + 1 + 4 + 6; // name, channel count, "R\0G\0B\0"
+            const int x = int(u32(p, q)), y = int(u32(p, q + 4)), w = int(u32(p, q + 8)), h = int(u32(p, q + 12));
+            q += 16 + 48;
+            ASSERT_EQ(p.size(), q + size_t(w) * size_t(h) * 12);
+            for (int r = 0; r < h; ++r)
+                for (int c = 0; c < w; ++c)
+                    std::memcpy(&last[(size_t(y + r) * 40 + size_t(x + c)) * 3], &p[q + (size_t(r) * size_t(w) + size_t(c)) * 12], 12);
+        }
+        at += n;
+    }
+    EXPECT_EQ(at, stream.size());
+    EXPECT_EQ(creates, 1u);
+    EXPECT_GE(updates, 1u);
+    EXPECT_TRUE(last == img.rgb) << "tev's last image is not the EXR";
+}
