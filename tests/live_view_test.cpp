@@ -6,11 +6,11 @@
 
 #include <arpa/inet.h>
 #include <chrono>
+#include <fstream>
 #include <netinet/in.h>
 #include <sys/socket.h>
-#include <unistd.h>
-#include <fstream>
 #include <thread>
+#include <unistd.h>
 
 #include <httplib.h>
 #include <nlohmann/json.hpp>
@@ -158,9 +158,9 @@ TEST(LiveView, AnAddressInUseIsAOneLineError) {
         LiveView second(parse_serve_address("127.0.0.1:" + std::to_string(first.port())), ToneMapping{});
         ADD_FAILURE() << "bound the same port twice";
     } catch (const Error& e) {
-        EXPECT_NE(std::string(e.what()).find("--serve 127.0.0.1:" + std::to_string(first.port()) +
-                                             ": cannot listen there"),
-                  std::string::npos)
+        EXPECT_NE(
+            std::string(e.what()).find("--serve 127.0.0.1:" + std::to_string(first.port()) + ": cannot listen there"),
+            std::string::npos)
             << e.what();
     }
 }
@@ -175,10 +175,10 @@ TEST(LiveView, ARenderCanBeWatchedSavedAndStopped) {
     std::string out;
     int status = -1;
     std::thread render([&] {
-        status = run_clppm("--integrator sppm --width 32 --height 32 --photons 20000 --passes 100000 --no-png -o " +
-                               dir + "/live.exr --stats-json " + dir + "/stats.json --serve 127.0.0.1:" +
-                               std::to_string(port),
-                           &out);
+        status =
+            run_clppm("--integrator sppm --width 32 --height 32 --photons 20000 --passes 100000 --no-png -o " + dir +
+                          "/live.exr --stats-json " + dir + "/stats.json --serve 127.0.0.1:" + std::to_string(port),
+                      &out);
     });
     httplib::Client c("127.0.0.1", port);
     auto page = get_when_up(c, "/");

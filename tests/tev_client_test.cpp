@@ -36,15 +36,13 @@ uint32_t u32(const std::string& s, size_t at) {
 } // namespace
 
 TEST(Tev, CreateImagePacketIsTheProtocolsBytes) {
-    const std::string expected = bytes({
-        30, 0,   0,   0,   // length of the whole packet
-        4,                 // CreateImage
-        1,                 // grab focus
-        'a', '.', 'e', 'x', 'r', 0,
-        2,   0,   0,   0,  // width
-        1,   0,   0,   0,  // height
-        3,   0,   0,   0,  // channels
-        'R', 0,   'G', 0,   'B', 0});
+    const std::string expected = bytes({30,  0,   0,   0,                       // length of the whole packet
+                                        4,                                      // CreateImage
+                                        1,                                      // grab focus
+                                        'a', '.', 'e', 'x', 'r', 0, 2, 0, 0, 0, // width
+                                        1,   0,   0,   0,                       // height
+                                        3,   0,   0,   0,                       // channels
+                                        'R', 0,   'G', 0,   'B', 0});
     EXPECT_EQ(tev::create_image_packet("a.exr", 2, 1, true), expected);
 }
 
@@ -52,22 +50,22 @@ TEST(Tev, UpdateImagePacketIsTheProtocolsBytes) {
     Image img;
     img.width = 2, img.height = 1;
     img.rgb = {1.f, 2.f, 0.5f, 0.f, -0.f, 4.f};
-    std::string expected = bytes({
-        0, 0, 0, 0,             // length, below
-        6,                      // UpdateImage version 3
-        0,                      // grab focus
-        'a', 0,                 // name
-        3, 0, 0, 0,             // channels
-        'R', 0, 'G', 0, 'B', 0, // their names
-        1, 0, 0, 0,             // x
-        0, 0, 0, 0,             // y
-        1, 0, 0, 0,             // width
-        1, 0, 0, 0,             // height
-        0, 0, 0, 0, 0, 0, 0, 0, 1, 0, 0, 0, 0, 0, 0, 0, 2, 0, 0, 0, 0, 0, 0, 0, // offsets 0, 1, 2
-        3, 0, 0, 0, 0, 0, 0, 0, 3, 0, 0, 0, 0, 0, 0, 0, 3, 0, 0, 0, 0, 0, 0, 0, // strides 3, 3, 3
-        0, 0, 0, 0,             // 0.0f
-        0, 0, 0, 0x80,          // -0.0f
-        0, 0, 0x80, 0x40});     // 4.0f
+    std::string expected =
+        bytes({0,   0, 0,    0,            // length, below
+               6,                          // UpdateImage version 3
+               0,                          // grab focus
+               'a', 0,                     // name
+               3,   0, 0,    0,            // channels
+               'R', 0, 'G',  0,    'B', 0, // their names
+               1,   0, 0,    0,            // x
+               0,   0, 0,    0,            // y
+               1,   0, 0,    0,            // width
+               1,   0, 0,    0,            // height
+               0,   0, 0,    0,    0,   0, 0, 0, 1, 0, 0, 0, 0, 0, 0, 0, 2, 0, 0, 0, 0, 0, 0, 0, // offsets 0, 1, 2
+               3,   0, 0,    0,    0,   0, 0, 0, 3, 0, 0, 0, 0, 0, 0, 0, 3, 0, 0, 0, 0, 0, 0, 0, // strides 3, 3, 3
+               0,   0, 0,    0,                                                                  // 0.0f
+               0,   0, 0,    0x80,                                                               // -0.0f
+               0,   0, 0x80, 0x40});                                                             // 4.0f
     expected[0] = char(expected.size());
     EXPECT_EQ(tev::update_image_packet("a", img, 1, 0, 1, 1), expected);
 }
@@ -121,8 +119,8 @@ TEST(Tev, ARenderSendsItsImage) {
     });
     const std::string dir = make_temp_dir("tev");
     std::string out;
-    EXPECT_EQ(run_clppm("--width 40 --height 24 --passes 3 --quiet --no-png -o " + dir + "/t.exr --display-server 127.0.0.1:" +
-                            std::to_string(ntohs(a.sin_port)),
+    EXPECT_EQ(run_clppm("--width 40 --height 24 --passes 3 --quiet --no-png -o " + dir +
+                            "/t.exr --display-server 127.0.0.1:" + std::to_string(ntohs(a.sin_port)),
                         &out),
               0)
         << out;
@@ -150,7 +148,8 @@ TEST(Tev, ARenderSendsItsImage) {
             ASSERT_EQ(p.size(), q + size_t(w) * size_t(h) * 12);
             for (int r = 0; r < h; ++r)
                 for (int c = 0; c < w; ++c)
-                    std::memcpy(&last[(size_t(y + r) * 40 + size_t(x + c)) * 3], &p[q + (size_t(r) * size_t(w) + size_t(c)) * 12], 12);
+                    std::memcpy(&last[(size_t(y + r) * 40 + size_t(x + c)) * 3],
+                                &p[q + (size_t(r) * size_t(w) + size_t(c)) * 12], 12);
         }
         at += n;
     }

@@ -37,7 +37,8 @@ ServeAddress parse_serve_address(const std::string& text) {
     if (colon != std::string::npos) {
         a.host = text.substr(0, colon);
         port = text.substr(colon + 1);
-        if (a.host.size() >= 2 && a.host.front() == '[' && a.host.back() == ']') a.host = a.host.substr(1, a.host.size() - 2);
+        if (a.host.size() >= 2 && a.host.front() == '[' && a.host.back() == ']')
+            a.host = a.host.substr(1, a.host.size() - 2);
         if (a.host.empty()) bad_address(text, "must be [ADDR:]PORT with an address before the ':'");
     }
     char* end = nullptr;
@@ -48,9 +49,7 @@ ServeAddress parse_serve_address(const std::string& text) {
     return a;
 }
 
-bool is_loopback(const std::string& host) {
-    return host == "localhost" || host == "::1" || host.rfind("127.", 0) == 0;
-}
+bool is_loopback(const std::string& host) { return host == "localhost" || host == "::1" || host.rfind("127.", 0) == 0; }
 
 LiveView::LiveView(const ServeAddress& address, const ToneMapping& tone)
     : server_(std::make_unique<httplib::Server>()), host_(address.host), tone_(tone) {

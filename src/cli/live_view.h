@@ -90,7 +90,7 @@ private:
     std::atomic<bool> stop_{false}, save_{false};
     std::atomic<uint64_t> requests_{0};
     std::atomic<double> last_request_s_{-1e9}; // steady clock seconds (now_seconds in live_view.cpp)
-    double last_publish_s_ = -1e9;              // the render thread's own
+    double last_publish_s_ = -1e9;             // the render thread's own
 };
 
 } // namespace clppm

@@ -72,7 +72,8 @@ std::string update_image_packet(const std::string& name, const Image& img, int x
     b.reserve(b.size() + size_t(w) * size_t(h) * 12);
     for (int row = y; row < y + h; ++row)
         for (int col = x; col < x + w; ++col)
-            for (int c = 0; c < 3; ++c) put_f32(b, img.rgb[(size_t(row) * size_t(img.width) + size_t(col)) * 3 + size_t(c)]);
+            for (int c = 0; c < 3; ++c)
+                put_f32(b, img.rgb[(size_t(row) * size_t(img.width) + size_t(col)) * 3 + size_t(c)]);
     return finish(std::move(b));
 }
 
