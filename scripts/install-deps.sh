@@ -11,7 +11,7 @@ required=(
   clang-format cppcheck
 )
 # Optional, for the benchmarks only: Embree (the CPU traversal yardstick) and gnuplot (plots).
-optional=(libembree-dev gnuplot-nox)
+optional=(libembree-dev gnuplot-nox chromium) # chromium: the live view's browser test
 
 # Prints the packages of "$@" that are not fully installed (one dpkg-query for all of them).
 missing_of() {

@@ -14,6 +14,7 @@
 
 #include <httplib.h>
 #include <nlohmann/json.hpp>
+#include <stb_image.h>
 
 #include "cli/live_view.h"
 #include "io/image_io.h"
@@ -250,4 +251,50 @@ TEST(LiveView, BeingWatchedChangesNoPixel) {
     const Image a = read_exr(dir + "/plain.exr"), b = read_exr(dir + "/watched.exr");
     ASSERT_EQ(a.rgb.size(), b.rgb.size());
     EXPECT_TRUE(a.rgb == b.rgb) << "the watched render differs";
+}
+
+// A real browser: headless Chromium loads the page during a render and its screenshot shows the
+// image (the Cornell box's red and green walls). Skipped, saying so, where chromium is absent
+// (scripts/install-deps.sh installs it when Debian has it).
+TEST(LiveView, ABrowserShowsTheImage) {
+    std::string out;
+    if (run_command("command -v chromium", &out) != 0) GTEST_SKIP() << "chromium is not installed";
+    const std::string dir = make_temp_dir("live_browser");
+    const int port = free_port();
+    int status = -1;
+    std::thread render([&] {
+        status = run_clppm("--width 96 --height 96 --passes 100000 --quiet --no-png -o " + dir +
+                               "/b.exr --serve 127.0.0.1:" + std::to_string(port),
+                           &out);
+    });
+    httplib::Client c("127.0.0.1", port);
+    ASSERT_TRUE(get_when_up(c, "/stats"));
+    // Watched from here on: wait for the first published image.
+    for (int i = 0; i < 600; ++i) {
+        auto r = c.Get("/stats");
+        if (r && nlohmann::json::parse(r->body)["version"].get<int>() > 0) break;
+        std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    }
+    std::string log;
+    const int rc = run_command(
+        "timeout 120 chromium --headless --no-sandbox --disable-gpu --screenshot=" + dir +
+            "/shot.png --window-size=400,300 --virtual-time-budget=3000 http://127.0.0.1:" + std::to_string(port) + "/",
+        &log);
+    c.Post("/stop", "", "text/plain");
+    render.join();
+    EXPECT_EQ(status, 0) << out;
+    ASSERT_EQ(rc, 0) << log;
+    int w = 0, h = 0, n = 0;
+    unsigned char* px = stbi_load((dir + "/shot.png").c_str(), &w, &h, &n, 3);
+    ASSERT_NE(px, nullptr) << "no screenshot";
+    size_t red = 0, green = 0;
+    for (int i = 0; i < w * h; ++i) {
+        const unsigned char r = px[3 * i], g = px[3 * i + 1], b = px[3 * i + 2];
+        red += r > 120 && g < 70 && b < 70;
+        green += g > 100 && r < 70 && b < 70;
+    }
+    stbi_image_free(px);
+    std::printf("screenshot %dx%d: %zu red and %zu green pixels\n", w, h, red, green);
+    EXPECT_GT(red, 50u) << "the page shows no image";
+    EXPECT_GT(green, 50u) << "the page shows no image";
 }
