@@ -66,6 +66,16 @@ LiveView::LiveView(const ServeAddress& address, const ToneMapping& tone)
         throw Error("--serve " + address.host + ":" + std::to_string(address.port) +
                     ": cannot listen there (address not on this machine, or port in use)");
     thread_ = std::thread([this] { server_->listen_after_bind(); });
+    // httplib's stop() does nothing until the server runs, and a listen that starts after it would
+    // never end: the destructor's join would hang. Return only once it runs.
+    const double deadline = now_seconds() + 30;
+    while (!server_->is_running() && now_seconds() < deadline)
+        std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    if (!server_->is_running()) {
+        server_->stop();
+        thread_.join(); // listen_after_bind has returned: it never ran
+        throw Error("--serve " + url() + ": the server did not start");
+    }
 }
 
 LiveView::~LiveView() {
