@@ -1,12 +1,14 @@
 #include "cli/live_view.h"
 
 #include <chrono>
+#include <cstdio>
 #include <cstdlib>
 
 #include <httplib.h>
 
 #include "cli/live_view_page.h"
 #include "integrators/error_estimate.h" // false_colour
+#include "io/half_image.h"
 #include "util/error.h"
 
 namespace clppm {
@@ -25,6 +27,14 @@ void json_reply(httplib::Response& res, int status, const nlohmann::json& j) {
     res.status = status;
     res.set_header("Cache-Control", "no-store");
     res.set_content(j.dump(), "application/json");
+}
+
+void image_headers(httplib::Response& res, uint64_t version, double encode_s) {
+    res.set_header("Cache-Control", "no-store");
+    res.set_header("X-Clppm-Version", std::to_string(version));
+    char timing[64];
+    std::snprintf(timing, sizeof timing, "encode;dur=%.3f", encode_s * 1e3);
+    res.set_header("Server-Timing", timing);
 }
 
 } // namespace
@@ -106,6 +116,7 @@ void LiveView::publish(const Image& image, const std::vector<float>& error_relat
     snapshot_.image.attributes.clear();
     snapshot_.error = error_relative;
     snapshot_.error_scale = error_scale;
+    snapshot_.base_ev = applied_exposure_ev(tone_, image);
     snapshot_.progress = progress;
     snapshot_.state = "rendering";
     ++snapshot_.version;
@@ -132,9 +143,12 @@ void LiveView::routes() {
                     {"has_error_map", !snapshot_.error.empty()},
                     {"width", snapshot_.image.width},
                     {"height", snapshot_.image.height},
+                    {"tone", {{"curve", to_string(tone_.curve)}, {"base_ev", snapshot_.base_ev}}},
                     {"progress", snapshot_.progress}});
     });
-    // The PNG is encoded here, on the server's thread, from a copy: the render loop only copied.
+    // Both images are encoded here, on the server's thread, from a copy: the render loop only
+    // copied. Each says which publication it is (X-Clppm-Version) and what encoding it cost
+    // (Server-Timing), which the page shows and bench/live_view_transport.sh measures.
     s.Get("/image.png", [this](const httplib::Request& req, httplib::Response& res) {
         touched();
         ToneMapping tone = tone_;
@@ -149,6 +163,7 @@ void LiveView::routes() {
         const bool error_map = req.has_param("map") && req.get_param_value("map") == "error";
         if (req.has_param("map") && !error_map) return json_reply(res, 400, {{"error", "map must be error"}});
         Image img;
+        uint64_t version = 0;
         {
             std::lock_guard<std::mutex> lock(mutex_);
             if (snapshot_.version == 0) return json_reply(res, 503, {{"error", "no image yet: the first pass runs"}});
@@ -157,9 +172,29 @@ void LiveView::routes() {
             img = error_map ? false_colour(snapshot_.error, snapshot_.image.width, snapshot_.image.height,
                                            snapshot_.error_scale)
                             : snapshot_.image;
+            version = snapshot_.version;
         }
-        res.set_header("Cache-Control", "no-store");
-        res.set_content(encode_png(img, error_map ? ToneMapping{ToneCurve::Clip, 0.0, false} : tone), "image/png");
+        const double t0 = now_seconds();
+        std::string png = encode_png(img, error_map ? ToneMapping{ToneCurve::Clip, 0.0, false} : tone);
+        image_headers(res, version, now_seconds() - t0);
+        res.set_content(std::move(png), "image/png");
+    });
+    s.Get("/image.f16", [this](const httplib::Request&, httplib::Response& res) {
+        touched();
+        Image img;
+        uint64_t version = 0;
+        double base_ev = 0;
+        {
+            std::lock_guard<std::mutex> lock(mutex_);
+            if (snapshot_.version == 0) return json_reply(res, 503, {{"error", "no image yet: the first pass runs"}});
+            img = snapshot_.image;
+            version = snapshot_.version;
+            base_ev = snapshot_.base_ev;
+        }
+        const double t0 = now_seconds();
+        std::string bytes = encode_half_image(img, base_ev);
+        image_headers(res, version, now_seconds() - t0);
+        res.set_content(std::move(bytes), "application/octet-stream");
     });
     s.Post("/save", [this](const httplib::Request&, httplib::Response& res) {
         touched();
@@ -175,7 +210,7 @@ void LiveView::routes() {
     const auto not_allowed = [](const httplib::Request&, httplib::Response& res) {
         json_reply(res, 405, {{"error", "method not allowed"}});
     };
-    for (const char* path : {"/", "/stats", "/image.png"}) s.Post(path, not_allowed);
+    for (const char* path : {"/", "/stats", "/image.png", "/image.f16"}) s.Post(path, not_allowed);
     for (const char* path : {"/save", "/stop"}) s.Get(path, not_allowed);
     s.set_error_handler([](const httplib::Request&, httplib::Response& res) {
         if (!res.body.empty()) return; // a handler's own message

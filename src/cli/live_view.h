@@ -1,7 +1,8 @@
 // --serve [ADDR:]PORT: a live view of the render in a browser. An HTTP server (cpp-httplib) on
 // its own threads serves a page (cli/live_view_page.h: no external resources) and what the render
 // loop last published: the image as a PNG through the PNG's tone curve at an exposure the page
-// chooses, the per-pixel error map, and the progress as JSON; POST /save asks the loop to write
+// chooses, or as half floats (io/half_image.h) for the page to tone-map itself, the per-pixel
+// error map, and the progress as JSON; POST /save asks the loop to write
 // the outputs after the current pass, POST /stop to end the render after it, as Ctrl-C does.
 //
 // The render loop publishes only while someone watches (a request in the last few seconds) and
@@ -73,6 +74,7 @@ private:
         Image image;
         std::vector<float> error;
         double error_scale = 0.2;
+        double base_ev = 0; // the exposure the PNG applies to `image` (ToneMapping's, auto included)
         nlohmann::json progress = nlohmann::json::object();
         uint64_t version = 0; // increments with every publication
         std::string state = "starting";
