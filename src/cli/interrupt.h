@@ -7,6 +7,9 @@ namespace clppm {
 
 void install_interrupt_handlers();
 
+// Several processes (device/cluster.h): rank 0 says why the job stops, the others say nothing.
+void set_interrupt_context(int ranks, int rank);
+
 // 0 while no stop was requested, else the signal number (SIGINT or SIGTERM).
 int interrupt_signal();
 

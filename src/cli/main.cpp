@@ -6,6 +6,7 @@
 #include "cli/compare_command.h"
 #include "cli/options.h"
 #include "cli/render_session.h"
+#include "device/cluster.h"
 #include "device/device.h"
 #include "util/error.h"
 #include "util/version.h"
@@ -14,6 +15,8 @@ using namespace clppm;
 
 int main(int argc, char** argv) {
     try {
+        // mpirun -np N: one render on N processes (device/cluster.h); otherwise a cluster of one.
+        const ClusterSession mpi(&argc, &argv);
         if (argc >= 2 && std::string(argv[1]) == "compare") return compare_command(argc - 2, argv + 2);
         Options opt = parse_options(argc, argv);
         if (opt.help) {
@@ -30,16 +33,17 @@ int main(int argc, char** argv) {
         }
         return render_session(opt);
     } catch (const Error& e) {
-        std::fprintf(stderr, "clppm: error: %s\n", e.what());
+        std::fprintf(stderr, "clppm: %serror: %s\n", cluster().prefix().c_str(), e.what());
         return 1;
     } catch (const cl::Error& e) {
-        std::fprintf(stderr, "clppm: error: OpenCL call %s failed with code %d\n", e.what(), e.err());
+        std::fprintf(stderr, "clppm: %serror: OpenCL call %s failed with code %d\n", cluster().prefix().c_str(),
+                     e.what(), e.err());
         return 1;
     } catch (const std::bad_alloc&) {
-        std::fprintf(stderr, "clppm: error: out of host memory\n");
+        std::fprintf(stderr, "clppm: %serror: out of host memory\n", cluster().prefix().c_str());
         return 1;
     } catch (const std::exception& e) {
-        std::fprintf(stderr, "clppm: error: %s\n", e.what());
+        std::fprintf(stderr, "clppm: %serror: %s\n", cluster().prefix().c_str(), e.what());
         return 1;
     }
 }

@@ -9,6 +9,7 @@
 #include "cli/live_view.h"
 #include "cli/progress.h"
 #include "cli/tev_client.h"
+#include "device/cluster.h"
 #include "device/device.h"
 #include "device/kernel_program.h"
 #include "integrators/error_estimate.h"
@@ -43,8 +44,11 @@ void note(const Options& opt, const std::string& msg) {
     if (!opt.quiet) std::fprintf(stderr, "clppm: %s\n", msg.c_str());
 }
 
-// What the user must know about the result: always shown, --quiet or not.
-void warn(const std::string& msg) { std::fprintf(stderr, "clppm: warning: %s\n", msg.c_str()); }
+// What the user must know about the result: always shown, --quiet or not; by rank 0 alone when
+// several processes render (the others see the same).
+void warn(const std::string& msg) {
+    if (cluster().rank() == 0) std::fprintf(stderr, "clppm: warning: %s\n", msg.c_str());
+}
 
 // o.integrator is settled by now (--integrator, or default_integrator's choice).
 RenderSettings settings_from(const Options& o) {
@@ -285,16 +289,29 @@ int render_session(const Options& given) {
     Options opt = given; // the integrator and its default pass count are settled with the scene
     Clock total;
     install_interrupt_handlers();
+    // Several processes (mpirun): every rank renders the same passes on its share of the work;
+    // rank 0 alone speaks, serves, writes and locks the outputs.
+    Cluster& cl = cluster();
+    const bool writer = cl.rank() == 0;
+    set_interrupt_context(cl.size(), cl.rank());
+    if (!writer) {
+        opt.quiet = true;
+        opt.serve.clear();
+        opt.display_server.clear();
+    }
     if (!opt.kernel_dir.empty()) set_kernel_dir(opt.kernel_dir);
     std::vector<DeviceInfo> devices = list_devices();
     const std::vector<DeviceInfo> chosen = choose_devices(opt, devices);
     const DeviceInfo& info = chosen.front();
-    check_outputs(opt);
+    if (writer) check_outputs(opt);
     // Two renders writing the same files would mix their outputs: the second is refused.
-    std::vector<std::string> outputs = {opt.output};
-    if (opt.write_png) outputs.push_back(png_path_for(opt.output));
-    for (const std::string* p : {&opt.stats_json, &opt.checkpoint, &opt.error_output})
-        if (!p->empty()) outputs.push_back(*p);
+    std::vector<std::string> outputs;
+    if (writer) {
+        outputs.push_back(opt.output);
+        if (opt.write_png) outputs.push_back(png_path_for(opt.output));
+        for (const std::string* p : {&opt.stats_json, &opt.checkpoint, &opt.error_output})
+            if (!p->empty()) outputs.push_back(*p);
+    }
     const OutputLock lock(outputs);
     // The live view listens from here on, so that a bad address fails before any work.
     std::unique_ptr<LiveView> live;
@@ -362,6 +379,10 @@ int render_session(const Options& given) {
                   (build.from_cache ? "cached" : "built") + " in " + std::to_string(build.seconds).substr(0, 5) + " s");
 
     if (!integrator_note.empty()) note(opt, integrator_note);
+    if (cl.distributed())
+        note(opt, std::to_string(cl.size()) + " processes (MPI): each pass's " +
+                      (settings.integrator == Integrator::PT ? "pixels" : "photons") +
+                      " are shared in proportion to each one's measured speed, their sums combined exactly");
     // Light the path tracer cannot find: a point, spot or directional light seen through glass or
     // a mirror (a caustic) is a path of two delta events it never samples.
     if (settings.integrator == Integrator::PT && has_smooth_glass_or_mirror(scene) &&
@@ -437,7 +458,21 @@ int render_session(const Options& given) {
         live->publish(current_image(opt, *integ, 0), errors.integ ? errors.last.relative : none,
                       opt.target_error > 0 ? 2 * opt.target_error : 0.2, j);
     };
-    while (more()) {
+    // With several processes, rank 0's decision is everyone's (its clock, its viewer, its error
+    // estimate), so that all ranks run the same passes; a rank's own Ctrl-C stops it at once.
+    auto go_on = [&] {
+        const bool go = more();
+        if (!cl.distributed()) return go;
+        try {
+            const bool all = cl.from_rank0(go);
+            if (!all && !writer) signal = 0; // rank 0 ended it (its signal, if any, is its own)
+            return all && (signal = interrupt_signal()) == 0;
+        } catch (const PassCancelled&) {
+            signal = interrupt_signal();
+            return false;
+        }
+    };
+    while (go_on()) {
         try {
             integ->run_pass();
         } catch (const PassCancelled&) {
@@ -447,7 +482,7 @@ int render_session(const Options& given) {
         const IntegratorStats& st = integ->stats();
         errors.update(opt, progress, st.passes, render_clock.seconds());
         progress.update(st.passes, st.photons_emitted, st.mean_radius, render_clock.seconds());
-        if (opt.progressive_output > 0 && st.passes % opt.progressive_output == 0)
+        if (writer && opt.progressive_output > 0 && st.passes % opt.progressive_output == 0)
             save_images(opt, current_image(opt, *integ, 0), errors);
         if (tev && tev->connected() && render_clock.seconds() - last_tev_s >= 1.0 / LiveView::kPublishHz) {
             tev->send(current_image(opt, *integ, 0));
@@ -461,8 +496,9 @@ int render_session(const Options& given) {
                      "saved " + opt.output + " at pass " + std::to_string(st.passes) + " (asked by the live view)");
             }
         }
-        if (!opt.checkpoint.empty() && ((opt.checkpoint_every > 0 && st.passes % opt.checkpoint_every == 0) ||
-                                        render_clock.seconds() - last_checkpoint >= opt.checkpoint_interval)) {
+        if (writer && !opt.checkpoint.empty() &&
+            ((opt.checkpoint_every > 0 && st.passes % opt.checkpoint_every == 0) ||
+             render_clock.seconds() - last_checkpoint >= opt.checkpoint_interval)) {
             save_checkpoint(opt, *integ, fingerprint, dc);
             last_checkpoint = render_clock.seconds();
         }
@@ -481,6 +517,26 @@ int render_session(const Options& given) {
         // must not replace whatever the outputs hold.
         warn("interrupted before the first pass: nothing written, " + opt.output + " left as it was");
         return interrupted_exit_status(signal);
+    }
+
+    // Each rank's speed and time in communication, for the stats (a collective: only when every
+    // rank got here, i.e. none was interrupted).
+    Json mpi_stats;
+    if (cl.distributed()) {
+        mpi_stats = {{"ranks", cl.size()}};
+        if (!signal) {
+            try {
+                const std::vector<double> work = cl.all_values(render_s > 0 ? double(st.local_work) / render_s : 0.0);
+                const std::vector<double> comm = cl.all_values(cl.communication_seconds());
+                mpi_stats[settings.integrator == Integrator::PT ? "samples_per_second" : "photons_per_second"] = work;
+                mpi_stats["communication_seconds"] = comm;
+            } catch (const PassCancelled&) {
+                signal = interrupt_signal();
+            }
+        }
+        mpi_stats["bytes_per_pass"] = st.passes ? double(cl.communication_bytes()) / double(st.passes) : 0.0;
+        mpi_stats["last_pass_share"] = st.rank_photons;
+        if (!writer) return signal ? interrupted_exit_status(signal) : 0;
     }
 
     Image img = current_image(opt, *integ, signal);
@@ -514,6 +570,7 @@ int render_session(const Options& given) {
                      nonfinite, negative, opt.output.c_str());
     if (!opt.stats_json.empty()) {
         Json j = make_stats(opt, dc, ds, scene, *integ, build, render_s, total.seconds(), img, signal);
+        if (!mpi_stats.is_null()) j["mpi"] = mpi_stats;
         if (live)
             j["live_view"] = {{"url", live->url()}, {"requests", live->requests()}, {"stopped_it", stopped_by_viewer}};
         if (errors.integ)

@@ -6,16 +6,22 @@
 namespace clppm {
 
 void enqueue_1d(const cl::CommandQueue& queue, const cl::Kernel& kernel, size_t n, cl::Event* event) {
+    enqueue_1d_range(queue, kernel, 0, n, event);
+}
+
+void enqueue_1d_range(const cl::CommandQueue& queue, const cl::Kernel& kernel, size_t first, size_t n,
+                      cl::Event* event) {
     static const size_t local = [] {
         const char* e = std::getenv("CLPPM_LOCAL_SIZE");
         return e && *e ? size_t(std::strtoul(e, nullptr, 10)) : size_t(0);
     }();
     n = std::max<size_t>(n, 1);
+    const cl::NDRange offset = first ? cl::NDRange(first) : cl::NullRange;
     if (local > 0) {
         size_t global = (n + local - 1) / local * local;
-        queue.enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(global), cl::NDRange(local), nullptr, event);
+        queue.enqueueNDRangeKernel(kernel, offset, cl::NDRange(global), cl::NDRange(local), nullptr, event);
     } else {
-        queue.enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(n), cl::NullRange, nullptr, event);
+        queue.enqueueNDRangeKernel(kernel, offset, cl::NDRange(n), cl::NullRange, nullptr, event);
     }
 }
 

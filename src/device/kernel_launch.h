@@ -18,6 +18,10 @@ int set_args(cl::Kernel& kernel, int first, const Args&... args) {
 // the driver's choice unless CLPPM_LOCAL_SIZE is set, which the tests use to show that images do
 // not depend on it.
 void enqueue_1d(const cl::CommandQueue& queue, const cl::Kernel& kernel, size_t n, cl::Event* event = nullptr);
+// Work items first .. first + n - 1 (get_global_id counts from `first`); the kernel bounds-checks
+// against the range's end as it does against n above.
+void enqueue_1d_range(const cl::CommandQueue& queue, const cl::Kernel& kernel, size_t first, size_t n,
+                      cl::Event* event = nullptr);
 
 // Reads a whole device buffer of n elements into a vector, and writes one back.
 template <class T>

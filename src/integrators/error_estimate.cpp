@@ -210,10 +210,10 @@ void ErrorEstimator::reset_accum(const cl::Buffer& accum) {
     passes_ = 0;
 }
 
-void ErrorEstimator::update_accum(const cl::Buffer& accum) {
-    set_args(k_update_, 0, accum, cl_uint(n_), error_stats_);
+void ErrorEstimator::update_accum(const cl::Buffer& accum, uint32_t first, uint32_t count) {
+    set_args(k_update_, 0, accum, cl_uint(first + count), error_stats_);
     cl::Event ev;
-    enqueue_1d(dc_.queue, k_update_, n_, &ev);
+    enqueue_1d_range(dc_.queue, k_update_, first, count, &ev);
     add_event_time(stats_, "error_estimate", ev);
     ++passes_;
 }

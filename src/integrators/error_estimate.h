@@ -68,7 +68,8 @@ public:
     void reset(const cl::Buffer& hit_stats);
     // The path tracer: fresh statistics from its running RGB sums, and a pass's growth of them.
     void reset_accum(const cl::Buffer& accum);
-    void update_accum(const cl::Buffer& accum);
+    // Pixels [first, first + count) only (all: count = the pixel count): a rank's share (cluster.h).
+    void update_accum(const cl::Buffer& accum, uint32_t first, uint32_t count);
     // After a pass's gathers and before ppm_update: hit_stats still hold this pass's radii.
     // global_r2 > 0 is PPPM's radius; power_per_photon = total power / photons per pass.
     void update(const cl::Buffer& passflux, const cl::Buffer& hitpoints, const cl::Buffer& hit_stats, double global_r2,
@@ -78,6 +79,7 @@ public:
     ErrorImage estimate(double confidence, int width, int height, const std::vector<float>* min_sigma = nullptr);
 
     std::vector<dev::ErrorStats> read() const;
+    const cl::Buffer& statistics() const { return error_stats_; }
     // Device bytes per pixel: the Laplacian sums, the statistics and the bound image.
     static constexpr size_t bytes_per_pixel() { return sizeof(cl_long) + sizeof(dev::ErrorStats) + sizeof(cl_float8); }
     void write(const std::vector<dev::ErrorStats>& v);

@@ -23,6 +23,8 @@ struct IntegratorStats {
     size_t photon_bytes = 0;                     // photon and grid buffers
     uint32_t photon_batches = 0;                 // batches the last pass's photons were traced in
     std::vector<uint32_t> device_photons;        // photons each device traced in the last pass, primary first
+    std::vector<uint32_t> rank_photons;          // photons (path tracer: pixels) each MPI rank took in the last pass
+    uint64_t local_work = 0;                     // photons (path tracer: pixel samples) this process traced
     // Kernel events of the current pass, resolved into phase_seconds at the pass's end so that
     // timing never adds a synchronisation point inside the pass.
     std::vector<std::pair<std::string, cl::Event>> pending_events;

@@ -4,8 +4,10 @@
 #include <exception>
 #include <thread>
 
+#include "device/cluster.h"
 #include "device/kernel_launch.h"
 #include "device/kernel_program.h"
+#include "integrators/work_balance.h"
 #include "util/error.h"
 
 namespace clppm {
@@ -61,31 +63,74 @@ PhotonPasses::~PhotonPasses() = default;
 void PhotonPasses::set_second_gather(const cl::Kernel& kernel, const cl::Buffer& out, const std::string& phase) {
     if (!workers_.empty()) throw Error(phase + " runs on one device only: give a single --device");
     primary_.set_second_gather(kernel, out, phase);
+    second_out_ = out; // summed over ranks with the flux (cluster.h)
 }
 
-std::vector<uint32_t> PhotonPasses::split(uint32_t photons) const {
+std::vector<uint32_t> PhotonPasses::split(uint32_t photons, const std::vector<double>& rates) {
     double total = 0;
-    for (double r : rate_) total += r;
-    std::vector<uint32_t> s(rate_.size(), 0);
+    for (double r : rates) total += r;
+    std::vector<uint32_t> s(rates.size(), 0);
     uint32_t given = 0;
     for (size_t k = 1; k < s.size(); ++k) {
-        s[k] = uint32_t(double(photons) * rate_[k] / total);
+        s[k] = uint32_t(double(photons) * rates[k] / total);
         given += s[k];
     }
-    s[0] = photons - given; // the primary takes the rounding
+    s[0] = photons - given; // the first takes the rounding
     return s;
 }
 
 void PhotonPasses::run_pass(uint64_t pass, const cl::Buffer& hitpoints, const cl::Buffer& stats, uint32_t n,
                             float global_r2, double typical_radius, double max_radius, const cl::Buffer& out) {
+    Cluster& cl = cluster();
     const uint32_t M = uint32_t(settings_.photons);
+    // This rank's share of the pass's photon indices, [first, first + count): in proportion to the
+    // ranks' measured photons per second, which every rank knows alike (all_values), so every rank
+    // computes the same split.
+    uint32_t first = 0, count = M;
+    if (cl.distributed()) {
+        rank_split_ = ranks_split(M, rank_balance_);
+        for (int r = 0; r < cl.rank(); ++r) first += rank_split_[size_t(r)];
+        count = rank_split_[size_t(cl.rank())];
+    }
+    const double t0 = now_s();
+    const uint64_t stored_before = stats_.photons_stored;
+    run_local(pass, first, count, hitpoints, stats, n, global_r2, typical_radius, max_radius, out);
+    stats_.local_work += count;
+    if (!cl.distributed()) return;
+    // One reduction per pass: the flux sums (PassFlux: three int64 and the count m in the low half
+    // of a fourth, whose high half is padding and stays 0), the second gather's int64 per hit point
+    // (error estimation) and the photons stored. Integer sums: exact, in any order.
+    static_assert(sizeof(dev::PassFlux) == 4 * sizeof(int64_t), "PassFlux is summed as four int64");
+    const bool second = second_out_() != nullptr;
+    std::vector<int64_t> v(size_t(n) * (4 + (second ? 1 : 0)) + 1, 0);
+    if (n > 0) {
+        dc_.queue.enqueueReadBuffer(out, CL_TRUE, 0, size_t(n) * sizeof(dev::PassFlux), v.data());
+        if (second)
+            dc_.queue.enqueueReadBuffer(second_out_, CL_TRUE, 0, size_t(n) * sizeof(int64_t), v.data() + size_t(n) * 4);
+    }
+    v.back() = int64_t(stats_.photons_stored - stored_before);
+    rank_balance_.record(count, now_s() - t0); // this rank's own work, up to its sums read back
+    cl.sum(v.data(), v.size());
+    if (n > 0) {
+        dc_.queue.enqueueWriteBuffer(out, CL_TRUE, 0, size_t(n) * sizeof(dev::PassFlux), v.data());
+        if (second)
+            dc_.queue.enqueueWriteBuffer(second_out_, CL_TRUE, 0, size_t(n) * sizeof(int64_t),
+                                         v.data() + size_t(n) * 4);
+    }
+    stats_.photons_stored = stored_before + uint64_t(v.back());
+    stats_.rank_photons = rank_split_;
+}
+
+void PhotonPasses::run_local(uint64_t pass, uint32_t first_photon, uint32_t M, const cl::Buffer& hitpoints,
+                             const cl::Buffer& stats, uint32_t n, float global_r2, double typical_radius,
+                             double max_radius, const cl::Buffer& out) {
     if (workers_.empty()) {
-        primary_.run_pass(pass, 0, M, hitpoints, stats, n, global_r2, typical_radius, max_radius, out);
+        primary_.run_pass(pass, first_photon, M, hitpoints, stats, n, global_r2, typical_radius, max_radius, out);
         split_ = {M};
         stats_.device_photons = split_;
         return;
     }
-    split_ = split(M);
+    split_ = split(M, rate_);
     stats_.device_photons = split_;
     // The secondaries gather for the primary's hit points with the primary's radii.
     const bool send_hitpoints = !hitpoints_fixed_ || hitpoints_sent_ != n;
@@ -94,7 +139,7 @@ void PhotonPasses::run_pass(uint64_t pass, const cl::Buffer& hitpoints, const cl
     hitpoints_sent_ = n;
     std::vector<dev::HitStats> hs = read_buffer<dev::HitStats>(dc_.queue, stats, n);
     std::vector<std::thread> threads;
-    uint32_t first = split_[0];
+    uint32_t first = first_photon + split_[0];
     for (size_t k = 0; k < workers_.size(); ++k) {
         Worker& w = *workers_[k];
         const uint32_t begin = first, count = split_[k + 1];
@@ -119,7 +164,8 @@ void PhotonPasses::run_pass(uint64_t pass, const cl::Buffer& hitpoints, const cl
     std::vector<dev::PassFlux> sum;
     std::exception_ptr primary_error;
     try {
-        primary_.run_pass(pass, 0, split_[0], hitpoints, stats, n, global_r2, typical_radius, max_radius, out);
+        primary_.run_pass(pass, first_photon, split_[0], hitpoints, stats, n, global_r2, typical_radius, max_radius,
+                          out);
         sum = read_buffer<dev::PassFlux>(dc_.queue, out, n);
     } catch (...) {
         primary_error = std::current_exception(); // after the workers have finished (a cancelled pass)

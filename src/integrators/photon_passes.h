@@ -4,12 +4,18 @@
 // flux sums are added in device order on the host. Integer addition is exact, so the image is the
 // same bit for bit however the photons are split; the shares follow each device's measured
 // photons per second, re-balanced every pass.
+//
+// With several processes (device/cluster.h: mpirun), the pass's photon indices are first split
+// between the ranks by their measured speed (integrators/work_balance.h), each rank splits its
+// share between its devices as above, and one MPI reduction per pass adds the ranks' integer sums:
+// every rank then holds the same sums, equal bit for bit to one process's.
 #pragma once
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "integrators/photon_map.h"
+#include "integrators/work_balance.h"
 
 namespace clppm {
 
@@ -37,7 +43,12 @@ public:
 
 private:
     struct Worker;
-    std::vector<uint32_t> split(uint32_t photons) const;
+    // `photons` in proportion to `rates`, the first taking the rounding.
+    static std::vector<uint32_t> split(uint32_t photons, const std::vector<double>& rates);
+    // This process's photons [first_photon, first_photon + M), on its devices.
+    void run_local(uint64_t pass, uint32_t first_photon, uint32_t M, const cl::Buffer& hitpoints,
+                   const cl::Buffer& stats, uint32_t n, float global_r2, double typical_radius, double max_radius,
+                   const cl::Buffer& out);
 
     const DeviceContext& dc_;
     const RenderSettings& settings_;
@@ -48,6 +59,9 @@ private:
     std::vector<uint32_t> split_;
     bool hitpoints_fixed_ = false;
     uint32_t hitpoints_sent_ = 0; // hit points the secondaries hold (fixed hit points only)
+    cl::Buffer second_out_;       // the second gather's output, summed over ranks with the flux
+    WorkBalance rank_balance_;    // this rank's seconds against its photons, for the ranks' split
+    std::vector<uint32_t> rank_split_;
 };
 
 } // namespace clppm

@@ -1,13 +1,24 @@
 #include "integrators/pt_integrator.h"
 
 #include <algorithm>
+#include <chrono>
 
+#include "device/cluster.h"
 #include "device/kernel_launch.h"
 #include "integrators/checkpoint_checks.h"
 #include "integrators/film.h"
+#include "integrators/work_balance.h"
 #include "util/error.h"
 
 namespace clppm {
+
+namespace {
+
+double now_seconds() {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+} // namespace
 
 PtIntegrator::PtIntegrator(const DeviceContext& dc, const DeviceScene& scene, const RenderSettings& settings,
                            const cl::Program& program)
@@ -56,14 +67,56 @@ void PtIntegrator::prepare() {
 }
 
 void PtIntegrator::run_pass() {
-    set_args(k_trace_, scene_.set_scene_args(k_trace_), scene_.camera_buf, cl_ulong(settings_.seed),
-             cl_ulong(stats_.passes + 1), cl_uint(num_pixels_), accum_);
-    cl::Event ev;
-    enqueue_1d(dc_.queue, k_trace_, num_pixels_, &ev);
-    add_event_time(stats_, "path_trace", ev);
-    if (errors_) errors_->update_accum(accum_);
-    collect_event_times(stats_);
+    // Each pixel's sample depends on (seed, pass, pixel) alone, so any split of the pixels gives
+    // the same sums. With several processes (device/cluster.h) each rank traces a contiguous range
+    // by the ranks' measured speed (integrators/work_balance.h), and the ranks then share their ranges' sums
+    // and error statistics, so that every rank holds the whole image, as one process would.
+    Cluster& cl = cluster();
+    uint32_t first = 0, count = num_pixels_;
+    std::vector<size_t> firsts, counts;
+    if (cl.distributed()) {
+        const std::vector<uint32_t> split = ranks_split(num_pixels_, balance_);
+        size_t at = 0;
+        for (uint32_t c : split) {
+            firsts.push_back(at);
+            counts.push_back(c);
+            at += c;
+        }
+        first = uint32_t(firsts[size_t(cl.rank())]);
+        count = uint32_t(counts[size_t(cl.rank())]);
+        stats_.rank_photons.assign(counts.begin(), counts.end());
+    }
+    const double t0 = now_seconds();
+    if (count > 0) {
+        set_args(k_trace_, scene_.set_scene_args(k_trace_), scene_.camera_buf, cl_ulong(settings_.seed),
+                 cl_ulong(stats_.passes + 1), cl_uint(first + count), accum_);
+        cl::Event ev;
+        enqueue_1d_range(dc_.queue, k_trace_, first, count, &ev);
+        add_event_time(stats_, "path_trace", ev);
+        if (errors_) errors_->update_accum(accum_, first, count);
+    }
+    collect_event_times(stats_); // waits for the pass
+    if (cl.distributed()) {
+        balance_.record(count, now_seconds() - t0);
+        share(accum_, 3, firsts, counts);
+        if (errors_) share(errors_->statistics(), sizeof(dev::ErrorStats) / sizeof(double), firsts, counts);
+    }
+    stats_.local_work += count;
     stats_.passes += 1;
+}
+
+void PtIntegrator::share(const cl::Buffer& buffer, size_t doubles_per_pixel, const std::vector<size_t>& firsts,
+                         const std::vector<size_t>& counts) {
+    static_assert(sizeof(dev::ErrorStats) % sizeof(double) == 0, "ErrorStats is doubles");
+    std::vector<double> host(size_t(num_pixels_) * doubles_per_pixel);
+    const size_t me = size_t(cluster().rank());
+    const size_t offset = firsts[me] * doubles_per_pixel, n = counts[me] * doubles_per_pixel;
+    if (n)
+        dc_.queue.enqueueReadBuffer(buffer, CL_TRUE, offset * sizeof(double), n * sizeof(double), host.data() + offset);
+    std::vector<size_t> f(firsts), c(counts);
+    for (size_t r = 0; r < f.size(); ++r) f[r] *= doubles_per_pixel, c[r] *= doubles_per_pixel;
+    cluster().share_slices(host.data(), f, c);
+    write_buffer(dc_.queue, buffer, host);
 }
 
 void PtIntegrator::save(Checkpoint& ck) {

@@ -2,10 +2,12 @@
 // comparisons with photon mapping and for cross-checking diffuse scenes.
 #pragma once
 #include <memory>
+#include <vector>
 
 #include "integrators/error_estimate.h"
 #include "integrators/integrator.h"
 #include "integrators/render_settings.h"
+#include "integrators/work_balance.h"
 #include "scene/device_scene.h"
 
 namespace clppm {
@@ -30,6 +32,11 @@ public:
     static IntegratorMemory memory_needed(size_t pixels, bool error_estimation = false);
 
 private:
+    // Every rank's pixel range of `buffer` (doubles_per_pixel doubles a pixel) to every rank.
+    void share(const cl::Buffer& buffer, size_t doubles_per_pixel, const std::vector<size_t>& firsts,
+               const std::vector<size_t>& counts);
+    WorkBalance balance_; // this rank's seconds against its pixels, for the ranks' split
+
     const DeviceContext& dc_;
     const DeviceScene& scene_;
     RenderSettings settings_;
