@@ -108,12 +108,20 @@ namespace {
 // Starts a long render on `ranks` ranks in the background, waits until its checkpoint shows a
 // completed pass, and returns the directory; the job's output goes to dir/log, its status to
 // dir/status.
-std::string start_long_job(const std::string& tag, int ranks) {
+std::string start_long_job(const std::string& tag, int ranks, int sigkill_timeout) {
     const std::string dir = make_temp_dir(tag);
     std::string out;
-    run_command("(" + mpirun(ranks) + kCommon + " --integrator sppm --passes 1000000 -o " + dir +
-                    "/job.exr --checkpoint " + dir + "/ck.clppm --checkpoint-every 1 > " + dir +
-                    "/log 2>&1; echo $? > " + dir + "/status) > /dev/null 2>&1 & echo $! > " + dir + "/shell.pid",
+    // Warm PoCL's kernel cache first: PoCL links a kernel variant in a child process at its first
+    // launch, and mpirun's SIGTERM reaches that child too, which makes PoCL abort (seen when this
+    // test ran beside others that were filling the cache).
+    run_clppm(std::string(kCommon) + " --integrator sppm --passes 3 -o " + dir + "/warm.exr", &out);
+    // mpirun kills ranks `sigkill_timeout` s after its SIGTERM (default 1); a rank may be compiling
+    // a kernel variant for a new photon count then (PoCL compiles one per work size at first
+    // launch), so the Ctrl-C test gives it 10 s, as the README advises for slow writes.
+    run_command("(mpirun --mca odls_base_sigkill_timeout " + std::to_string(sigkill_timeout) + mpirun(ranks).substr(6) +
+                    kCommon + " --integrator sppm --passes 1000000 -o " + dir + "/job.exr --checkpoint " + dir +
+                    "/ck.clppm --checkpoint-every 1 > " + dir + "/log 2>&1; echo $? > " + dir +
+                    "/status) > /dev/null 2>&1 & echo $! > " + dir + "/shell.pid",
                 &out);
     for (int i = 0; i < 1200 && !std::ifstream(dir + "/ck.clppm").good(); ++i)
         std::this_thread::sleep_for(std::chrono::milliseconds(50));
@@ -152,7 +160,7 @@ void kill_job(const std::string& dir) {
 // Ctrl-C on mpirun: every rank stops, rank 0 writes the last complete pass and says so.
 TEST(Mpi, CtrlCOnMpirunWritesTheLastPass) {
     REQUIRE_MPI();
-    const std::string dir = start_long_job("mpi_ctrl_c", 2);
+    const std::string dir = start_long_job("mpi_ctrl_c", 2, 10);
     ASSERT_TRUE(std::ifstream(dir + "/ck.clppm").good()) << slurp(dir + "/log");
     std::string out;
     run_command("pkill -INT -f 'mpirun .*" + dir + "/job.exr'", &out);
@@ -171,7 +179,7 @@ TEST(Mpi, CtrlCOnMpirunWritesTheLastPass) {
 // mpirun names the rank, and rank 0 says the job is ending and writes its last complete pass.
 TEST(Mpi, AKilledRankEndsTheJob) {
     REQUIRE_MPI();
-    const std::string dir = start_long_job("mpi_kill", 3);
+    const std::string dir = start_long_job("mpi_kill", 3, 1);
     ASSERT_TRUE(std::ifstream(dir + "/ck.clppm").good()) << slurp(dir + "/log");
     const int victim = rank_pid(dir, 1);
     ASSERT_GT(victim, 0) << "no rank 1 found";

@@ -32,9 +32,10 @@ TEST(WorkBalance, SharesEqualiseTheTimes) {
     EXPECT_EQ(c, (std::vector<uint32_t>{2000, 1000}));
     // Unknown speeds: equal shares, the first taking the rounding.
     EXPECT_EQ(WorkBalance::split(10, {0, 0, 0}, {0, 0, 0}), (std::vector<uint32_t>{4, 3, 3}));
-    // A process whose fixed part alone is longer than the others' whole pass gets nothing.
+    // A process whose fixed part alone is longer than the others' whole pass gets only its floor,
+    // a tenth of an equal share, and goes on being measured.
     const auto d = WorkBalance::split(1000, {0.0, 5.0}, {1e-4, 1e-4});
-    EXPECT_EQ(d, (std::vector<uint32_t>{1000, 0}));
+    EXPECT_EQ(d, (std::vector<uint32_t>{950, 50}));
     // Always the total, whatever the inputs.
     const auto e = WorkBalance::split(12345, {0.01, 0.2, 0.0, 0.05}, {3e-5, 1e-5, 7e-5, 2e-5});
     EXPECT_EQ(std::accumulate(e.begin(), e.end(), 0u), 12345u);

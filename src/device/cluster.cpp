@@ -20,8 +20,6 @@ namespace {
 
 Cluster g_cluster;
 
-double now_s() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
-
 const char* std_getenv(const char* name) { return std::getenv(name); }
 
 } // namespace
@@ -55,6 +53,8 @@ std::string Cluster::prefix() const {
 #ifdef CLPPM_HAVE_MPI
 
 namespace {
+
+double now_s() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
 
 // Waits for a non-blocking collective, polling for cancellation: a rank asked to stop does not
 // wait for ranks that may be gone (the request is abandoned; MPI is not finalised then).
@@ -151,7 +151,9 @@ ClusterSession::~ClusterSession() {
     // MPI_Finalize waits for every rank. After an abandoned collective, or on the way out with an
     // error that other ranks may not share (they would be waiting in a collective), it would wait
     // for ever: leave without, and mpirun ends the job, saying which rank left.
-    if (started_ && !g_cluster.abandoned_ && std::uncaught_exceptions() == 0) MPI_Finalize();
+    // The same after a stop request (Ctrl-C, or mpirun's SIGTERM when a rank died): the other
+    // ranks may be gone.
+    if (started_ && !g_cluster.abandoned_ && !cancel_requested() && std::uncaught_exceptions() == 0) MPI_Finalize();
 }
 
 #else // without MPI: a cluster of one

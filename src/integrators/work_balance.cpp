@@ -33,28 +33,34 @@ std::vector<uint32_t> WorkBalance::split(uint32_t total, const std::vector<doubl
     const size_t n = b.size();
     std::vector<uint32_t> c(n, 0);
     if (n == 0) return c;
+    // Every process keeps a floor of a tenth of an equal share, so that none is starved and each
+    // goes on measuring itself (a process given nothing would never be measured again).
+    const uint32_t floor_share = uint32_t(total / (10 * n));
+    const double rest = double(total) - double(floor_share) * double(n);
     bool known = a.size() == n;
     for (size_t r = 0; r < n && known; ++r) known = b[r] > 0 && std::isfinite(b[r]) && a[r] >= 0 && std::isfinite(a[r]);
-    std::vector<double> share(n, double(total) / double(n));
+    std::vector<double> share(n, rest / double(n));
     if (known) {
-        // T = (total + sum a_r / b_r) / sum 1 / b_r over the processes that get work; a process
-        // whose fixed part alone exceeds T gets none, and T is solved again without it.
+        // With the floor given, process r's time is a'_r + b_r x_r, a'_r = a_r + b_r floor.
+        // T = (rest + sum a'_r / b_r) / sum 1 / b_r over the processes that get more; one whose
+        // fixed part alone exceeds T gets only the floor, and T is solved again without it.
         std::vector<bool> in(n, true);
         for (bool changed = true; changed;) {
             changed = false;
-            double num = double(total), den = 0;
+            double num = rest, den = 0;
             for (size_t r = 0; r < n; ++r)
-                if (in[r]) num += a[r] / b[r], den += 1 / b[r];
+                if (in[r]) num += (a[r] + b[r] * floor_share) / b[r], den += 1 / b[r];
             const double T = num / den;
             for (size_t r = 0; r < n; ++r) {
-                share[r] = in[r] ? (T - a[r]) / b[r] : 0.0;
+                share[r] = in[r] ? (T - a[r]) / b[r] - floor_share : 0.0;
                 if (in[r] && share[r] < 0) in[r] = false, changed = true;
             }
         }
     }
     uint32_t given = 0;
     for (size_t r = 1; r < n; ++r) {
-        c[r] = uint32_t(std::clamp(std::round(share[r]), 0.0, double(total - given)));
+        c[r] = floor_share + uint32_t(std::clamp(std::round(share[r]), 0.0, rest));
+        c[r] = std::min(c[r], total - given);
         given += c[r];
     }
     c[0] = total - given; // the first takes the rounding

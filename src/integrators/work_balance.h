@@ -23,8 +23,10 @@ public:
     // apart, a = 0 and b = the mean seconds per unit; (0, 0) before any record.
     std::pair<double, double> model() const;
 
-    // `total` units shared so that a_r + b_r c_r is equal for all r (c_r >= 0, summing to total);
-    // equal shares where any b_r is not positive. The same inputs give the same split anywhere.
+    // `total` units shared so that a_r + b_r c_r is equal for all r (summing to total), with at
+    // least a tenth of an equal share each, so that no process starves and each goes on being
+    // measured; equal shares where any b_r is not positive. The same inputs give the same split
+    // anywhere.
     static std::vector<uint32_t> split(uint32_t total, const std::vector<double>& a, const std::vector<double>& b);
 
 private:
