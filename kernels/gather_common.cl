@@ -1,6 +1,6 @@
 /* gather_common.cl: the one loop of every gather over the hashed grid (gather.cl, and the error
  * estimate's second gather in error_estimate.cl): the cells a hit point's sphere overlaps, the
- * photons stored in them and the acceptance rule. Each gather supplies only what it does with an
+ * elements stored in them and the acceptance rule. Each gather supplies only what it does with an
  * accepted photon, as SmallVCM's HashGrid::Process takes the query's Process(). */
 #ifndef CLPPM_GATHER_COMMON_CL
 #define CLPPM_GATHER_COMMON_CL
@@ -8,19 +8,21 @@
 #include "hash_grid.cl"
 #include "hitpoint.cl"
 
-/* Whether photon ph, visited in grid cell `cell`, counts for a hit point at x with shading normal
- * n and squared radius r2: within the sphere, stored in this very cell (a bucket holds other cells
- * too, so a photon is counted from its own cell only), arriving from the front, and lying on a
- * surface that faces the same way. Returns the squared distance in *d2 and the photon's incoming
- * direction in *wi. */
-bool gather_accepts(__constant GridInfo* g, __global const Photon* ph, float3 x, float3 n, float r2, int3 cell,
-                    float* d2, float3* wi) {
+/* Whether element ph (a photon or a light vertex), visited in grid cell `cell`, lies within squared
+ * radius r2 of x and in this very cell (a bucket holds other cells too, so an element is counted
+ * from its own cell only). Returns the squared distance in *d2. */
+bool grid_within(__constant GridInfo* g, __global const GRID_ELEM* ph, float3 x, float r2, int3 cell, float* d2) {
     float3 p = load3g(ph->pos);
     float3 d = p - x;
     *d2 = dot(d, d);
     if (*d2 > r2) return false;
     int3 pc = grid_cell(g, p);
-    if (pc.x != cell.x || pc.y != cell.y || pc.z != cell.z) return false;
+    return pc.x == cell.x && pc.y == cell.y && pc.z == cell.z;
+}
+
+/* The gather's acceptance beyond grid_within: arriving from the front of a hit point with shading
+ * normal n, and lying on a surface that faces the same way. Returns the incoming direction in *wi. */
+bool gather_faces(__global const GRID_ELEM* ph, float3 n, float3* wi) {
     *wi = oct_decode(ph->wi_oct);
     if (dot(n, *wi) <= 0.0f) return false;
     return dot(n, oct_decode(ph->normal_oct)) > 0.0f;
@@ -31,29 +33,36 @@ bool gather_accepts(__constant GridInfo* g, __global const Photon* ph, float3 x,
  * gather finite in time whatever radius reaches it. */
 #define GATHER_MAX_CELLS_PER_AXIS 16
 
-/* Runs the statement(s) `...` for every photon of the grid that gather_accepts for a hit point at
- * x with normal n and squared radius r2, with `ph` (the photon), `d2` (its squared distance) and
- * `wi` (its incoming direction) in scope. OpenCL C has no lambdas: the per-photon action is the
- * macro's body, so every gather runs exactly this loop. */
-#define GATHER_FOR_EACH_PHOTON(g, sorted, starts, x, n, r2, ...)                                                    \
+/* Runs the statement(s) `...` for every element of the grid within squared radius r2 of x
+ * (grid_within), with `ph` (the element) and `d2` (its squared distance) in scope. OpenCL C has no
+ * lambdas: the per-element action is the macro's body, so every gather runs exactly this loop. */
+#define GRID_FOR_EACH_NEAR(g_, sorted_, starts_, x_, r2_, ...)                                                    \
     do {                                                                                                           \
-        const float gather_r_ = sqrt(r2);                                                                          \
-        const int3 gather_c0_ = grid_cell(g, (x) - gather_r_);                                                     \
-        const int3 gather_c1_ = min(grid_cell(g, (x) + gather_r_), gather_c0_ + (GATHER_MAX_CELLS_PER_AXIS - 1));  \
+        const float gather_r_ = sqrt(r2_);                                                                         \
+        const int3 gather_c0_ = grid_cell(g_, (x_) - gather_r_);                                                   \
+        const int3 gather_c1_ = min(grid_cell(g_, (x_) + gather_r_), gather_c0_ + (GATHER_MAX_CELLS_PER_AXIS - 1));\
         for (int cz = gather_c0_.z; cz <= gather_c1_.z; ++cz)                                                      \
             for (int cy = gather_c0_.y; cy <= gather_c1_.y; ++cy)                                                  \
                 for (int cx = gather_c0_.x; cx <= gather_c1_.x; ++cx) {                                            \
-                    const int3 cell = (int3)(cx, cy, cz);                                                          \
-                    const uint b = grid_bucket(g, cell);                                                           \
-                    const uint end = (starts)[b + 1];                                                              \
-                    for (uint k = (starts)[b]; k < end; ++k) {                                                     \
-                        __global const Photon* ph = &(sorted)[k];                                                  \
+                    const int3 gather_cell_ = (int3)(cx, cy, cz);                                                  \
+                    const uint gather_b_ = grid_bucket(g_, gather_cell_);                                          \
+                    const uint gather_end_ = (starts_)[gather_b_ + 1];                                             \
+                    for (uint gather_k_ = (starts_)[gather_b_]; gather_k_ < gather_end_; ++gather_k_) {             \
+                        __global const GRID_ELEM* ph = &(sorted_)[gather_k_];                                      \
                         float d2;                                                                                  \
-                        float3 wi;                                                                                 \
-                        if (!gather_accepts(g, ph, x, n, r2, cell, &d2, &wi)) continue;                            \
+                        if (!grid_within(g_, ph, x_, r2_, gather_cell_, &d2)) continue;                            \
                         __VA_ARGS__                                                                                \
                     }                                                                                              \
                 }                                                                                                  \
     } while (0)
+
+/* GRID_FOR_EACH_NEAR with the gather's acceptance (gather_faces) for a hit point with normal n;
+ * `wi` (the photon's incoming direction) is in scope as well. */
+#define GATHER_FOR_EACH_PHOTON(g_, sorted_, starts_, x_, n_, r2_, ...)                                                \
+    GRID_FOR_EACH_NEAR(g_, sorted_, starts_, x_, r2_, {                                                            \
+        float3 wi;                                                                                                 \
+        if (!gather_faces(ph, n_, &wi)) continue;                                                                  \
+        __VA_ARGS__                                                                                                \
+    })
 
 #endif

@@ -8,6 +8,12 @@
 #include "shared_types.h"
 #include "sampling.cl"
 
+/* What the grid holds: photons, or (-DGRID_ELEM=LightVertex) vertex connection and merging's light
+ * vertices. Either has pos, normal_oct and wi_oct. */
+#ifndef GRID_ELEM
+#define GRID_ELEM Photon
+#endif
+
 int3 grid_cell(__constant GridInfo* g, float3 p) {
     float3 c = floor((p - load3c(g->origin)) * g->inv_cell);
     /* Clamping keeps far-away points (outside the scene bounds) in range; monotone, so a photon
@@ -21,7 +27,7 @@ uint grid_bucket(__constant GridInfo* g, int3 c) {
     return h & (g->table_size - 1u);
 }
 
-__kernel void grid_count(__constant GridInfo* g, __global const Photon* photons, volatile __global uint* counts) {
+__kernel void grid_count(__constant GridInfo* g, __global const GRID_ELEM* photons, volatile __global uint* counts) {
     uint i = get_global_id(0);
     if (i >= g->num_photons) return;
     atomic_inc(&counts[grid_bucket(g, grid_cell(g, load3g(photons[i].pos)))]);
@@ -58,11 +64,11 @@ __kernel __attribute__((reqd_work_group_size(GRID_SCAN_WG, 1, 1))) void grid_sca
 }
 
 /* counts still holds the per-bucket counts; counting down gives each photon a distinct slot. */
-__kernel void grid_scatter(__constant GridInfo* g, __global const Photon* photons, __global const uint* starts,
-                           volatile __global uint* counts, __global Photon* sorted) {
+__kernel void grid_scatter(__constant GridInfo* g, __global const GRID_ELEM* photons, __global const uint* starts,
+                           volatile __global uint* counts, __global GRID_ELEM* sorted) {
     uint i = get_global_id(0);
     if (i >= g->num_photons) return;
-    Photon ph = photons[i];
+    GRID_ELEM ph = photons[i];
     uint b = grid_bucket(g, grid_cell(g, load3(ph.pos)));
     uint slot = starts[b] + atomic_dec(&counts[b]) - 1u;
     sorted[slot] = ph;

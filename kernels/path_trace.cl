@@ -8,6 +8,7 @@
 #include "camera.cl"
 #include "next_event.cl"
 #include "pt_error.cl"
+#include "mean_film.cl"
 
 __kernel void path_trace(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong pass, uint num_pixels,
                          __global double* accum) {
@@ -57,11 +58,4 @@ __kernel void path_trace(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong
     accum[3 * pixel] += L.x;
     accum[3 * pixel + 1] += L.y;
     accum[3 * pixel + 2] += L.z;
-}
-
-__kernel void pt_film(__global const double* accum, uint num_pixels, double passes, __global float4* image) {
-    uint p = get_global_id(0);
-    if (p >= num_pixels) return;
-    double s = passes > 0.0 ? 1.0 / passes : 0.0;
-    image[p] = (float4)((float)(accum[3 * p] * s), (float)(accum[3 * p + 1] * s), (float)(accum[3 * p + 2] * s), 1.0f);
 }

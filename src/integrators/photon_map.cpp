@@ -12,12 +12,6 @@ namespace clppm {
 
 namespace {
 
-uint32_t next_pow2(uint32_t v) {
-    uint32_t p = 1;
-    while (p < v && p < (1u << 31)) p <<= 1;
-    return p;
-}
-
 // The photon buffers' budget: one within the device's largest allocation, and both of them
 // (traced and sorted) within a quarter of its memory.
 uint64_t photon_capacity_budget(const DeviceInfo& device) {
@@ -29,14 +23,10 @@ uint64_t photon_capacity_budget(const DeviceInfo& device) {
 
 PhotonMap::PhotonMap(const DeviceContext& dc, const DeviceScene& scene, const RenderSettings& settings,
                      const cl::Program& program, IntegratorStats& stats, uint64_t max_batch_photons)
-    : dc_(dc), scene_(scene), settings_(settings), stats_(stats) {
+    : dc_(dc), scene_(scene), settings_(settings), stats_(stats), grid_(dc, program, stats) {
     k_photon_ = cl::Kernel(program, "photon_trace");
-    k_count_ = cl::Kernel(program, "grid_count");
-    k_scan_ = cl::Kernel(program, "grid_scan");
-    k_scatter_ = cl::Kernel(program, "grid_scatter");
     k_gather_ = cl::Kernel(program, "gather");
     counter_ = cl::Buffer(dc.context, CL_MEM_READ_WRITE, sizeof(cl_uint));
-    grid_info_ = cl::Buffer(dc.context, CL_MEM_READ_ONLY, sizeof(dev::GridInfo));
     max_capacity_ = photon_capacity_budget(dc.info);
     uint64_t batch = std::min<uint64_t>(settings.photons, kMaxBatchPhotons);
     if (max_batch_photons > 0) batch = std::min(batch, max_batch_photons);
@@ -51,13 +41,10 @@ size_t PhotonMap::memory_needed(const RenderSettings& settings, const DeviceInfo
     const uint64_t batch = std::min<uint64_t>(settings.photons, kMaxBatchPhotons);
     const uint64_t capacity =
         std::clamp<uint64_t>(batch * kStoredPerEmitted, 1024, std::max<uint64_t>(1024, photon_capacity_budget(device)));
-    const uint32_t table = next_pow2(uint32_t(std::max<uint64_t>(1024, std::min<uint64_t>(capacity, 1u << 31))));
-    return 2 * size_t(capacity) * sizeof(dev::Photon) + (2 * size_t(table) + 1) * sizeof(cl_uint);
+    return 2 * size_t(capacity) * sizeof(dev::Photon) + HashGrid::bytes_for(capacity);
 }
 
-size_t PhotonMap::device_bytes() const {
-    return 2 * size_t(capacity_) * sizeof(dev::Photon) + (2 * size_t(table_size_) + 1) * sizeof(cl_uint);
-}
+size_t PhotonMap::device_bytes() const { return 2 * size_t(capacity_) * sizeof(dev::Photon) + grid_.device_bytes(); }
 
 void PhotonMap::allocate(uint32_t capacity) {
     capacity_ = capacity;
@@ -122,34 +109,9 @@ PhotonMap::~PhotonMap() {
 }
 
 void PhotonMap::build_grid(double typical_radius, double max_radius) {
-    const uint32_t n = stored_;
-    // A member, not a local: the non-blocking write below reads it after this function returns.
-    dev::GridInfo& g = grid_host_;
-    g = dev::GridInfo{};
     const double extent = 2.0 * scene_.info.radius;
     const double cell = std::max({2.0 * typical_radius, max_radius / 4.0, extent / double(1 << 20)});
-    for (int k = 0; k < 3; ++k) g.origin[k] = scene_.bounds_min[k];
-    g.inv_cell = float(1.0 / cell);
-    g.num_photons = n;
-    g.table_size = next_pow2(std::max<uint32_t>(1024, n));
-    if (g.table_size != table_size_) {
-        table_size_ = g.table_size;
-        counts_ = cl::Buffer(dc_.context, CL_MEM_READ_WRITE, size_t(table_size_) * sizeof(cl_uint));
-        starts_ = cl::Buffer(dc_.context, CL_MEM_READ_WRITE, size_t(table_size_ + 1) * sizeof(cl_uint));
-    }
-    dc_.queue.enqueueWriteBuffer(grid_info_, CL_FALSE, 0, sizeof g, &g);
-    dc_.queue.enqueueFillBuffer(counts_, cl_uint(0), 0, size_t(table_size_) * sizeof(cl_uint));
-    cl::Event e1, e2, e3;
-    set_args(k_count_, 0, grid_info_, photons_, counts_);
-    enqueue_1d(dc_.queue, k_count_, n, &e1);
-    set_args(k_scan_, 0, counts_, starts_, cl_uint(table_size_));
-    dc_.queue.enqueueNDRangeKernel(k_scan_, cl::NullRange, cl::NDRange(GRID_SCAN_WG), cl::NDRange(GRID_SCAN_WG),
-                                   nullptr, &e2);
-    set_args(k_scatter_, 0, grid_info_, photons_, starts_, counts_, sorted_);
-    enqueue_1d(dc_.queue, k_scatter_, n, &e3);
-    add_event_time(stats_, "grid_build", e1);
-    add_event_time(stats_, "grid_build", e2);
-    add_event_time(stats_, "grid_build", e3);
+    grid_.build(photons_, sorted_, stored_, scene_.bounds_min, cell);
 }
 
 void PhotonMap::gather(const cl::Buffer& hitpoints, const cl::Buffer& stats, uint32_t n, float global_r2,
@@ -162,7 +124,7 @@ void PhotonMap::gather(const cl::Buffer& hitpoints, const cl::Buffer& stats, uin
 // gather and the second gather take the same arguments, each with its own output.
 void PhotonMap::enqueue_gather(cl::Kernel& kernel, const cl::Buffer& hitpoints, const cl::Buffer& stats, uint32_t n,
                                float global_r2, bool accumulate, const cl::Buffer& out, const std::string& phase) {
-    set_args(kernel, 0, grid_info_, sorted_, starts_, hitpoints, stats, cl_uint(n), cl_float(global_r2),
+    set_args(kernel, 0, grid_.info(), sorted_, grid_.starts(), hitpoints, stats, cl_uint(n), cl_float(global_r2),
              cl_uint(accumulate ? 1 : 0), out);
     cl::Event ev;
     enqueue_1d(dc_.queue, kernel, n, &ev);

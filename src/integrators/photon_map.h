@@ -9,6 +9,7 @@
 
 #include "device/cl.h"
 #include "device/device.h"
+#include "integrators/hash_grid.h"
 #include "integrators/integrator_stats.h"
 #include "integrators/render_settings.h"
 #include "scene/device_scene.h"
@@ -66,17 +67,16 @@ private:
     const DeviceScene& scene_;
     const RenderSettings& settings_;
     IntegratorStats& stats_;
-    cl::Kernel k_photon_, k_count_, k_scan_, k_scatter_, k_gather_;
+    cl::Kernel k_photon_, k_gather_;
+    HashGrid grid_;
     cl::Kernel k_second_;
     cl::Buffer second_out_;
     std::string second_phase_;
-    cl::Buffer photons_, sorted_, counter_, grid_info_, counts_, starts_;
-    dev::GridInfo grid_host_{};
+    cl::Buffer photons_, sorted_, counter_;
     uint64_t max_capacity_ = 0; // stored photons the memory budget allows
     uint32_t capacity_ = 0;
     uint32_t batch_ = 0; // photons emitted per batch
     uint32_t stored_ = 0;
-    uint32_t table_size_ = 0;
     uint32_t batches_ = 0;
 };
 

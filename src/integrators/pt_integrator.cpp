@@ -7,6 +7,7 @@
 #include "device/kernel_launch.h"
 #include "integrators/checkpoint_checks.h"
 #include "integrators/film.h"
+#include "integrators/pixel_share.h"
 #include "integrators/work_balance.h"
 #include "util/error.h"
 
@@ -24,7 +25,7 @@ PtIntegrator::PtIntegrator(const DeviceContext& dc, const DeviceScene& scene, co
                            const cl::Program& program)
     : dc_(dc), scene_(scene), settings_(settings), program_(program) {
     k_trace_ = cl::Kernel(program, "path_trace");
-    k_film_ = cl::Kernel(program, "pt_film");
+    k_film_ = cl::Kernel(program, "mean_film");
     num_pixels_ = scene.camera.width * scene.camera.height;
 }
 
@@ -72,20 +73,9 @@ void PtIntegrator::run_pass() {
     // by the ranks' measured speed (integrators/work_balance.h), and the ranks then share their ranges' sums
     // and error statistics, so that every rank holds the whole image, as one process would.
     Cluster& cl = cluster();
-    uint32_t first = 0, count = num_pixels_;
-    std::vector<size_t> firsts, counts;
-    if (cl.distributed()) {
-        const std::vector<uint32_t> split = ranks_split(num_pixels_, balance_);
-        size_t at = 0;
-        for (uint32_t c : split) {
-            firsts.push_back(at);
-            counts.push_back(c);
-            at += c;
-        }
-        first = uint32_t(firsts[size_t(cl.rank())]);
-        count = uint32_t(counts[size_t(cl.rank())]);
-        stats_.rank_photons.assign(counts.begin(), counts.end());
-    }
+    const PixelRanges ranges = split_pixels(num_pixels_, balance_);
+    const uint32_t first = ranges.first, count = ranges.count;
+    if (cl.distributed()) stats_.rank_photons.assign(ranges.counts.begin(), ranges.counts.end());
     const double t0 = now_seconds();
     if (count > 0) {
         set_args(k_trace_, scene_.set_scene_args(k_trace_), scene_.camera_buf, cl_ulong(settings_.seed),
@@ -98,25 +88,15 @@ void PtIntegrator::run_pass() {
     collect_event_times(stats_); // waits for the pass
     if (cl.distributed()) {
         balance_.record(count, now_seconds() - t0);
-        share(accum_, 3, firsts, counts);
-        if (errors_) share(errors_->statistics(), sizeof(dev::ErrorStats) / sizeof(double), firsts, counts);
+        share_pixels(dc_.queue, accum_, 3, ranges, num_pixels_);
+        if (errors_) {
+            static_assert(sizeof(dev::ErrorStats) % sizeof(double) == 0, "ErrorStats is doubles");
+            share_pixels(dc_.queue, errors_->statistics(), sizeof(dev::ErrorStats) / sizeof(double), ranges,
+                         num_pixels_);
+        }
     }
     stats_.local_work += count;
     stats_.passes += 1;
-}
-
-void PtIntegrator::share(const cl::Buffer& buffer, size_t doubles_per_pixel, const std::vector<size_t>& firsts,
-                         const std::vector<size_t>& counts) {
-    static_assert(sizeof(dev::ErrorStats) % sizeof(double) == 0, "ErrorStats is doubles");
-    std::vector<double> host(size_t(num_pixels_) * doubles_per_pixel);
-    const size_t me = size_t(cluster().rank());
-    const size_t offset = firsts[me] * doubles_per_pixel, n = counts[me] * doubles_per_pixel;
-    if (n)
-        dc_.queue.enqueueReadBuffer(buffer, CL_TRUE, offset * sizeof(double), n * sizeof(double), host.data() + offset);
-    std::vector<size_t> f(firsts), c(counts);
-    for (size_t r = 0; r < f.size(); ++r) f[r] *= doubles_per_pixel, c[r] *= doubles_per_pixel;
-    cluster().share_slices(host.data(), f, c);
-    write_buffer(dc_.queue, buffer, host);
 }
 
 void PtIntegrator::save(Checkpoint& ck) {

@@ -32,9 +32,6 @@ public:
     static IntegratorMemory memory_needed(size_t pixels, bool error_estimation = false);
 
 private:
-    // Every rank's pixel range of `buffer` (doubles_per_pixel doubles a pixel) to every rank.
-    void share(const cl::Buffer& buffer, size_t doubles_per_pixel, const std::vector<size_t>& firsts,
-               const std::vector<size_t>& counts);
     WorkBalance balance_; // this rank's seconds against its pixels, for the ranks' split
 
     const DeviceContext& dc_;
