@@ -447,6 +447,34 @@ bool bsdf_sample(const Bsdf* b, float3 wo, uint mask, float u_lobe, float u1, fl
     return bsdf_sample_lobes(b, wo, mask, u_lobe, u1, u2, s) && bsdf_smooth_side(b, s->wi);
 }
 
+/* The density with which bsdf_sample, sampling from wi, draws wo (the reverse density of
+ * bidirectional methods): wi through the surface (rough glass) is sampled from the other side,
+ * where the normals turn over and the relative index inverts. */
+float bsdf_pdf_rev(const Bsdf* b, float3 wo, float3 wi, uint mask) {
+    if (dot(wi, b->ns) > 0.0f) return bsdf_pdf(b, wi, wo, mask);
+    Bsdf f = *b;
+    f.ns = -b->ns;
+    f.ng = -b->ng;
+    f.nl = -b->nl;
+    if (!b->thin) f.eta = 1.0f / b->eta;
+    return bsdf_pdf(&f, wi, wo, mask);
+}
+
+/* Whether a lobe other than a delta one exists here: what a connection or a merge can evaluate. */
+bool bsdf_has_nondelta(const Bsdf* b) {
+    if (b->dielectric > 0.0f && max3(b->base) > 0.0f) return true;
+    if (!bsdf_is_mirror(b) && (has_layer(b) || (HAS_METAL && b->metal > 0.0f))) return true;
+    return HAS_ROUGH_GLASS && b->glass > 0.0f && glass_is_rough(b);
+}
+
+/* Whether light can pass between the surface and unit direction wi for the lobes in mask: above
+ * both normals, or below both through rough glass (a light sample or a connection). */
+bool bsdf_connects(const Bsdf* b, float3 wi, uint mask) {
+    if (dot(wi, b->ns) < 0.0f)
+        return HAS_ROUGH_GLASS && (mask & LOBE_GLASS) && b->glass > 0.0f && glass_is_rough(b) && dot(wi, b->ng) < 0.0f;
+    return dot(wi, b->ns) > 0.0f && dot(wi, b->ng) > 0.0f;
+}
+
 /* The lobes a hit point keeps (the gather and direct lighting evaluate them there): the diffuse
  * one, and the reflection lobes when they are rough enough. The eye pass follows the others. */
 uint bsdf_gathered_lobes(float alpha) {

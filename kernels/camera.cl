@@ -4,6 +4,7 @@
 
 #include "shared_types.h"
 #include "sampling.cl"
+#include "rng.cl" /* pixel_sample_offset */
 
 /* Ray through image position (px, py) in pixels, y down. lens_u in [0,1)^2 picks the lens point. */
 void camera_ray(__constant Camera* cam, float px, float py, float2 lens_u, float3* org, float3* dir) {
@@ -21,6 +22,46 @@ void camera_ray(__constant Camera* cam, float px, float py, float2 lens_u, float
     }
     *org = o;
     *dir = normalize(d);
+}
+
+/* The solid-angle density with which one pixel's uniform sample draws a ray at cos_theta to the
+ * view axis: 1 / (A_pix cos^3), A_pix the pixel's area on the image plane at distance 1
+ * (SmallVCM's imageToSolidAngleFactor for a pixel of unit area). The same from any point of a thin
+ * lens: the pixel maps onto the plane of focus scaled by the focus distance, which cancels. */
+float camera_pixel_pdf_w(__constant Camera* cam, float cos_theta) {
+    float a_pix = 4.0f * length(load3c(cam->right)) * length(load3c(cam->up)) / ((float)cam->width * (float)cam->height);
+    return 1.0f / (a_pix * cos_theta * cos_theta * cos_theta);
+}
+
+/* Where the camera sees point x through the lens point lens_u picks (camera_ray's lens sampling;
+ * the pinhole: its centre): false when x is behind the lens or off the image; else the pixel,
+ * cos_theta between the view axis and the ray from the lens point to x, and that lens point (eye).
+ * camera_ray's inverse: the ray meets the plane of focus where the pixel's rays do. */
+bool camera_project(__constant Camera* cam, float3 x, float2 lens_u, uint* pixel, float* cos_theta, float3* eye) {
+    float3 o = load3c(cam->origin), f = load3c(cam->forward);
+    float3 r = load3c(cam->right), u = load3c(cam->up);
+    float3 e = o;
+    bool lens = HAS_THIN_LENS && cam->lens_radius > 0.0f;
+    if (lens) {
+        float rad = cam->lens_radius * sqrt(lens_u.x), phi = 2.0f * PI_F * lens_u.y;
+        e = o + normalize(r) * (rad * cos(phi)) + normalize(u) * (rad * sin(phi));
+    }
+    float3 d = x - e;
+    float len = length(d);
+    if (!(len > 0.0f)) return false;
+    d /= len;
+    float c = dot(d, f);
+    if (!(c > 0.0f)) return false;
+    /* The image-plane direction at distance 1 (camera_ray's d): through the lens point to the
+     * plane of focus, then back from the lens centre. */
+    float3 q = lens ? (e + d * (cam->focus_distance / c) - o) / cam->focus_distance : d / c;
+    float sx = dot(q, r) / dot(r, r), sy = dot(q, u) / dot(u, u);
+    float px = (sx + 1.0f) * 0.5f * (float)cam->width, py = (1.0f - sy) * 0.5f * (float)cam->height;
+    if (!(px >= 0.0f && px < (float)cam->width && py >= 0.0f && py < (float)cam->height)) return false;
+    *pixel = min((uint)py, cam->height - 1u) * cam->width + min((uint)px, cam->width - 1u);
+    *cos_theta = c;
+    *eye = e;
+    return true;
 }
 
 /* The pixel filter by importance sampling (filter importance sampling: every sample weighs the

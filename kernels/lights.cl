@@ -66,14 +66,32 @@ float emitter_power_per_area(SCENE_PARAMS, uint prim, uint material) {
     return uniform_power_per_area(load3g(m->emission), (m->flags & MATERIAL_FLAG_DOUBLE_SIDED) != 0u);
 }
 
-/* Emits one photon: origin, direction, flux (units of total power) and, for area lights, the
- * normal of the emitting side (zero for punctual lights). */
-void emit_photon(SCENE_PARAMS, Rng* rng, float3* org, float3* dir, float3* flux) {
+/* Everything a light sub-path needs of where and how it leaves its light: origin, direction,
+ * flux (units of total power, as photons carry it), and the densities of vertex connection and
+ * merging (SmallVCM's Light::Emit; Georgiev et al. 2012, tech. rep. Sec. 4): emission_pdf_w, the
+ * density of (point, direction) per unit area and solid angle, and direct_pdf_a, of the point
+ * alone as direct light sampling would draw it (per unit area, or 1 for a delta position; per
+ * unit solid angle for lights at infinity), both times the light's pick probability; cos_light
+ * at the light (1 for punctual and infinite lights); delta: no ray can hit it; finite: not at
+ * infinity. */
+typedef struct {
+    float3 org, dir, flux;
+    float emission_pdf_w, direct_pdf_a, cos_light;
+    bool delta, finite;
+} LightEmission;
+
+/* Emits one photon, filling e (flux zero when nothing was emitted). For area lights the
+ * direction is cosine-distributed about the emitting side's normal. */
+void emit_light(SCENE_PARAMS, Rng* rng, LightEmission* e) {
     uint l = pick_light(SCENE_ARGS, rng_float(rng));
     __global const Light* L = &lights[l];
     float pick = light_pick_pdf(SCENE_ARGS, l);
     float3 rad = load3g(L->radiance);
-    *org = *dir = *flux = (float3)(0.0f);
+    e->org = e->dir = e->flux = (float3)(0.0f);
+    e->emission_pdf_w = e->direct_pdf_a = 0.0f;
+    e->cos_light = 1.0f;
+    e->delta = true;
+    e->finite = true;
     if (HAS_AREA_LIGHTS && L->type == LIGHT_TRIANGLE) {
         float3 n;
         float3 p = area_light_point(SCENE_ARGS, L, rng, &n, &rad);
@@ -82,24 +100,32 @@ void emit_photon(SCENE_PARAMS, Rng* rng, float3* org, float3* dir, float3* flux)
             sides = 2.0f;
             if (rng_float(rng) < 0.5f) n = -n;
         }
-        *dir = sample_cosine_hemisphere(n, rng_float(rng), rng_float(rng));
-        *org = offset_origin(SCENE_ARGS, p, n);
+        e->dir = sample_cosine_hemisphere(n, rng_float(rng), rng_float(rng));
+        e->org = offset_origin(SCENE_ARGS, p, n);
         /* Le cos / (pick * (1/A) * (1/sides) * cos/pi) = Le A pi sides / pick, Le where the
          * photon starts (for a textured emitter, pick is by the texture's mean: Light.power) */
-        *flux = rad * (L->area * PI_F * sides / (pick * info->total_power));
+        e->flux = rad * (L->area * PI_F * sides / (pick * info->total_power));
+        e->cos_light = fmax(dot(e->dir, n), 0.0f);
+        e->direct_pdf_a = pick / L->area;
+        e->emission_pdf_w = e->direct_pdf_a * e->cos_light * INV_PI_F / sides;
+        e->delta = false;
     } else if (HAS_POINT_LIGHTS && L->type == LIGHT_POINT) {
         float z = 1.0f - 2.0f * rng_float(rng);
         float r = sqrt(fmax(0.0f, 1.0f - z * z));
         float phi = 2.0f * PI_F * rng_float(rng);
-        *org = load3g(L->position);
-        *dir = (float3)(r * cos(phi), r * sin(phi), z);
-        *flux = rad * (4.0f * PI_F / (pick * info->total_power)); /* I / (pick / 4pi) */
+        e->org = load3g(L->position);
+        e->dir = (float3)(r * cos(phi), r * sin(phi), z);
+        e->flux = rad * (4.0f * PI_F / (pick * info->total_power)); /* I / (pick / 4pi) */
+        e->direct_pdf_a = pick;
+        e->emission_pdf_w = pick * 0.25f * INV_PI_F;
     } else if (HAS_SPOT_LIGHTS && L->type == LIGHT_SPOT) {
         float3 axis = load3g(L->direction);
-        *org = load3g(L->position);
-        *dir = sample_cone(axis, L->cos_outer, rng_float(rng), rng_float(rng));
+        e->org = load3g(L->position);
+        e->dir = sample_cone(axis, L->cos_outer, rng_float(rng), rng_float(rng));
         float solid_angle = 2.0f * PI_F * (1.0f - L->cos_outer);
-        *flux = rad * (spot_falloff(L, dot(*dir, axis)) * solid_angle / (pick * info->total_power));
+        e->flux = rad * (spot_falloff(L, dot(e->dir, axis)) * solid_angle / (pick * info->total_power));
+        e->direct_pdf_a = pick;
+        e->emission_pdf_w = pick / solid_angle;
     } else if (HAS_ENV_LIGHT && L->type == LIGHT_ENVIRONMENT) {
         /* Towards the scene from direction w, through a disc of the bounding sphere's radius R
          * facing it: L(w) pi R^2 / (pick pdf(w)). */
@@ -109,10 +135,14 @@ void emit_photon(SCENE_PARAMS, Rng* rng, float3* org, float3* dir, float3* flux)
         float3 t, b;
         make_frame(w, &t, &b);
         float r = sqrt(rng_float(rng)) * info->radius, phi = 2.0f * PI_F * rng_float(rng);
-        *org = load3c(info->center) + w * (1.01f * info->radius) + t * (r * cos(phi)) + b * (r * sin(phi));
-        *dir = -w;
+        e->org = load3c(info->center) + w * (1.01f * info->radius) + t * (r * cos(phi)) + b * (r * sin(phi));
+        e->dir = -w;
         float area = PI_F * info->radius * info->radius;
-        *flux = env_radiance(L, textures, texels, w) * (area / (pdf * pick * info->total_power));
+        e->flux = env_radiance(L, textures, texels, w) * (area / (pdf * pick * info->total_power));
+        e->direct_pdf_a = pick * pdf;
+        e->emission_pdf_w = e->direct_pdf_a / area;
+        e->delta = false;
+        e->finite = false;
     } else if (HAS_DIRECTIONAL_LIGHTS) { /* a disc covering the scene's bounding sphere, outside it */
         float3 d = load3g(L->direction);
         float3 t, b;
@@ -120,11 +150,23 @@ void emit_photon(SCENE_PARAMS, Rng* rng, float3* org, float3* dir, float3* flux)
         float2 disc;
         float r = sqrt(rng_float(rng)) * info->radius, phi = 2.0f * PI_F * rng_float(rng);
         disc = (float2)(r * cos(phi), r * sin(phi));
-        *org = load3c(info->center) - d * (1.01f * info->radius) + t * disc.x + b * disc.y;
-        *dir = d;
+        e->org = load3c(info->center) - d * (1.01f * info->radius) + t * disc.x + b * disc.y;
+        e->dir = d;
         float area = PI_F * info->radius * info->radius;
-        *flux = rad * (area / (pick * info->total_power)); /* E / (pick / area) */
+        e->flux = rad * (area / (pick * info->total_power)); /* E / (pick / area) */
+        e->direct_pdf_a = pick;
+        e->emission_pdf_w = pick / area;
+        e->finite = false;
     }
+}
+
+/* Emits one photon: origin, direction and flux (units of total power). */
+void emit_photon(SCENE_PARAMS, Rng* rng, float3* org, float3* dir, float3* flux) {
+    LightEmission e;
+    emit_light(SCENE_ARGS, rng, &e);
+    *org = e.org;
+    *dir = e.dir;
+    *flux = e.flux;
 }
 
 /* The solid-angle density with which sample_light picks a point seen at squared distance d2
@@ -135,18 +177,30 @@ float area_light_pdf(SCENE_PARAMS, float power_per_area, float d2, float cos_y) 
     return power_per_area / info->total_power * d2 / cos_y;
 }
 
-/* One light sample for direct lighting at x (normal n on the side of interest): the direction
- * to the light, the distance to shadow-test, Le G / pdf without the cosine at x, and the
- * sample's solid-angle density (0 for punctual and directional lights, which no ray can hit;
- * for the environment, the same density env_light_pdf gives a ray that escapes).
- * Returns false when the sample contributes nothing. */
-bool sample_light(SCENE_PARAMS, float3 x, Rng* rng, float3* wi, float* dist, float3* contrib, float* pdf_out) {
-    *pdf_out = 0.0f;
+/* One light sample for direct lighting at x (SmallVCM's Light::Illuminate): the direction wi to
+ * the light, the distance to shadow-test, contrib = Le G / pdf without the cosine at x, and pdf_w,
+ * the sample's solid-angle density times the pick probability (for the environment, the density
+ * env_light_pdf gives a ray that escapes). Vertex connection and merging also take emission_pdf_w
+ * and cos_light, as emit_light would give them for the same light point and direction (pick
+ * included), and delta: no ray can hit this light, and pdf_w then only relates contrib to Le (it
+ * is pick d^2 for a punctual light, pick for a directional one). */
+typedef struct {
+    float3 wi, contrib;
+    float dist, pdf_w, emission_pdf_w, cos_light;
+    bool delta;
+} LightSample;
+
+/* Returns false when the sample contributes nothing. */
+bool sample_light_full(SCENE_PARAMS, float3 x, Rng* rng, LightSample* s) {
+    s->pdf_w = s->emission_pdf_w = 0.0f;
+    s->cos_light = 1.0f;
+    s->delta = true;
     if (info->num_lights == 0) return false;
     uint l = pick_light(SCENE_ARGS, rng_float(rng));
     __global const Light* L = &lights[l];
     float pick = light_pick_pdf(SCENE_ARGS, l);
     float3 rad = load3g(L->radiance);
+    float disc_area = PI_F * info->radius * info->radius;
     if (HAS_AREA_LIGHTS && L->type == LIGHT_TRIANGLE) {
         float3 ny;
         float3 y = area_light_point(SCENE_ARGS, L, rng, &ny, &rad);
@@ -154,34 +208,41 @@ bool sample_light(SCENE_PARAMS, float3 x, Rng* rng, float3* wi, float* dist, flo
         float d2 = dot(d, d);
         if (!(d2 > 0.0f)) return false;
         float len = sqrt(d2);
-        *wi = d / len;
-        float cos_y = -dot(*wi, ny); /* > 0: x sees the front face */
+        s->wi = d / len;
+        float cos_y = -dot(s->wi, ny); /* > 0: x sees the front face */
         if (L->two_sided) cos_y = fabs(cos_y);
         if (cos_y <= 0.0f) return false;
         /* Le cos_y / d^2 / (pick / A): area sampling (Veach 1997, Eq. 8.10) */
-        *contrib = rad * (cos_y * L->area / (d2 * pick));
+        s->contrib = rad * (cos_y * L->area / (d2 * pick));
         bool textured = HAS_TEXTURES && materials[shading[L->prim].material].emissive_tex >= 0;
         float power_per_area =
             textured ? L->power / L->area : uniform_power_per_area(load3g(L->radiance), L->two_sided != 0u);
-        *pdf_out = area_light_pdf(SCENE_ARGS, power_per_area, d2, cos_y);
+        s->pdf_w = area_light_pdf(SCENE_ARGS, power_per_area, d2, cos_y);
+        s->cos_light = cos_y;
+        s->emission_pdf_w = power_per_area / info->total_power * cos_y * INV_PI_F / (L->two_sided ? 2.0f : 1.0f);
+        s->delta = false;
         /* Stop the shadow ray short of the light's own surface. */
         float m = fmax(fabs(y.x), fmax(fabs(y.y), fabs(y.z)));
-        *dist = len - 2.0f * (info->ray_eps + 4e-6f * m);
-        return *dist > 0.0f;
+        s->dist = len - 2.0f * (info->ray_eps + 4e-6f * m);
+        return s->dist > 0.0f;
     }
     if (HAS_ENV_LIGHT && L->type == LIGHT_ENVIRONMENT) {
         float pdf;
-        *wi = env_sample(L, textures, light_cdf, rng_float(rng), rng_float(rng), &pdf);
+        s->wi = env_sample(L, textures, light_cdf, rng_float(rng), rng_float(rng), &pdf);
         if (!(pdf > 0.0f)) return false;
-        *dist = 4.0f * info->radius + length(x - load3c(info->center));
-        *contrib = env_radiance(L, textures, texels, *wi) / (pick * pdf);
-        *pdf_out = pick * pdf;
-        return max3(*contrib) > 0.0f;
+        s->dist = 4.0f * info->radius + length(x - load3c(info->center));
+        s->contrib = env_radiance(L, textures, texels, s->wi) / (pick * pdf);
+        s->pdf_w = pick * pdf;
+        s->emission_pdf_w = s->pdf_w / disc_area;
+        s->delta = false;
+        return max3(s->contrib) > 0.0f;
     }
     if (HAS_DIRECTIONAL_LIGHTS && L->type == LIGHT_DIRECTIONAL) {
-        *wi = -load3g(L->direction);
-        *dist = 4.0f * info->radius + length(x - load3c(info->center));
-        *contrib = rad / pick;
+        s->wi = -load3g(L->direction);
+        s->dist = 4.0f * info->radius + length(x - load3c(info->center));
+        s->contrib = rad / pick;
+        s->pdf_w = pick;
+        s->emission_pdf_w = pick / disc_area;
         return true;
     }
     if (!(HAS_POINT_LIGHTS || HAS_SPOT_LIGHTS)) return false;
@@ -189,13 +250,28 @@ bool sample_light(SCENE_PARAMS, float3 x, Rng* rng, float3* wi, float* dist, flo
     float d2 = dot(d, d);
     if (!(d2 > 0.0f)) return false;
     float len = sqrt(d2);
-    *wi = d / len;
+    s->wi = d / len;
     float falloff = 1.0f;
-    if (HAS_SPOT_LIGHTS && L->type == LIGHT_SPOT) falloff = spot_falloff(L, -dot(*wi, load3g(L->direction)));
+    if (HAS_SPOT_LIGHTS && L->type == LIGHT_SPOT) falloff = spot_falloff(L, -dot(s->wi, load3g(L->direction)));
     if (falloff <= 0.0f) return false;
-    *dist = len;
-    *contrib = rad * (falloff / (d2 * pick)); /* I / d^2 */
+    s->dist = len;
+    s->contrib = rad * (falloff / (d2 * pick)); /* I / d^2 */
+    s->pdf_w = pick * d2;
+    s->emission_pdf_w = pick * (HAS_SPOT_LIGHTS && L->type == LIGHT_SPOT ? 1.0f / (2.0f * PI_F * (1.0f - L->cos_outer))
+                                                                           : 0.25f * INV_PI_F);
     return true;
+}
+
+/* sample_light_full for the path tracer and the eye pass: pdf_out is 0 for lights no ray can
+ * hit. */
+bool sample_light(SCENE_PARAMS, float3 x, Rng* rng, float3* wi, float* dist, float3* contrib, float* pdf_out) {
+    LightSample s;
+    bool ok = sample_light_full(SCENE_ARGS, x, rng, &s);
+    *wi = s.wi;
+    *dist = s.dist;
+    *contrib = s.contrib;
+    *pdf_out = s.delta ? 0.0f : s.pdf_w;
+    return ok;
 }
 
 /* The density with which sample_light draws direction w towards the environment (MIS weights of

@@ -23,12 +23,7 @@ float3 next_event(SCENE_PARAMS, const Bsdf* b, float3 p, float3 wo, uint mask, R
     float cos_x = dot(wi, b->ns);
     /* A light below the surface is seen only through rough glass. */
     bool through = cos_x < 0.0f;
-    if (through) {
-        if (!(HAS_ROUGH_GLASS && (mask & LOBE_GLASS) && b->glass > 0.0f && glass_is_rough(b))) return (float3)(0.0f);
-        if (dot(wi, b->ng) >= 0.0f) return (float3)(0.0f);
-    } else if (cos_x <= 0.0f || dot(wi, b->ng) <= 0.0f) {
-        return (float3)(0.0f);
-    }
+    if (!bsdf_connects(b, wi, mask)) return (float3)(0.0f);
     float3 f = bsdf_eval(b, wo, wi, mask);
     if (!(max3(f) > 0.0f)) return (float3)(0.0f);
     if (trace_occluded(SCENE_ARGS, offset_origin(SCENE_ARGS, p, through ? -b->ng : b->ng), wi, dist))

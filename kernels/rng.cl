@@ -45,5 +45,7 @@ Rng rng_make(ulong seed, ulong pass, ulong index, uint purpose) {
 #define RNG_PHOTON 2u
 #define RNG_DIRECT 3u
 #define RNG_PATH 4u
+#define RNG_VCM_LIGHT 5u
+#define RNG_VCM_CAMERA 6u
 
 #endif

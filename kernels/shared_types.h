@@ -222,6 +222,23 @@ typedef struct {
     u32 pad0;
 } GridInfo; /* 32 bytes */
 
+/* Vertex connection and merging (kernels/vcm.cl): a light sub-path's vertex on a surface with a
+ * non-delta lobe. The grid and the gather read pos, normal_oct and wi_oct as a photon's; the
+ * connections rebuild the surface from (prim, u, v) and the arrival direction. */
+typedef struct {
+    float pos[3];
+    u32 normal_oct;      /* shading normal on the side the light arrived from */
+    float throughput[3]; /* in units of SceneInfo.total_power, as photon flux */
+    u32 wi_oct;          /* unit direction back towards the previous vertex */
+    float d_vcm, d_vc, d_vm; /* the partial MIS sums (kernels/vcm_mis.h) */
+    u32 prim;
+    float u, v;          /* barycentrics on prim */
+    u32 prev;            /* the same sub-path's previous stored vertex; VCM_NO_VERTEX at its first */
+    u32 path_length;     /* segments from the light */
+} LightVertex; /* 64 bytes */
+
+#define VCM_NO_VERTEX 0xffffffffu
+
 /* Fixed point used for per-pass flux sums: exact, so the sum is the same in any order. */
 #define FLUX_FIXED_SCALE 4294967296.0 /* 2^32 */
 

@@ -158,6 +158,28 @@ TEST(Cli, PathTracerRendersToo) {
     EXPECT_GT(mean_radiance(img), 0.01);
 }
 
+// Vertex connection and merging and BPT from the command line: an image, the same with any
+// work-group size; what they cannot do is a one-line error naming the option.
+TEST(Cli, VcmAndBptRenderAndRefuseWhatTheyCannotDo) {
+    std::string dir = make_temp_dir("cli"), out;
+    for (const char* integrator : {"vcm", "bpt"}) {
+        const std::string args = std::string(kSmall) + " --no-png --integrator " + integrator;
+        ASSERT_EQ(run_command("CLPPM_LOCAL_SIZE=1 " + clppm_binary() + " -o " + dir + "/a.exr" + args, &out), 0) << out;
+        ASSERT_EQ(run_clppm("-o " + dir + "/b.exr" + args, &out), 0) << out;
+        Image a = read_exr(dir + "/a.exr"), b = read_exr(dir + "/b.exr");
+        EXPECT_EQ(count_nonfinite(a), 0u) << integrator;
+        EXPECT_GT(mean_radiance(a), 0.01) << integrator;
+        EXPECT_EQ(a.rgb, b.rgb) << integrator << ": work-group size changed the image";
+        EXPECT_EQ(run_clppm("-o " + dir + "/c.exr" + args + " --filter tent", &out), 1) << out;
+        EXPECT_NE(out.find("--integrator " + std::string(integrator) + ": light tracing splats with the box filter"),
+                  std::string::npos)
+            << out;
+        EXPECT_EQ(out.find('\n'), out.size() - 1) << "one line: " << out;
+        EXPECT_EQ(run_clppm("-o " + dir + "/c.exr" + args + " --error-output " + dir + "/e.exr", &out), 1) << out;
+        EXPECT_NE(out.find("does not estimate its error"), std::string::npos) << out;
+    }
+}
+
 TEST(Cli, ListDevicesShowsTheDevice) {
     std::string out;
     ASSERT_EQ(run_clppm("--list-devices", &out), 0) << out;

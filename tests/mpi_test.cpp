@@ -79,7 +79,7 @@ TEST_P(MpiIntegrator, SeveralRanksGiveOneProcesssImage) {
     }
 }
 
-INSTANTIATE_TEST_SUITE_P(AllIntegrators, MpiIntegrator, ::testing::Values("ppm", "sppm", "pppm", "pt"),
+INSTANTIATE_TEST_SUITE_P(AllIntegrators, MpiIntegrator, ::testing::Values("ppm", "sppm", "pppm", "pt", "vcm"),
                          [](const auto& p) { return std::string(p.param); });
 
 // A checkpoint of two ranks, continued on three ranks and on one process: both equal the render

@@ -275,7 +275,7 @@ INSTANTIATE_TEST_SUITE_P(
         BadValue{{"--device", ""}, "--device '': must be a device index, cpu, gpu or part of a device name"},
         BadValue{{"--camera", "-1"}, "--camera -1: must be an integer >= 0"},
         BadValue{{"--stats-json="}, "--stats-json '': must be a file name"},
-        BadValue{{"--integrator", "bdpt"}, "--integrator bdpt: must be auto, ppm, sppm, pppm or pt"},
+        BadValue{{"--integrator", "mlt"}, "--integrator mlt: must be auto, ppm, sppm, pppm, pt, vcm or bpt"},
         BadValue{{"--filter", "mitchell"}, "--filter mitchell: must be box or tent"},
         BadValue{{"--aperture", "-1"}, "--aperture -1: must be a finite number >= 0 (0 = pinhole)"},
         BadValue{{"--focus-distance", "0"}, "--focus-distance 0: must be a finite number > 0"},
@@ -402,6 +402,9 @@ TEST(Options, RenderSubcommand) {
 TEST(Options, EnumNames) {
     EXPECT_STREQ(to_string(Integrator::PPM), "ppm");
     EXPECT_STREQ(to_string(Integrator::PT), "pt");
+    EXPECT_STREQ(to_string(Integrator::VCM), "vcm");
+    EXPECT_STREQ(to_string(Integrator::BPT), "bpt");
+    EXPECT_EQ(parse_options(Args{"--integrator", "BDPT"}).integrator, Integrator::BPT); // pbrt's name for it
     EXPECT_STREQ(to_string(DirectLighting::Photons), "photons");
     EXPECT_STREQ(to_string(DirectLighting::Sample), "sample");
 }

@@ -24,7 +24,7 @@ const std::string kArgs = " --width 24 --height 24 --photons 4000 --quiet --no-p
 } // namespace
 
 TEST(Resume, StoppedAndResumedEqualsNeverStopped) {
-    for (const char* integrator : {"ppm", "sppm", "pppm", "pt"}) {
+    for (const char* integrator : {"ppm", "sppm", "pppm", "pt", "vcm"}) {
         std::string d = make_temp_dir("resume"), out;
         const std::string a = kArgs + " --integrator " + integrator;
         ASSERT_EQ(run_clppm(a + " --passes 5 -o " + d + "/full.exr", &out), 0) << out;
@@ -116,7 +116,7 @@ TEST(Resume, SecondInterruptQuitsAtOnceWithoutCorruptingFiles) {
 // A checkpoint whose checksum is right but whose fields no render can produce is refused, naming
 // the field: negative radii would hang the gather, wrong counters would change the image.
 TEST(Resume, ImpossibleCheckpointFieldsAreRefusedNamingThem) {
-    for (const char* integrator : {"ppm", "sppm", "pt"}) {
+    for (const char* integrator : {"ppm", "sppm", "pt", "vcm"}) {
         std::string d = make_temp_dir("crafted"), out;
         const std::string a = kArgs + " --integrator " + integrator;
         ASSERT_EQ(run_clppm(a + " --passes 2 -o " + d + "/a.exr --checkpoint " + d + "/c.ck", &out), 0) << out;
@@ -132,7 +132,15 @@ TEST(Resume, ImpossibleCheckpointFieldsAreRefusedNamingThem) {
              [pt = std::string(integrator) == "pt"](Checkpoint& c) { c.header["photons_emitted"] = pt ? 7 : 0; }},
             {"phase_seconds", [](Checkpoint& c) { c.header["phase_seconds"]["gather"] = -1.0; }},
         };
-        if (std::string(integrator) != "pt") {
+        if (std::string(integrator) == "vcm") { // one light sub-path per pixel and pass; the radius shrinks
+            crafts.push_back({"vcm_r2", [](Checkpoint& c) { c.header["vcm_r2"] = -1.0; }});
+            crafts.push_back({"initial_radius", [](Checkpoint& c) { c.header["initial_radius"] = 1e30; }});
+            crafts.push_back({"accum[", [](Checkpoint& c) {
+                                  auto v = c.get<double>("accum", c.blobs["accum"].size() / sizeof(double));
+                                  v[2] = std::nan("");
+                                  c.put("accum", v);
+                              }});
+        } else if (std::string(integrator) != "pt") {
             crafts.push_back({"typical_radius", [](Checkpoint& c) { c.header["typical_radius"] = -0.5; }});
             crafts.push_back({"max_radius", [](Checkpoint& c) { c.header["max_radius"] = 1e30; }});
             crafts.push_back({"initial_radius", [](Checkpoint& c) { c.header["initial_radius"] = -1.0; }});

@@ -33,7 +33,9 @@ namespace {
     X(sizeof(PassFlux)) X(offsetof(PassFlux, m))                                                      \
     X(sizeof(HitStats)) X(offsetof(HitStats, n)) X(offsetof(HitStats, tau)) X(offsetof(HitStats, direct)) \
     X(sizeof(Photon)) X(offsetof(Photon, flux)) X(offsetof(Photon, wi_oct))                           \
-    X(sizeof(GridInfo)) X(offsetof(GridInfo, inv_cell)) X(offsetof(GridInfo, num_photons))
+    X(sizeof(GridInfo)) X(offsetof(GridInfo, inv_cell)) X(offsetof(GridInfo, num_photons))            \
+    X(sizeof(LightVertex)) X(offsetof(LightVertex, throughput)) X(offsetof(LightVertex, d_vm))         \
+    X(offsetof(LightVertex, u)) X(offsetof(LightVertex, path_length))
 // clang-format on
 
 #define STR(x) #x ","

@@ -207,8 +207,9 @@ const OptionSpec kOptions[] = {
     {"Integrator", "--integrator", nullptr, "NAME",
      "Integrator: auto = sppm for a scene with lights of its own, pt for one lit only by an environment "
      "(measured: bench/RESULTS.md); ppm = progressive photon mapping, sppm = stochastic PPM, pppm = "
-     "probabilistic PPM (independent passes), pt = path tracing",
-     "auto, ppm, sppm, pppm or pt", "auto",
+     "probabilistic PPM (independent passes), pt = path tracing, vcm = vertex connection and merging (bidirectional "
+     "path tracing and photon merging under MIS), bpt = bidirectional path tracing",
+     "auto, ppm, sppm, pppm, pt, vcm or bpt", "auto",
      [](ParseState& st, const Arg& a) {
          const std::string v = lower(a.value);
          st.options.integrator_auto = false;
@@ -217,6 +218,8 @@ const OptionSpec kOptions[] = {
          else if (v == "sppm") st.options.integrator = Integrator::SPPM;
          else if (v == "pppm") st.options.integrator = Integrator::PPPM;
          else if (v == "pt") st.options.integrator = Integrator::PT;
+         else if (v == "vcm") st.options.integrator = Integrator::VCM;
+         else if (v == "bpt" || v == "bdpt") st.options.integrator = Integrator::BPT; // bdpt: pbrt's name
          else bad_value(a);
      }},
     {"Integrator", "--passes", nullptr, "N", "Stop after N passes (with --time: whichever comes first)",

@@ -340,7 +340,10 @@ int render_session(const Options& given) {
         opt.integrator = choice.integrator;
         integrator_note = std::string("integrator ") + to_string(opt.integrator) + ": " + choice.reason;
     }
-    if (opt.passes_default && opt.integrator == Integrator::PT) opt.passes = kPtDefaultPasses;
+    // Integrators that add one sample per pixel and pass (no photons) default to the path tracer's passes.
+    const bool pixel_samples =
+        opt.integrator == Integrator::PT || opt.integrator == Integrator::VCM || opt.integrator == Integrator::BPT;
+    if (opt.passes_default && pixel_samples) opt.passes = kPtDefaultPasses;
     RenderSettings settings = settings_from(opt);
     // Refuse a render the device cannot hold before allocating anything.
     const ImageResolution res = image_resolution(scene, settings);
@@ -381,8 +384,11 @@ int render_session(const Options& given) {
     if (!integrator_note.empty()) note(opt, integrator_note);
     if (cl.distributed())
         note(opt, std::to_string(cl.size()) + " processes (MPI): each pass's " +
-                      (settings.integrator == Integrator::PT ? "pixels" : "photons") +
-                      " are shared in proportion to each one's measured speed, their sums combined exactly");
+                      (pixel_samples ? "pixels" : "photons") +
+                      " are shared in proportion to each one's measured speed, their sums combined exactly" +
+                      (settings.integrator == Integrator::VCM || settings.integrator == Integrator::BPT
+                           ? " (every process traces all light sub-paths)"
+                           : ""));
     // Light the path tracer cannot find: a point, spot or directional light seen through glass or
     // a mirror (a caustic) is a path of two delta events it never samples.
     if (settings.integrator == Integrator::PT && has_smooth_glass_or_mirror(scene) &&
@@ -391,8 +397,8 @@ int render_session(const Options& given) {
              "that light is missing from its image and from its error estimate (--integrator sppm finds it)");
     SecondaryDevices secondaries{std::vector<DeviceInfo>(chosen.begin() + 1, chosen.end()), program_file,
                                  build_options};
-    if (!secondaries.devices.empty() && settings.integrator == Integrator::PT) {
-        warn("the path tracer runs on the first device only");
+    if (!secondaries.devices.empty() && pixel_samples) {
+        warn(std::string("the ") + to_string(settings.integrator) + " integrator runs on the first device only");
         secondaries.devices.clear();
     }
     for (const DeviceInfo& d : secondaries.devices) {
@@ -528,7 +534,7 @@ int render_session(const Options& given) {
             try {
                 const std::vector<double> work = cl.all_values(render_s > 0 ? double(st.local_work) / render_s : 0.0);
                 const std::vector<double> comm = cl.all_values(cl.communication_seconds());
-                mpi_stats[settings.integrator == Integrator::PT ? "samples_per_second" : "photons_per_second"] = work;
+                mpi_stats[pixel_samples ? "samples_per_second" : "photons_per_second"] = work;
                 mpi_stats["communication_seconds"] = comm;
             } catch (const PassCancelled&) {
                 signal = interrupt_signal();

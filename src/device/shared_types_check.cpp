@@ -82,6 +82,15 @@ CLPPM_CHECK_OFFSET(Photon, normal_oct, 12);
 CLPPM_CHECK_OFFSET(Photon, flux, 16);
 CLPPM_CHECK_OFFSET(Photon, wi_oct, 28);
 
+CLPPM_CHECK_SIZE(LightVertex, 64);
+CLPPM_CHECK_OFFSET(LightVertex, normal_oct, 12);
+CLPPM_CHECK_OFFSET(LightVertex, throughput, 16);
+CLPPM_CHECK_OFFSET(LightVertex, wi_oct, 28);
+CLPPM_CHECK_OFFSET(LightVertex, d_vcm, 32);
+CLPPM_CHECK_OFFSET(LightVertex, prim, 44);
+CLPPM_CHECK_OFFSET(LightVertex, prev, 56);
+CLPPM_CHECK_OFFSET(LightVertex, path_length, 60);
+
 CLPPM_CHECK_SIZE(GridInfo, 32);
 CLPPM_CHECK_OFFSET(GridInfo, inv_cell, 16);
 

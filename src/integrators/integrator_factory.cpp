@@ -3,6 +3,7 @@
 #include "integrators/ppm_integrator.h"
 #include "integrators/pt_integrator.h"
 #include "integrators/sppm_integrator.h"
+#include "integrators/vcm_integrator.h"
 #include "shared_types.h"
 #include "util/error.h"
 
@@ -16,6 +17,8 @@ std::unique_ptr<IntegratorBase> make_integrator(const DeviceContext& dc, const D
     case Integrator::SPPM:
     case Integrator::PPPM: return std::make_unique<SppmIntegrator>(dc, scene, settings, program, secondaries);
     case Integrator::PT: return std::make_unique<PtIntegrator>(dc, scene, settings, program);
+    case Integrator::VCM:
+    case Integrator::BPT: return std::make_unique<VcmIntegrator>(dc, scene, settings, program);
     }
     throw Error("unknown integrator");
 }
@@ -26,6 +29,8 @@ std::string integrator_program_file(const RenderSettings& settings) {
     case Integrator::SPPM:
     case Integrator::PPPM: return "sppm_program.cl";
     case Integrator::PT: return "path_trace.cl";
+    case Integrator::VCM:
+    case Integrator::BPT: return "vcm_program.cl";
     }
     throw Error("unknown integrator");
 }
@@ -41,7 +46,9 @@ std::string integrator_build_options(const RenderSettings& settings, const Devic
     // PPM splits an eye sample at glass and metal into several hit points; SPPM and PPPM keep
     // one visible point per pixel and pass. The path tracer has no eye pass, but shares the files.
     case Integrator::PPM:
-    case Integrator::PT: options = "-DEYE_SLOTS=" + std::to_string(PPM_EYE_SLOTS); break;
+    case Integrator::PT:
+    case Integrator::VCM:
+    case Integrator::BPT: options = "-DEYE_SLOTS=" + std::to_string(PPM_EYE_SLOTS); break;
     case Integrator::SPPM:
     case Integrator::PPPM: options = "-DEYE_SLOTS=" + std::to_string(SPPM_EYE_SLOTS); break;
     }
@@ -61,6 +68,8 @@ IntegratorMemory integrator_memory(const RenderSettings& settings, unsigned widt
     case Integrator::SPPM:
     case Integrator::PPPM: return SppmIntegrator::memory_needed(pixels, error_estimation);
     case Integrator::PT: return PtIntegrator::memory_needed(pixels, error_estimation);
+    case Integrator::VCM:
+    case Integrator::BPT: return VcmIntegrator::memory_needed(pixels);
     }
     throw Error("unknown integrator");
 }

@@ -4,6 +4,7 @@
 
 #include "integrators/integrator_factory.h"
 #include "integrators/photon_map.h"
+#include "integrators/vcm_integrator.h"
 #include "shared_types.h"
 #include "util/error.h"
 
@@ -41,6 +42,11 @@ MemoryEstimate estimate_memory(const Scene& scene, const RenderSettings& setting
         m.largest_buffer = std::max(m.largest_buffer, m.photons / 2);
         break;
     case Integrator::PT: break;
+    case Integrator::VCM:
+    case Integrator::BPT: // the light vertices and their grid
+        m.photons = VcmIntegrator::light_vertex_bytes(size_t(width) * height, device);
+        m.largest_buffer = std::max(m.largest_buffer, m.photons / 2);
+        break;
     }
     return m;
 }

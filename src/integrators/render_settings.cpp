@@ -8,6 +8,8 @@ const char* to_string(Integrator integrator) {
     case Integrator::SPPM: return "sppm";
     case Integrator::PPPM: return "pppm";
     case Integrator::PT: return "pt";
+    case Integrator::VCM: return "vcm";
+    case Integrator::BPT: return "bpt";
     }
     return "?";
 }

@@ -6,9 +6,9 @@
 
 namespace clppm {
 
-enum class Integrator { PPM, SPPM, PPPM, PT }; // --integrator ppm|sppm|pppm|pt
-enum class DirectLighting { Photons, Sample }; // --direct photons|sample
-enum class PixelFilter { Box, Tent };          // --filter box|tent
+enum class Integrator { PPM, SPPM, PPPM, PT, VCM, BPT }; // --integrator ppm|sppm|pppm|pt|vcm|bpt
+enum class DirectLighting { Photons, Sample };           // --direct photons|sample
+enum class PixelFilter { Box, Tent };                    // --filter box|tent
 
 const char* to_string(Integrator integrator); // "ppm", "pt"
 const char* to_string(DirectLighting direct); // "photons", "sample"
@@ -24,6 +24,9 @@ struct RenderSettings : SceneSettings {
     double radius = 0; // initial radius in world units; 0: heuristic
     uint64_t seed = 1;
     PixelFilter filter = PixelFilter::Box;
+    // VCM and BPT: one technique alone (VCM_MODE_* of kernels/vcm_mis.h), for the tests that
+    // compare the techniques; -1: the integrator's own.
+    int vcm_techniques = -1;
 };
 
 } // namespace clppm

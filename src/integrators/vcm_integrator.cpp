@@ -1,0 +1,235 @@
+#include "integrators/vcm_integrator.h"
+
+#include <algorithm>
+#include <cfloat>
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+
+#include "device/cluster.h"
+#include "device/kernel_launch.h"
+#include "integrators/checkpoint_checks.h"
+#include "integrators/film.h"
+#include "integrators/initial_radius.h"
+#include "integrators/pixel_share.h"
+#include "integrators/sppm_integrator.h"
+#include "util/cancellation.h"
+#include "util/error.h"
+
+namespace clppm {
+
+namespace {
+
+// Per pixel: the running sum, this pass's sum over batches, the fixed-point splat image (3 double
+// or int64 each), the film, and the light sub-path's last vertex.
+constexpr size_t kBytesPerPixel =
+    3 * sizeof(cl_double) * 2 + 3 * sizeof(cl_long) + kFilmBytesPerPixel + sizeof(cl_uint);
+// Light vertices a buffer starts out sized for per light sub-path; it grows if a scene stores more.
+constexpr uint64_t kVerticesPerPath = 4;
+// The splat image's fixed point (light tracing, t = 1): exact sums in any order.
+constexpr double kSplatScale = 4294967296.0; // 2^32
+
+// Both vertex buffers (traced and sorted) within a quarter of the device, one within its largest
+// allocation.
+uint64_t vertex_capacity_budget(const DeviceInfo& device) {
+    return std::min<uint64_t>({device.max_alloc / sizeof(dev::LightVertex),
+                               device.global_mem / 4 / (2 * sizeof(dev::LightVertex)), 0x7fffffffu});
+}
+
+uint64_t initial_capacity(uint64_t paths, const DeviceInfo& device) {
+    return std::clamp<uint64_t>(paths * kVerticesPerPath, 1024,
+                                std::max<uint64_t>(1024, vertex_capacity_budget(device)));
+}
+
+uint32_t technique_mode(const RenderSettings& s) {
+    if (s.vcm_techniques >= 0) return uint32_t(s.vcm_techniques);
+    return s.integrator == Integrator::BPT ? VCM_MODE_BPT : VCM_MODE_VCM;
+}
+
+} // namespace
+
+IntegratorMemory VcmIntegrator::memory_needed(size_t pixels) {
+    return {pixels * kBytesPerPixel, pixels * 3 * sizeof(cl_double)};
+}
+
+size_t VcmIntegrator::light_vertex_bytes(size_t pixels, const DeviceInfo& device) {
+    const uint64_t capacity = initial_capacity(pixels, device);
+    return 2 * size_t(capacity) * sizeof(dev::LightVertex) + HashGrid::bytes_for(capacity);
+}
+
+VcmIntegrator::VcmIntegrator(const DeviceContext& dc, const DeviceScene& scene, const RenderSettings& settings,
+                             const cl::Program& program)
+    : dc_(dc), scene_(scene), settings_(settings), mode_(technique_mode(settings)), grid_(dc, program, stats_) {
+    if (settings.filter != PixelFilter::Box)
+        throw Error("--integrator " + name() + ": light tracing splats with the box filter only; drop --filter " +
+                    to_string(settings.filter));
+    k_light_ = cl::Kernel(program, "vcm_light");
+    k_camera_ = cl::Kernel(program, "vcm_camera");
+    k_film_ = cl::Kernel(program, "mean_film");
+    k_footprint_ = cl::Kernel(program, "vcm_footprint");
+    num_pixels_ = scene.camera.width * scene.camera.height;
+    area_scale_ = std::min(double(scene.info.radius) * double(scene.info.radius), double(FLT_MAX));
+    max_capacity_ = vertex_capacity_budget(dc.info);
+    uint64_t batch = num_pixels_;
+    if (const char* e = std::getenv("CLPPM_PHOTON_BATCH"); e && *e)
+        batch = std::min<uint64_t>(batch, std::max<uint64_t>(1, std::strtoull(e, nullptr, 10)));
+    batch_ = uint32_t(std::clamp<uint64_t>(std::min(batch, max_capacity_ / kVerticesPerPath), 1, num_pixels_));
+}
+
+VcmIntegrator::~VcmIntegrator() {
+    try {
+        dc_.queue.finish(); // non-blocking writes may still read host memory
+    } catch (const cl::Error&) {}
+}
+
+double VcmIntegrator::radius() const { return std::sqrt(r2_); }
+
+void VcmIntegrator::allocate_vertices(uint32_t capacity) {
+    capacity_ = capacity;
+    verts_ = cl::Buffer(dc_.context, CL_MEM_READ_WRITE, size_t(capacity) * sizeof(dev::LightVertex));
+    sorted_ = cl::Buffer(dc_.context, CL_MEM_READ_WRITE, size_t(capacity) * sizeof(dev::LightVertex));
+}
+
+void VcmIntegrator::prepare() {
+    const size_t n = num_pixels_;
+    auto make = [&](size_t bytes) {
+        stats_.device_bytes += bytes;
+        return cl::Buffer(dc_.context, CL_MEM_READ_WRITE, std::max<size_t>(bytes, 8));
+    };
+    accum_ = make(n * 3 * sizeof(cl_double));
+    dc_.queue.enqueueFillBuffer(accum_, cl_double(0), 0, n * 3 * sizeof(cl_double));
+    pass_sum_ = make(n * 3 * sizeof(cl_double));
+    splat_ = make(n * 3 * sizeof(cl_long));
+    image_buf_ = make(n * kFilmBytesPerPixel);
+    path_last_ = make(size_t(batch_) * sizeof(cl_uint));
+    counter_ = cl::Buffer(dc_.context, CL_MEM_READ_WRITE, sizeof(cl_uint));
+    allocate_vertices(uint32_t(initial_capacity(batch_, dc_.info)));
+    stats_.hitpoints = n;
+
+    // The initial merging radius: one pixel footprint at the first surfaces, half of SPPM's two.
+    // Merging takes most of the weight on diffuse surfaces (eta = pi r^2 N_L is large), so its
+    // bias is the image's: on the diffuse box at 48x48, 256 passes, SPPM's radius (0.126) left the
+    // mean 1.7% low and r = 0.05 0.1% (tests/vcm_test.cpp).
+    cl::Buffer fp(dc_.context, CL_MEM_WRITE_ONLY, std::max<size_t>(n, 1) * sizeof(cl_float));
+    set_args(k_footprint_, scene_.set_scene_args(k_footprint_), scene_.camera_buf, cl_uint(num_pixels_), fp);
+    enqueue_1d(dc_.queue, k_footprint_, n);
+    std::vector<float> all = read_buffer<cl_float>(dc_.queue, fp, n), footprints;
+    for (float f : all)
+        if (f > 0) footprints.push_back(f);
+    const double r0 =
+        settings_.radius > 0 ? settings_.radius : 0.5 * initial_radius_heuristic(footprints, scene_.info.radius);
+    stats_.initial_radius = stats_.mean_radius = r0;
+    r2_ = r0 * r0;
+}
+
+bool VcmIntegrator::trace_light(uint64_t pass, uint32_t first, uint32_t count) {
+    dc_.queue.enqueueFillBuffer(counter_, cl_uint(0), 0, sizeof(cl_uint));
+    dc_.queue.enqueueFillBuffer(splat_, cl_long(0), 0, size_t(num_pixels_) * 3 * sizeof(cl_long));
+    if (mode_ == VCM_MODE_PT) { // camera sub-paths alone
+        stored_ = 0;
+        return true;
+    }
+    const double eta = M_PI * r2_ / area_scale_ * double(num_pixels_);
+    const bool vm = mode_ == VCM_MODE_VCM || mode_ == VCM_MODE_VM;
+    const float vm_factor = vm ? float(std::min(eta * eta, 1e30)) : 0.f;
+    const float vc_factor = mode_ == VCM_MODE_VCM ? float(std::min(1.0 / (eta * eta), 1e30)) : 0.f;
+    set_args(k_light_, scene_.set_scene_args(k_light_), scene_.camera_buf, cl_ulong(settings_.seed), cl_ulong(pass),
+             cl_uint(first), cl_uint(count), cl_float(float(num_pixels_)), cl_float(vm_factor), cl_float(vc_factor),
+             cl_float(float(area_scale_)), cl_uint(mode_), cl_uint(scene_.info.max_bounces + 1), verts_,
+             cl_uint(capacity_), counter_, path_last_, splat_, cl_float(float(kSplatScale)));
+    cl::Event ev;
+    enqueue_1d(dc_.queue, k_light_, count, &ev);
+    cl_uint stored = 0;
+    dc_.queue.enqueueReadBuffer(counter_, CL_TRUE, 0, sizeof(cl_uint), &stored);
+    add_event_time(stats_, "light_paths", ev);
+    stored_ = stored;
+    return stored <= capacity_;
+}
+
+void VcmIntegrator::run_pass() {
+    const uint64_t pass = stats_.passes + 1;
+    const double eta = M_PI * r2_ / area_scale_ * double(num_pixels_);
+    const bool vm = mode_ == VCM_MODE_VCM || mode_ == VCM_MODE_VM;
+    const float vm_factor = vm ? float(std::min(eta * eta, 1e30)) : 0.f;
+    const float vc_factor = mode_ == VCM_MODE_VCM ? float(std::min(1.0 / (eta * eta), 1e30)) : 0.f;
+    // Light-side sums are in units of total power per scene-relative area (kernels/vcm.cl).
+    const double light_unit = double(scene_.info.total_power) / area_scale_;
+    const double vm_norm = area_scale_ / (M_PI * r2_ * double(num_pixels_));
+    const double extent = 2.0 * scene_.info.radius;
+    const double cell = std::max(2.0 * std::sqrt(r2_), extent / double(1 << 20));
+    const uint32_t max_len = scene_.info.max_bounces + 1;
+    // With several processes (device/cluster.h) every rank traces all light sub-paths (the same on
+    // each: they depend on (seed, pass, index) alone) and the camera sub-paths of its own pixel
+    // range, by the ranks' measured speed; the ranks then share their ranges of the running sum, so
+    // each holds what one process would, bit for bit when their batches agree.
+    const PixelRanges ranges = split_pixels(num_pixels_, balance_);
+    const auto t0 = std::chrono::steady_clock::now();
+    uint64_t stored_total = 0;
+    for (uint32_t first = 0; first < num_pixels_;) {
+        throw_if_cancelled(); // Ctrl-C: the running sum still holds the last whole pass
+        const uint32_t count = std::min(batch_, num_pixels_ - first);
+        if (!trace_light(pass, first, count)) {
+            // More light vertices than the buffer holds: grow it within the budget, else trace
+            // fewer sub-paths at a time. Either way the same sub-paths are traced again.
+            const uint64_t want = uint64_t(stored_) * 5 / 4 + 1024;
+            if (want <= max_capacity_) allocate_vertices(uint32_t(want));
+            else if (batch_ > 1) batch_ = std::max<uint32_t>(1, batch_ / 2);
+            else throw Error("vcm pass: one light sub-path stores more vertices than the device memory budget allows");
+            continue;
+        }
+        grid_.build(verts_, sorted_, stored_, scene_.bounds_min, cell);
+        const uint32_t flags = (first == 0 ? 1u : 0u) | (first + count == num_pixels_ ? 2u : 0u);
+        set_args(k_camera_, scene_.set_scene_args(k_camera_), scene_.camera_buf, cl_ulong(settings_.seed),
+                 cl_ulong(pass), cl_uint(num_pixels_), grid_.info(), sorted_, grid_.starts(), verts_, path_last_,
+                 cl_uint(first), cl_uint(count), cl_uint(flags), cl_float(float(r2_)), cl_float(float(num_pixels_)),
+                 cl_float(vm_factor), cl_float(vc_factor), cl_float(float(area_scale_)), cl_uint(mode_),
+                 cl_uint(max_len), cl_double(light_unit), cl_double(vm_norm), splat_,
+                 cl_double(light_unit / kSplatScale), pass_sum_, accum_);
+        cl::Event ev;
+        if (ranges.count > 0) enqueue_1d_range(dc_.queue, k_camera_, ranges.first, ranges.count, &ev);
+        if (ranges.count > 0) add_event_time(stats_, "camera_paths", ev);
+        stored_total += stored_;
+        first += count;
+    }
+    collect_event_times(stats_); // waits for the pass
+    if (cluster().distributed()) {
+        balance_.record(ranges.count, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+        share_pixels(dc_.queue, accum_, 3, ranges, num_pixels_);
+        stats_.rank_photons.assign(ranges.counts.begin(), ranges.counts.end());
+    }
+    stats_.photons_stored += stored_total;
+    stats_.photon_bytes = 2 * size_t(capacity_) * sizeof(dev::LightVertex) + grid_.device_bytes();
+    stats_.local_work += ranges.count;
+    stats_.passes = pass;
+    stats_.photons_emitted += mode_ == VCM_MODE_PT ? 0 : num_pixels_;
+    stats_.mean_radius = std::sqrt(r2_);
+    r2_ = SppmIntegrator::next_pppm_radius2(r2_, pass, settings_.alpha);
+}
+
+void VcmIntegrator::save(Checkpoint& ck) {
+    IntegratorBase::save(ck);
+    ck.put("accum", read_buffer<cl_double>(dc_.queue, accum_, size_t(num_pixels_) * 3));
+    ck.header["vcm_r2"] = r2_;
+}
+
+void VcmIntegrator::restore(const Checkpoint& ck) {
+    IntegratorBase::restore(ck);
+    const uint64_t per_pass = mode_ == VCM_MODE_PT ? 0 : num_pixels_;
+    require_checkpoint_field(ck, stats_.photons_emitted == stats_.passes * per_pass,
+                             "photons_emitted (one light sub-path per pixel and pass)");
+    const double r0 = stats_.initial_radius;
+    require_checkpoint_field(ck, std::isfinite(r0) && r0 > 0 && r0 <= 2.0 * scene_.info.radius, "initial_radius");
+    r2_ = checkpoint_number(ck, "vcm_r2", 0, r0 * r0 * (1 + 1e-9));
+    require_checkpoint_field(ck, r2_ > 0, "vcm_r2");
+    std::vector<cl_double> accum = ck.get<cl_double>("accum", size_t(num_pixels_) * 3);
+    check_radiance_sums(ck, accum, "accum");
+    write_buffer(dc_.queue, accum_, accum);
+}
+
+Image VcmIntegrator::image() {
+    set_args(k_film_, 0, accum_, cl_uint(num_pixels_), cl_double(double(stats_.passes)), image_buf_);
+    enqueue_1d(dc_.queue, k_film_, num_pixels_);
+    return read_film(dc_, image_buf_, scene_.camera.width, scene_.camera.height);
+}
+
+} // namespace clppm

@@ -1,0 +1,57 @@
+// Vertex connection and merging (Georgiev et al. 2012) and bidirectional path tracing, its
+// connections-only case: per pass, one light sub-path and one camera sub-path per pixel
+// (kernels/vcm.cl), the merging radius shrinking as PPPM's (Knaus and Zwicker 2011, Eq. 19).
+// Every pass adds one unbiased-in-the-limit sample per pixel to a running sum, as the path tracer.
+#pragma once
+#include <cstdint>
+
+#include "integrators/hash_grid.h"
+#include "integrators/integrator.h"
+#include "integrators/render_settings.h"
+#include "integrators/work_balance.h"
+#include "scene/device_scene.h"
+#include "vcm_mis.h"
+
+namespace clppm {
+
+class VcmIntegrator : public IntegratorBase {
+public:
+    VcmIntegrator(const DeviceContext& dc, const DeviceScene& scene, const RenderSettings& settings,
+                  const cl::Program& program);
+    ~VcmIntegrator() override;
+    std::string name() const override { return mode_ == VCM_MODE_BPT ? "bpt" : "vcm"; }
+    void prepare() override;
+    void run_pass() override;
+    Image image() override;
+    void save(Checkpoint& ck) override;
+    void restore(const Checkpoint& ck) override;
+
+    // The per-pixel buffers prepare() allocates for `pixels` pixels.
+    static IntegratorMemory memory_needed(size_t pixels);
+    // The light vertex buffers and grid a pass over `pixels` light sub-paths starts with (they are
+    // batched to stay within a quarter of the device's memory).
+    static size_t light_vertex_bytes(size_t pixels, const DeviceInfo& device);
+
+    // The radius this pass merges with (world units).
+    double radius() const;
+
+private:
+    bool trace_light(uint64_t pass, uint32_t first, uint32_t count); // false: the vertices overflowed
+    void allocate_vertices(uint32_t capacity);
+
+    const DeviceContext& dc_;
+    const DeviceScene& scene_;
+    RenderSettings settings_;
+    uint32_t mode_;
+    cl::Kernel k_light_, k_camera_, k_film_, k_footprint_;
+    HashGrid grid_;
+    cl::Buffer accum_, pass_sum_, splat_, path_last_, verts_, sorted_, counter_, image_buf_;
+    uint32_t num_pixels_ = 0;
+    uint64_t max_capacity_ = 0; // light vertices the memory budget allows
+    uint32_t capacity_ = 0, batch_ = 0, stored_ = 0;
+    double r2_ = 0;         // this pass's squared merging radius
+    double area_scale_ = 1; // R^2 of the scene's bounding sphere: the kernels' unit of area
+    WorkBalance balance_;   // this rank's seconds against its pixels, for the ranks' split
+};
+
+} // namespace clppm
