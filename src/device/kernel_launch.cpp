@@ -11,18 +11,22 @@ void enqueue_1d(const cl::CommandQueue& queue, const cl::Kernel& kernel, size_t 
 
 void enqueue_1d_range(const cl::CommandQueue& queue, const cl::Kernel& kernel, size_t first, size_t n,
                       cl::Event* event) {
-    static const size_t local = [] {
+    static const size_t forced = [] {
         const char* e = std::getenv("CLPPM_LOCAL_SIZE");
         return e && *e ? size_t(std::strtoul(e, nullptr, 10)) : size_t(0);
     }();
     n = std::max<size_t>(n, 1);
     const cl::NDRange offset = first ? cl::NDRange(first) : cl::NullRange;
-    if (local > 0) {
-        size_t global = (n + local - 1) / local * local;
-        queue.enqueueNDRangeKernel(kernel, offset, cl::NDRange(global), cl::NDRange(local), nullptr, event);
-    } else {
-        queue.enqueueNDRangeKernel(kernel, offset, cl::NDRange(n), cl::NullRange, nullptr, event);
+    size_t local = forced;
+    if (local == 0) {
+        // The kernel's limit on this device, as a power of two no larger than kWorkGroupSize.
+        const cl::Device device = queue.getInfo<CL_QUEUE_DEVICE>();
+        const size_t limit = kernel.getWorkGroupInfo<CL_KERNEL_WORK_GROUP_SIZE>(device);
+        local = 1;
+        while (local * 2 <= std::min(limit, kWorkGroupSize)) local *= 2;
     }
+    const size_t global = (n + local - 1) / local * local;
+    queue.enqueueNDRangeKernel(kernel, offset, cl::NDRange(global), cl::NDRange(local), nullptr, event);
 }
 
 } // namespace clppm
