@@ -19,7 +19,6 @@
  * distance in the MIS weights is taken relative to the scene (area_scale = R^2 of the bounding
  * sphere), so the weights and the fixed-point sums do not depend on light power or scene scale;
  * the host scales the light side back by total_power / R^2 (light_unit). */
-#pragma OPENCL EXTENSION cl_khr_int64_base_atomics : enable
 #include "rng.cl"
 #include "camera.cl"
 #include "lights.cl"
@@ -27,26 +26,13 @@
 #include "next_event.cl"
 #include "vcm_mis.h"
 #include "gather_common.cl"
+#include "fixed_point.cl"
 
 #define RNG_VCM_LIGHT_SAMPLE 7u /* the camera sub-path's light samples: a stream of their own, so that
                                  * batches that skip them trace the same camera sub-path */
 
 bool vcm_uses_connections(uint mode) { return mode == VCM_MODE_VCM || mode == VCM_MODE_BPT; }
 bool vcm_uses_merging(uint mode) { return mode == VCM_MODE_VCM || mode == VCM_MODE_VM; }
-
-/* Adds v to a 64-bit integer that many work items add to. Integer addition is exact, so the total
- * is the same in any order. Without cl_khr_int64_base_atomics, two 32-bit atomics with the carry
- * (the words of a little-endian int64). */
-void add_fixed(volatile __global long* a, long v) {
-#ifdef cl_khr_int64_base_atomics
-    atom_add(a, v);
-#else
-    volatile __global uint* w = (volatile __global uint*)a;
-    uint lo = (uint)v, hi = (uint)(v >> 32);
-    uint old = atomic_add(&w[0], lo);
-    atomic_add(&w[1], hi + (old + lo < old ? 1u : 0u));
-#endif
-}
 
 /* Whether a segment from x (leaving on the side of unit w, with geometric normal nx) to y (reached
  * on the side of -w, normal ny) is free: both ends offset off their surfaces. */
@@ -262,7 +248,7 @@ float vcm_emission_weight(SCENE_PARAMS, const Surface* sf, float3 dir, uint t, b
  * last (the splat image joins the pixel). The grid holds this batch's light vertices (sorted); verts
  * and path_last hold its sub-paths [batch_first, batch_first + batch_count) as vcm_light left them.
  * A pixel's sample is radiance plus light_unit times the light side and splat_unit times its splats. */
-__kernel void vcm_camera(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong pass, uint num_pixels,
+__kernel void vcm_camera(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong pass, uint pixel_end,
                          __constant GridInfo* g, __global const LightVertex* sorted, __global const uint* starts,
                          __global const LightVertex* verts, __global const uint* path_last, uint batch_first,
                          uint batch_count, uint batch_flags, float r2, float light_paths, float vm_factor,
@@ -270,7 +256,7 @@ __kernel void vcm_camera(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong
                          double vm_norm, __global long* splat, double splat_unit, __global double* pass_sum,
                          __global double* accum) {
     uint p = get_global_id(0);
-    if (p >= num_pixels) return;
+    if (p >= pixel_end) return; /* the launch covers [offset, pixel_end), padded to the work-group size */
     const bool first = (batch_flags & 1u) != 0u;
     Rng rng = rng_make(seed, pass, p, RNG_VCM_CAMERA);
     Rng rng_ls = rng_make(seed, pass, p, RNG_VCM_LIGHT_SAMPLE);

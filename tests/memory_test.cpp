@@ -37,10 +37,10 @@ TEST(Memory, SppmAndPppmAt1080pWithAMillionPhotonsFitInOneGiB) {
     }
 }
 
-// The estimate is what the integrators allocate: SPPM's per-pixel buffers exactly, PPM's hit
-// points within the splitting allowance.
+// The estimate is what the integrators allocate: SPPM's, PT's and VCM's per-pixel buffers exactly,
+// PPM's hit points within the splitting allowance, photons and light vertices within theirs.
 TEST(Memory, EstimateMatchesWhatARenderAllocates) {
-    for (Integrator integ : {Integrator::PPM, Integrator::SPPM, Integrator::PT}) {
+    for (Integrator integ : {Integrator::PPM, Integrator::SPPM, Integrator::PT, Integrator::VCM}) {
         RenderSettings s;
         s.integrator = integ;
         s.width = s.height = 40;

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <random>
 
 #include "device/kernel_launch.h"
 #include "device/kernel_program.h"
@@ -276,4 +277,39 @@ TEST(Vcm, ThinLensAgreesWithThePathTracer) {
     expect_alike(render_passes(diffuse_box(), vcm, 1024), ref, 0.015, 0.04, "thin lens, light tracing only");
     vcm.vcm_techniques = -1;
     expect_alike(render_passes(diffuse_box(), vcm, 256), ref, 0.01, 0.03, "thin lens, vcm");
+}
+
+namespace {
+
+const char* kFixedWrappers = R"CL(
+__kernel void add_all(__global const long* v, uint n, uint slots, volatile __global long* sums) {
+    uint i = get_global_id(0);
+    if (i < n) add_fixed(&sums[i % slots], v[i]);
+}
+)CL";
+
+} // namespace
+
+// The splat image's sums (kernels/fixed_point.cl), with 64-bit atomics and with the two 32-bit
+// words the kernels fall back on without them, against the host's sum: exact, carries and signs
+// included.
+TEST(Vcm, FixedPointSumsAreExactWithOrWithoutInt64Atomics) {
+    std::mt19937_64 rng(5);
+    const uint32_t n = 200000, slots = 7;
+    std::vector<cl_long> v(n);
+    std::vector<int64_t> want(slots, 0);
+    for (uint32_t i = 0; i < n; ++i) {
+        // Mixed magnitudes: low words that carry, negative values that borrow.
+        v[i] = int64_t(rng() >> (i % 3 == 0 ? 24 : 40)) * (i % 5 == 0 ? -1 : 1);
+        want[i % slots] += v[i];
+    }
+    for (const char* prefix : {"", "#define CLPPM_NO_INT64_ATOMICS\n"}) {
+        KernelHarness d(std::string(prefix) + assemble_kernel_source("fixed_point.cl") + kFixedWrappers);
+        cl::Buffer in = d.input(v), sums = d.input(std::vector<cl_long>(slots, 0));
+        cl::Kernel k(d.program, "add_all");
+        set_args(k, 0, in, cl_uint(n), cl_uint(slots), sums);
+        d.run(k, n);
+        const std::vector<cl_long> got = d.read<cl_long>(sums, slots);
+        for (uint32_t s = 0; s < slots; ++s) EXPECT_EQ(got[s], want[s]) << (*prefix ? "32-bit words" : "int64") << s;
+    }
 }

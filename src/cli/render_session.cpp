@@ -397,13 +397,14 @@ int render_session(const Options& given) {
              "that light is missing from its image and from its error estimate (--integrator sppm finds it)");
     SecondaryDevices secondaries{std::vector<DeviceInfo>(chosen.begin() + 1, chosen.end()), program_file,
                                  build_options};
-    if (!secondaries.devices.empty() && pixel_samples) {
-        warn(std::string("the ") + to_string(settings.integrator) + " integrator runs on the first device only");
+    if (!secondaries.devices.empty() && settings.integrator == Integrator::PT) {
+        warn("the path tracer runs on the first device only");
         secondaries.devices.clear();
     }
     for (const DeviceInfo& d : secondaries.devices) {
         integrator_build_options(settings, d); // the same requirements (fp64) as the primary
-        note(opt, "sharing photons with device [" + std::to_string(d.index) + "] " + d.name);
+        note(opt, std::string("sharing ") + (pixel_samples ? "pixels" : "photons") + " with device [" +
+                      std::to_string(d.index) + "] " + d.name);
     }
     std::unique_ptr<IntegratorBase> integ = make_integrator(dc, ds, settings, program, secondaries);
     ErrorTracking errors;

@@ -18,7 +18,7 @@ std::unique_ptr<IntegratorBase> make_integrator(const DeviceContext& dc, const D
     case Integrator::PPPM: return std::make_unique<SppmIntegrator>(dc, scene, settings, program, secondaries);
     case Integrator::PT: return std::make_unique<PtIntegrator>(dc, scene, settings, program);
     case Integrator::VCM:
-    case Integrator::BPT: return std::make_unique<VcmIntegrator>(dc, scene, settings, program);
+    case Integrator::BPT: return std::make_unique<VcmIntegrator>(dc, scene, settings, program, secondaries);
     }
     throw Error("unknown integrator");
 }

@@ -26,8 +26,7 @@ void share_pixels(const cl::CommandQueue& queue, const cl::Buffer& buffer, size_
     std::vector<double> host(size_t(num_pixels) * doubles_per_pixel);
     const size_t me = size_t(cluster().rank());
     const size_t offset = ranges.firsts[me] * doubles_per_pixel, n = ranges.counts[me] * doubles_per_pixel;
-    if (n)
-        queue.enqueueReadBuffer(buffer, CL_TRUE, offset * sizeof(double), n * sizeof(double), host.data() + offset);
+    if (n) queue.enqueueReadBuffer(buffer, CL_TRUE, offset * sizeof(double), n * sizeof(double), host.data() + offset);
     std::vector<size_t> f(ranges.firsts), c(ranges.counts);
     for (size_t r = 0; r < f.size(); ++r) f[r] *= doubles_per_pixel, c[r] *= doubles_per_pixel;
     cluster().share_slices(host.data(), f, c);

@@ -5,9 +5,12 @@
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
+#include <exception>
+#include <thread>
 
 #include "device/cluster.h"
 #include "device/kernel_launch.h"
+#include "device/kernel_program.h"
 #include "integrators/checkpoint_checks.h"
 #include "integrators/film.h"
 #include "integrators/initial_radius.h"
@@ -57,8 +60,26 @@ size_t VcmIntegrator::light_vertex_bytes(size_t pixels, const DeviceInfo& device
     return 2 * size_t(capacity) * sizeof(dev::LightVertex) + HashGrid::bytes_for(capacity);
 }
 
+// A further device: its own context, copy of the scene and program, and an integrator of its own
+// whose running sum holds one pass at a time.
+struct VcmIntegrator::Worker {
+    DeviceContext dc;
+    DeviceScene scene;
+    cl::Program program;
+    std::unique_ptr<VcmIntegrator> integ;
+    std::vector<double> result; // its pixels' samples this pass
+    double seconds = 0;
+    std::exception_ptr error;
+
+    Worker(const DeviceInfo& info, const DeviceContext& primary, const DeviceScene& primary_scene,
+           const RenderSettings& settings, const std::string& file, const std::string& options)
+        : dc(info), scene(primary_scene.clone_to(primary, dc)), program(build_program(dc, file, options)) {
+        integ = std::make_unique<VcmIntegrator>(dc, scene, settings, program);
+    }
+};
+
 VcmIntegrator::VcmIntegrator(const DeviceContext& dc, const DeviceScene& scene, const RenderSettings& settings,
-                             const cl::Program& program)
+                             const cl::Program& program, const SecondaryDevices& secondaries)
     : dc_(dc), scene_(scene), settings_(settings), mode_(technique_mode(settings)), grid_(dc, program, stats_) {
     if (settings.filter != PixelFilter::Box)
         throw Error("--integrator " + name() + ": light tracing splats with the box filter only; drop --filter " +
@@ -74,6 +95,12 @@ VcmIntegrator::VcmIntegrator(const DeviceContext& dc, const DeviceScene& scene, 
     if (const char* e = std::getenv("CLPPM_PHOTON_BATCH"); e && *e)
         batch = std::min<uint64_t>(batch, std::max<uint64_t>(1, std::strtoull(e, nullptr, 10)));
     batch_ = uint32_t(std::clamp<uint64_t>(std::min(batch, max_capacity_ / kVerticesPerPath), 1, num_pixels_));
+    for (const DeviceInfo& info : secondaries.devices)
+        workers_.push_back(
+            std::make_unique<Worker>(info, dc, scene, settings, secondaries.program_file, secondaries.build_options));
+    // Until measured, share by compute units.
+    rate_.push_back(std::max(1u, dc.info.compute_units));
+    for (const auto& w : workers_) rate_.push_back(std::max(1u, w->dc.info.compute_units));
 }
 
 VcmIntegrator::~VcmIntegrator() {
@@ -120,6 +147,7 @@ void VcmIntegrator::prepare() {
         settings_.radius > 0 ? settings_.radius : 0.5 * initial_radius_heuristic(footprints, scene_.info.radius);
     stats_.initial_radius = stats_.mean_radius = r0;
     r2_ = r0 * r0;
+    for (auto& w : workers_) w->integ->prepare(); // their radius is set from this one's every pass
 }
 
 bool VcmIntegrator::trace_light(uint64_t pass, uint32_t first, uint32_t count) {
@@ -146,8 +174,7 @@ bool VcmIntegrator::trace_light(uint64_t pass, uint32_t first, uint32_t count) {
     return stored <= capacity_;
 }
 
-void VcmIntegrator::run_pass() {
-    const uint64_t pass = stats_.passes + 1;
+void VcmIntegrator::render(uint64_t pass, uint32_t first_pixel, uint32_t pixels, const cl::Buffer& out) {
     const double eta = M_PI * r2_ / area_scale_ * double(num_pixels_);
     const bool vm = mode_ == VCM_MODE_VCM || mode_ == VCM_MODE_VM;
     const float vm_factor = vm ? float(std::min(eta * eta, 1e30)) : 0.f;
@@ -158,12 +185,6 @@ void VcmIntegrator::run_pass() {
     const double extent = 2.0 * scene_.info.radius;
     const double cell = std::max(2.0 * std::sqrt(r2_), extent / double(1 << 20));
     const uint32_t max_len = scene_.info.max_bounces + 1;
-    // With several processes (device/cluster.h) every rank traces all light sub-paths (the same on
-    // each: they depend on (seed, pass, index) alone) and the camera sub-paths of its own pixel
-    // range, by the ranks' measured speed; the ranks then share their ranges of the running sum, so
-    // each holds what one process would, bit for bit when their batches agree.
-    const PixelRanges ranges = split_pixels(num_pixels_, balance_);
-    const auto t0 = std::chrono::steady_clock::now();
     uint64_t stored_total = 0;
     for (uint32_t first = 0; first < num_pixels_;) {
         throw_if_cancelled(); // Ctrl-C: the running sum still holds the last whole pass
@@ -177,28 +198,112 @@ void VcmIntegrator::run_pass() {
             else throw Error("vcm pass: one light sub-path stores more vertices than the device memory budget allows");
             continue;
         }
-        grid_.build(verts_, sorted_, stored_, scene_.bounds_min, cell);
+        grid_.build(verts_, sorted_, vm ? stored_ : 0, scene_.bounds_min, cell); // an empty grid without merging
         const uint32_t flags = (first == 0 ? 1u : 0u) | (first + count == num_pixels_ ? 2u : 0u);
         set_args(k_camera_, scene_.set_scene_args(k_camera_), scene_.camera_buf, cl_ulong(settings_.seed),
-                 cl_ulong(pass), cl_uint(num_pixels_), grid_.info(), sorted_, grid_.starts(), verts_, path_last_,
-                 cl_uint(first), cl_uint(count), cl_uint(flags), cl_float(float(r2_)), cl_float(float(num_pixels_)),
-                 cl_float(vm_factor), cl_float(vc_factor), cl_float(float(area_scale_)), cl_uint(mode_),
-                 cl_uint(max_len), cl_double(light_unit), cl_double(vm_norm), splat_,
-                 cl_double(light_unit / kSplatScale), pass_sum_, accum_);
-        cl::Event ev;
-        if (ranges.count > 0) enqueue_1d_range(dc_.queue, k_camera_, ranges.first, ranges.count, &ev);
-        if (ranges.count > 0) add_event_time(stats_, "camera_paths", ev);
+                 cl_ulong(pass), cl_uint(first_pixel + pixels), grid_.info(), sorted_, grid_.starts(), verts_,
+                 path_last_, cl_uint(first), cl_uint(count), cl_uint(flags), cl_float(float(r2_)),
+                 cl_float(float(num_pixels_)), cl_float(vm_factor), cl_float(vc_factor), cl_float(float(area_scale_)),
+                 cl_uint(mode_), cl_uint(max_len), cl_double(light_unit), cl_double(vm_norm), splat_,
+                 cl_double(light_unit / kSplatScale), pass_sum_, out);
+        if (pixels > 0) {
+            cl::Event ev;
+            enqueue_1d_range(dc_.queue, k_camera_, first_pixel, pixels, &ev);
+            add_event_time(stats_, "camera_paths", ev);
+        }
         stored_total += stored_;
         first += count;
     }
     collect_event_times(stats_); // waits for the pass
+    stats_.photons_stored += stored_total;
+    stats_.photon_bytes = 2 * size_t(capacity_) * sizeof(dev::LightVertex) + grid_.device_bytes();
+}
+
+void VcmIntegrator::run_pass() {
+    const uint64_t pass = stats_.passes + 1;
+    // With several processes (device/cluster.h) every rank traces all light sub-paths (the same on
+    // each: they depend on (seed, pass, index) alone) and the camera sub-paths of its own pixel
+    // range, by the ranks' measured speed; the ranks then share their ranges of the running sum, so
+    // each holds what one process would, bit for bit when their batches agree. Several devices in
+    // one process share the rank's range the same way.
+    const PixelRanges ranges = split_pixels(num_pixels_, balance_);
+    const auto t0 = std::chrono::steady_clock::now();
+    auto seconds_since = [](std::chrono::steady_clock::time_point t) {
+        return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
+    };
+    if (workers_.empty()) {
+        render(pass, ranges.first, ranges.count, accum_);
+    } else {
+        // The rank's range in proportion to each device's pixels per second, the primary first.
+        std::vector<uint32_t> share(rate_.size(), 0);
+        double total = 0;
+        for (double r : rate_) total += r;
+        uint32_t given = 0;
+        for (size_t k = 1; k < share.size(); ++k) given += share[k] = uint32_t(double(ranges.count) * rate_[k] / total);
+        share[0] = ranges.count - given;
+        std::vector<std::thread> threads;
+        uint32_t at = ranges.first + share[0];
+        for (size_t k = 0; k < workers_.size(); ++k) {
+            Worker& w = *workers_[k];
+            const uint32_t first = at, count = share[k + 1];
+            at += count;
+            threads.emplace_back([&, first, count] {
+                try {
+                    const auto start = std::chrono::steady_clock::now();
+                    VcmIntegrator& v = *w.integ;
+                    v.r2_ = r2_;
+                    const size_t bytes = size_t(num_pixels_) * 3 * sizeof(cl_double);
+                    v.dc_.queue.enqueueFillBuffer(v.accum_, cl_double(0), 0, bytes); // this pass alone
+                    v.render(pass, first, count, v.accum_);
+                    w.result.assign(size_t(count) * 3, 0.0);
+                    if (count)
+                        v.dc_.queue.enqueueReadBuffer(v.accum_, CL_TRUE, size_t(first) * 3 * sizeof(cl_double),
+                                                      w.result.size() * sizeof(double), w.result.data());
+                    w.seconds = seconds_since(start);
+                } catch (...) {
+                    w.error = std::current_exception();
+                }
+            });
+        }
+        std::exception_ptr primary_error;
+        double primary_seconds = 0;
+        try {
+            const auto start = std::chrono::steady_clock::now();
+            render(pass, ranges.first, share[0], accum_);
+            primary_seconds = seconds_since(start);
+        } catch (...) {
+            primary_error = std::current_exception(); // after the workers have finished (a cancelled pass)
+        }
+        for (std::thread& t : threads) t.join();
+        if (primary_error) std::rethrow_exception(primary_error);
+        for (const auto& w : workers_)
+            if (w->error) std::rethrow_exception(w->error);
+        // Each device's samples join the running sum as its own kernel would have added them.
+        at = ranges.first + share[0];
+        for (size_t k = 0; k < workers_.size(); ++k) {
+            const uint32_t count = share[k + 1];
+            if (count) {
+                std::vector<double> sum(size_t(count) * 3);
+                const size_t offset = size_t(at) * 3 * sizeof(cl_double);
+                dc_.queue.enqueueReadBuffer(accum_, CL_TRUE, offset, sum.size() * sizeof(double), sum.data());
+                for (size_t i = 0; i < sum.size(); ++i) sum[i] += workers_[k]->result[i];
+                dc_.queue.enqueueWriteBuffer(accum_, CL_TRUE, offset, sum.size() * sizeof(double), sum.data());
+            }
+            at += count;
+        }
+        auto blend = [](double old_rate, uint32_t pixels, double seconds) {
+            return pixels == 0 || !(seconds > 0) ? old_rate : 0.5 * old_rate + 0.5 * double(pixels) / seconds;
+        };
+        rate_[0] = blend(rate_[0], share[0], primary_seconds);
+        for (size_t k = 0; k < workers_.size(); ++k)
+            rate_[k + 1] = blend(rate_[k + 1], share[k + 1], workers_[k]->seconds);
+        stats_.device_photons = share;
+    }
     if (cluster().distributed()) {
-        balance_.record(ranges.count, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+        balance_.record(ranges.count, seconds_since(t0));
         share_pixels(dc_.queue, accum_, 3, ranges, num_pixels_);
         stats_.rank_photons.assign(ranges.counts.begin(), ranges.counts.end());
     }
-    stats_.photons_stored += stored_total;
-    stats_.photon_bytes = 2 * size_t(capacity_) * sizeof(dev::LightVertex) + grid_.device_bytes();
     stats_.local_work += ranges.count;
     stats_.passes = pass;
     stats_.photons_emitted += mode_ == VCM_MODE_PT ? 0 : num_pixels_;

@@ -4,6 +4,8 @@
 // Every pass adds one unbiased-in-the-limit sample per pixel to a running sum, as the path tracer.
 #pragma once
 #include <cstdint>
+#include <memory>
+#include <vector>
 
 #include "integrators/hash_grid.h"
 #include "integrators/integrator.h"
@@ -16,8 +18,10 @@ namespace clppm {
 
 class VcmIntegrator : public IntegratorBase {
 public:
+    // With secondaries, every device traces all light sub-paths and the camera sub-paths of a share
+    // of the pixels (by its measured speed); the shares' sums join the primary's.
     VcmIntegrator(const DeviceContext& dc, const DeviceScene& scene, const RenderSettings& settings,
-                  const cl::Program& program);
+                  const cl::Program& program, const SecondaryDevices& secondaries = {});
     ~VcmIntegrator() override;
     std::string name() const override { return mode_ == VCM_MODE_BPT ? "bpt" : "vcm"; }
     void prepare() override;
@@ -36,6 +40,10 @@ public:
     double radius() const;
 
 private:
+    struct Worker;
+    // Pass `pass` for the camera sub-paths of pixels [first, first + count): the light sub-paths and
+    // batches, then `out` (a running sum per pixel) gets each pixel's sample added.
+    void render(uint64_t pass, uint32_t first, uint32_t count, const cl::Buffer& out);
     bool trace_light(uint64_t pass, uint32_t first, uint32_t count); // false: the vertices overflowed
     void allocate_vertices(uint32_t capacity);
 
@@ -52,6 +60,8 @@ private:
     double r2_ = 0;         // this pass's squared merging radius
     double area_scale_ = 1; // R^2 of the scene's bounding sphere: the kernels' unit of area
     WorkBalance balance_;   // this rank's seconds against its pixels, for the ranks' split
+    std::vector<std::unique_ptr<Worker>> workers_;
+    std::vector<double> rate_; // pixels per second per device, smoothed
 };
 
 } // namespace clppm
