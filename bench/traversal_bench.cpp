@@ -357,7 +357,7 @@ int run(int argc, char** argv) {
     const std::vector<DeviceInfo> devices = list_devices();
     DeviceContext dc(select_device(devices, device_spec));
     RayTracer tracer(dc, options);
-    DeviceBvh dbvh(dc, bvh.nodes, tris);
+    DeviceBvh dbvh(dc, bvh.nodes, ordered);
     std::printf("device: %s (%s), %u compute units, kernel options \"%s\"\n", dc.info.name.c_str(),
                 dc.info.platform_name.c_str(), dc.info.compute_units, options.c_str());
 
@@ -388,7 +388,7 @@ int run(int argc, char** argv) {
         std::vector<Vec3> ordered_b;
         for (uint32_t i : bvh_b.tri_order)
             for (int k = 0; k < 3; ++k) ordered_b.push_back(scene[3 * i + k]);
-        DeviceBvh dbvh_b(dc, bvh_b.nodes, bvh_triangle_data(ordered_b));
+        DeviceBvh dbvh_b(dc, bvh_b.nodes, ordered_b);
         RayTracer tracer_b(dc, ab_options);
         std::printf("B: %zu nodes, %zu leaves, options \"%s\"\n", bvh_b.nodes.size(), bvh_b.leaf_count,
                     ab_options.c_str());

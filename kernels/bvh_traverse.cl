@@ -1,7 +1,8 @@
 /* bvh_traverse.cl: closest-hit and any-hit ray queries against the wide BVH built by
  * src/scene/bvh_build.cpp. One traversal routine serves both (any_hit is a flag, not a second copy).
  *
- * Triangles: 3 float4 each, v0, e1 = v1 - v0, e2 = v2 - v0 (src/scene/bvh_build.cpp, bvh_triangle_data).
+ * Triangles: blocks of BVH_TRI_BLOCK with SoA vertices (shared_types.h, src/scene/bvh_build.cpp
+ * bvh_leaf_blocks), tested together.
  * Node test: BVH_WIDTH slab tests at once on the SoA child bounds, nearest child first, the others on
  * a private stack with their entry distance so that closest-hit skips what lies beyond its hit.
  * Triangle test: the watertight test of Woop, Benthin and Wald 2013 (JCGT 2(1)). */
@@ -47,90 +48,73 @@ inline int bvh_lane_mask(int4 in) { return (in.x & 1) | (in.y & 2) | (in.z & 4) 
  * keeps rounding in the slab test from culling a box the ray grazes. */
 #define BVH_FAR_SCALE 1.00000036f
 
-/* The ray in the sheared, permuted frame of Woop et al. (Sec. 3): the direction becomes +z and
- * a vertex p maps to M (p - org), M stored by columns (m0 takes p.x, ...). */
+/* The ray in the sheared, permuted frame of Woop et al. (Sec. 3): the direction becomes +z; a
+ * vertex p maps to (p[kx] - o[kx] - sx (p[kz] - o[kz]), p[ky] - o[ky] - sy (p[kz] - o[kz]),
+ * sz (p[kz] - o[kz])). */
 typedef struct {
-    float4 m0, m1, m2;
+    int kx, ky, kz;
+    float ox, oy, oz; /* org[kx], org[ky], org[kz] */
+    float sx, sy, sz;
 } RayShear;
 
-inline RayShear ray_shear(float3 dir) {
+inline RayShear ray_shear(float3 org, float3 dir) {
     const float3 a = fabs(dir);
     /* kz: axis of largest |dir|; kx, ky follow it cyclically, swapped when dir[kz] < 0 to keep
      * the winding (the test is two-sided anyway, but the sign of det stays meaningful). */
-    int kz = a.x > a.y ? (a.x > a.z ? 0 : 2) : (a.y > a.z ? 1 : 2);
-    int kx = kz == 2 ? 0 : kz + 1;
-    int ky = kx == 2 ? 0 : kx + 1;
-    const float dz = kz == 0 ? dir.x : (kz == 1 ? dir.y : dir.z);
-    if (dz < 0.0f) {
-        const int tmp = kx;
-        kx = ky;
-        ky = tmp;
-    }
-    const float dx = kx == 0 ? dir.x : (kx == 1 ? dir.y : dir.z);
-    const float dy = ky == 0 ? dir.x : (ky == 1 ? dir.y : dir.z);
-    const float sx = dx / dz, sy = dy / dz, sz = 1.0f / dz;
-    /* Row 0 picks p[kx] - sx p[kz], row 1 p[ky] - sy p[kz], row 2 sz p[kz]. */
-    float4 col[3];
-    for (int k = 0; k < 3; ++k)
-        col[k] = (float4)(k == kx ? 1.0f : (k == kz ? -sx : 0.0f), k == ky ? 1.0f : (k == kz ? -sy : 0.0f),
-                          k == kz ? sz : 0.0f, 0.0f);
     RayShear s;
-    s.m0 = col[0];
-    s.m1 = col[1];
-    s.m2 = col[2];
+    s.kz = a.x > a.y ? (a.x > a.z ? 0 : 2) : (a.y > a.z ? 1 : 2);
+    s.kx = s.kz == 2 ? 0 : s.kz + 1;
+    s.ky = s.kx == 2 ? 0 : s.kx + 1;
+    const float dz = s.kz == 0 ? dir.x : (s.kz == 1 ? dir.y : dir.z);
+    if (dz < 0.0f) {
+        const int tmp = s.kx;
+        s.kx = s.ky;
+        s.ky = tmp;
+    }
+    const float o[3] = {org.x, org.y, org.z}, d[3] = {dir.x, dir.y, dir.z};
+    s.ox = o[s.kx];
+    s.oy = o[s.ky];
+    s.oz = o[s.kz];
+    s.sx = d[s.kx] / dz;
+    s.sy = d[s.ky] / dz;
+    s.sz = 1.0f / dz;
     return s;
 }
 
-/* A vertex in ray space. Each vertex goes through exactly the same operations in every triangle
- * that shares it, so shared edges see bitwise identical endpoints. */
-inline float4 to_ray_space(float4 p, float4 org, const RayShear* s) {
-    const float4 q = p - org;
-    return q.x * s->m0 + q.y * s->m1 + q.z * s->m2;
-}
-
-/* Woop et al. 2013, Fig. 1 (without the double-precision fallback: an edge function that rounds
- * to exactly 0 counts as inside for both triangles sharing that edge). Accepts 0 < t < tmax.
- *
- * v1 = v0 + e1 is exact for most triangles, so shared vertices are bitwise shared and the test is
- * watertight. Where float cannot reproduce a vertex that way the host stores the largest error,
- * delta = v0.w (world units, per coordinate); such a triangle, and only such a triangle, widens
- * its edge functions by their first-order error bound |dU| <= 2 delta (|B'.xy| + |C'.xy|)
- * (a vertex moves at most delta per axis, by at most 2 delta in sheared x and y since |S| <= 1),
- * so the gap a moved vertex opens is always covered by the widened triangle. */
+/* Woop et al. 2013, Fig. 1, on the BVH_TRI_BLOCK triangles of one block at once (without the
+ * double-precision fallback: an edge function that rounds to exactly 0 counts as inside for both
+ * triangles sharing that edge). The block stores each vertex as the mesh has it, and every lane
+ * maps a vertex through the same operations, so triangles sharing an edge see bitwise identical
+ * endpoints there and no ray passes between them. Returns the lanes (bit i: lane i) hit at
+ * 0 < t < tmax, with t, u (weight of v1), v (weight of v2) per lane. */
 /* Inlined by force: as a call (PoCL's inliner declines) every leaf would spill the ray state. */
-inline __attribute__((always_inline)) bool intersect_triangle(__global const float4* tris, uint prim, float4 org,
-                                                              const RayShear* s, float tmax, float* t_out,
-                                                              float* u_out, float* v_out) {
-    const float4 v0 = tris[3 * prim], e1 = tris[3 * prim + 1], e2 = tris[3 * prim + 2];
-    const float4 A = to_ray_space(v0, org, s);
-    const float4 B = to_ray_space(v0 + e1, org, s); /* v0 + e1 == v1 exactly, see bvh_triangle_data */
-    const float4 C = to_ray_space(v0 + e2, org, s);
-    float U, V, W;
-    {
-        /* No fused multiply-add here: edge(P, Q) must be exactly -edge(Q, P) for shared edges. */
+inline __attribute__((always_inline)) int intersect_block(__global const BvhTriBlock* block, const RayShear* s,
+                                                          float tmax, float4* t_out, float4* u_out,
+                                                          float4* v_out) {
+    /* No fused multiply-add here: edge(P, Q) must be exactly -edge(Q, P) for shared edges. */
 #pragma OPENCL FP_CONTRACT OFF
-        U = C.x * B.y - C.y * B.x;
-        V = A.x * C.y - A.y * C.x;
-        W = B.x * A.y - B.y * A.x;
-    }
-    if ((U < 0.0f || V < 0.0f || W < 0.0f) && (U > 0.0f || V > 0.0f || W > 0.0f)) {
-        if (!(v0.w > 0.0f)) return false;
-        const float e = 2.00001f * v0.w;
-        const float a = fabs(A.x) + fabs(A.y), b = fabs(B.x) + fabs(B.y), c = fabs(C.x) + fabs(C.y);
-        const float tu = e * (b + c + e), tv = e * (a + c + e), tw = e * (a + b + e);
-        if (!((U >= -tu && V >= -tv && W >= -tw) || (U <= tu && V <= tv && W <= tw))) return false;
-    }
-    const float det = U + V + W;
-    if (det == 0.0f) return false;
-    const float T = U * A.z + V * B.z + W * C.z;
+    __global const float4* row = (__global const float4*)block;
+    const float4 az = row[s->kz] - s->oz, bz = row[3 + s->kz] - s->oz, cz = row[6 + s->kz] - s->oz;
+    const float4 ax = (row[s->kx] - s->ox) - s->sx * az, ay = (row[s->ky] - s->oy) - s->sy * az;
+    const float4 bx = (row[3 + s->kx] - s->ox) - s->sx * bz, by = (row[3 + s->ky] - s->oy) - s->sy * bz;
+    const float4 cx = (row[6 + s->kx] - s->ox) - s->sx * cz, cy = (row[6 + s->ky] - s->oy) - s->sy * cz;
+    const float4 U = cx * by - cy * bx;
+    const float4 V = ax * cy - ay * cx;
+    const float4 W = bx * ay - by * ax;
+    const float4 zero = (float4)(0.0f);
+    const int4 outside = ((U < zero) | (V < zero) | (W < zero)) & ((U > zero) | (V > zero) | (W > zero));
+    const float4 det = U + V + W;
+    const float4 T = U * (s->sz * az) + V * (s->sz * bz) + W * (s->sz * cz);
     /* 0 < t = T / det < tmax, tested before paying for the division. */
-    const float abs_det = fabs(det), abs_T = det < 0.0f ? -T : T;
-    if (!(abs_T > 0.0f) || !(abs_T < tmax * abs_det)) return false;
-    const float inv_det = 1.0f / det;
+    const float4 abs_det = fabs(det), abs_T = select(T, -T, det < zero);
+    const int4 ok = ~outside & (det != zero) & (abs_T > zero) & (abs_T < tmax * abs_det);
+    const int mask = (ok.x & 1) | (ok.y & 2) | (ok.z & 4) | (ok.w & 8);
+    if (mask == 0) return 0;
+    const float4 inv_det = 1.0f / det;
     *t_out = T * inv_det;
     *u_out = V * inv_det;
     *v_out = W * inv_det;
-    return *t_out > 0.0f && *t_out < tmax;
+    return mask;
 }
 
 /* The hook for intersections that may not count (alpha.cl): a file included before this one
@@ -145,8 +129,8 @@ inline __attribute__((always_inline)) bool intersect_triangle(__global const flo
 
 /* Closest hit in (0, tmax) when !any_hit (fills *hit); any hit in (0, tmax) when any_hit (fills
  * *hit with the one found). Returns whether there was a hit. */
-bool bvh_intersect(__global const BvhNode* nodes, __global const float4* tris, float3 org, float3 dir, float tmax,
-                   bool any_hit, Hit* hit BVH_FILTER_PARAMS) {
+bool bvh_intersect(__global const BvhNode* nodes, __global const BvhTriBlock* blocks, float3 org, float3 dir,
+                   float tmax, bool any_hit, Hit* hit BVH_FILTER_PARAMS) {
     /* Slab test setup. A zero direction component would give 1/0 = inf and then 0 * inf = NaN on
      * a box face through the origin; a tiny stand-in keeps every product finite and ordered. */
     const float3 safe_dir = select(dir, copysign((float3)(1e-20f), dir), isless(fabs(dir), (float3)(1e-20f)));
@@ -158,8 +142,7 @@ bool bvh_intersect(__global const BvhNode* nodes, __global const float4* tris, f
     const int near_x = idir.x >= 0.0f ? 0 : 3, near_y = idir.y >= 0.0f ? 1 : 4, near_z = idir.z >= 0.0f ? 2 : 5;
     const int far_x = 3 - near_x, far_y = 5 - near_y, far_z = 7 - near_z;
 
-    const RayShear shear = ray_shear(dir);
-    const float4 org4 = (float4)(org, 0.0f);
+    const RayShear shear = ray_shear(org, dir);
 
     int stack_node[BVH_STACK_SIZE];
     uint stack_count[BVH_STACK_SIZE];
@@ -223,17 +206,29 @@ bool bvh_intersect(__global const BvhNode* nodes, __global const float4* tris, f
             }
         } else {
             const uint first = (uint)(~cur);
-            for (uint p = first; p < first + cur_count; ++p) {
+            for (uint b = first; b < first + (cur_count + BVH_TRI_BLOCK - 1) / BVH_TRI_BLOCK; ++b) {
 #ifdef BVH_STATS
-                ++hit->tris_tested;
+                hit->tris_tested += min(cur_count - (b - first) * BVH_TRI_BLOCK, (uint)BVH_TRI_BLOCK);
 #endif
-                float t, u, v;
-                if (intersect_triangle(tris, p, org4, &shear, t_best, &t, &u, &v) && BVH_FILTER(p, u, v)) {
+                float4 t4, u4, v4;
+                int lanes = intersect_block(blocks + b, &shear, t_best, &t4, &u4, &v4);
+                if (lanes == 0) continue;
+                float t[BVH_TRI_BLOCK], u[BVH_TRI_BLOCK], v[BVH_TRI_BLOCK];
+                vstore4(t4, 0, t);
+                vstore4(u4, 0, u);
+                vstore4(v4, 0, v);
+                /* Every lane that hits, nearer than the best so far and accepted by the filter. A
+                 * repeated triangle (unused lanes) is the same hit again and changes nothing. */
+                for (; lanes != 0; lanes &= lanes - 1) {
+                    const int i = 31 - clz(lanes & -lanes);
+                    if (!(t[i] > 0.0f && t[i] < t_best)) continue;
+                    const uint p = blocks[b].prim[i];
+                    if (!BVH_FILTER(p, u[i], v[i])) continue;
                     found = true;
-                    t_best = t;
-                    hit->t = t;
-                    hit->u = u;
-                    hit->v = v;
+                    t_best = t[i];
+                    hit->t = t[i];
+                    hit->u = u[i];
+                    hit->v = v[i];
                     hit->prim = p;
                     if (any_hit) return true;
                 }

@@ -11,13 +11,13 @@
 
 /* One spelling of the scene arguments for kernels and the functions they call. */
 #define SCENE_PARAMS                                                                              \
-    __global const BvhNode *bvh_nodes, __global const float4 *tris,                               \
-        __global const TriShading *shading, __global const Material *materials,                   \
+    __global const BvhNode *bvh_nodes, __global const BvhTriBlock *tri_blocks,                    \
+        __global const float4 *tris, __global const TriShading *shading, __global const Material *materials,                   \
         __global const Texture *textures, __global const float4 *texels,                          \
         __global const float4 *tangents, __global const float4 *colors, __global const float2 *uv1,      \
         __global const Light *lights, __global const float *light_cdf, __constant SceneInfo *info
 #define SCENE_ARGS                                                                                        \
-    bvh_nodes, tris, shading, materials, textures, texels, tangents, colors, uv1, lights, light_cdf, info
+    bvh_nodes, tri_blocks, tris, shading, materials, textures, texels, tangents, colors, uv1, lights, light_cdf, info
 
 typedef struct {
     float3 p;
@@ -33,12 +33,12 @@ typedef struct {
 } Surface;
 
 bool trace_closest(SCENE_PARAMS, float3 org, float3 dir, float tmax, Hit* hit) {
-    return bvh_intersect(bvh_nodes, tris, org, dir, tmax, false, hit BVH_FILTER_ARGS);
+    return bvh_intersect(bvh_nodes, tri_blocks, org, dir, tmax, false, hit BVH_FILTER_ARGS);
 }
 
 bool trace_occluded(SCENE_PARAMS, float3 org, float3 dir, float tmax) {
     Hit hit;
-    return bvh_intersect(bvh_nodes, tris, org, dir, tmax, true, &hit BVH_FILTER_ARGS);
+    return bvh_intersect(bvh_nodes, tri_blocks, org, dir, tmax, true, &hit BVH_FILTER_ARGS);
 }
 
 /* Offset along the normal on the side the next ray leaves from, scaled with the scene and with

@@ -45,11 +45,23 @@ typedef struct {
 typedef struct {
     float bmin_x[BVH_WIDTH], bmin_y[BVH_WIDTH], bmin_z[BVH_WIDTH];
     float bmax_x[BVH_WIDTH], bmax_y[BVH_WIDTH], bmax_z[BVH_WIDTH];
-    /* child[i] >= 0: inner node index; child[i] < 0: leaf, ~child[i] = first triangle,
-     * count[i] triangles; count[i] == 0 and child[i] == -1 (i.e. ~0): empty slot. */
+    /* child[i] >= 0: inner node index; child[i] < 0: leaf of count[i] triangles, ~child[i] its
+     * first triangle as built (build_bvh) and its first BvhTriBlock on the device
+     * (bvh_leaf_blocks); count[i] == 0 and child[i] == -1 (i.e. ~0): empty slot. */
     i32 child[BVH_WIDTH];
     u32 count[BVH_WIDTH];
 } BvhNode; /* 32 * BVH_WIDTH bytes */
+
+/* A leaf's triangles for traversal, BVH_TRI_BLOCK at a time (a leaf of n triangles owns
+ * ceil(n / BVH_TRI_BLOCK) consecutive blocks): vertex coordinates as SoA so one watertight test
+ * covers the block in float4 lanes, stored as the mesh has them (shared vertices bitwise equal).
+ * A leaf's last block repeats its last triangle in unused lanes. Row 3 j + k of the block as
+ * float4 rows is coordinate k of vertex j; prim: triangle ids (leaf order). */
+#define BVH_TRI_BLOCK 4
+typedef struct {
+    float v[9][BVH_TRI_BLOCK];
+    u32 prim[BVH_TRI_BLOCK];
+} BvhTriBlock; /* 160 bytes */
 
 /* The builder guarantees at most this many inner nodes on any root-to-leaf path (root = 1), so a
  * traversal stack of (BVH_WIDTH - 1) * BVH_MAX_DEPTH + 1 entries cannot overflow: each level

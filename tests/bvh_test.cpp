@@ -169,7 +169,7 @@ protected:
         Tris tris;
         for (uint32_t i : bvh.tri_order)
             for (int k = 0; k < 3; ++k) tris.push_back(input[3 * i + k]);
-        DeviceBvh dbvh(*dc_, bvh.nodes, bvh_triangle_data(tris));
+        DeviceBvh dbvh(*dc_, bvh.nodes, tris);
         Compare c;
         for (int any = 0; any < 2; ++any) {
             std::vector<TraceRay> batch = rays;
@@ -343,7 +343,7 @@ TEST_F(BvhTest, SingleTriangle) {
     for (D3 target : std::vector<D3>{{0.25, 0.25, 0}, {0.5, 0.5, 0}, {0.5, 0, 0}, {0, 0.5, 0}, {0.1, 0.2, 0}})
         for (double z : {1.0, -1.0}) rays.push_back(make_ray({target.x, target.y, z}, {0, 0, -z}));
     const BvhBuildResult bvh = build_bvh(t);
-    DeviceBvh dbvh(*dc_, bvh.nodes, bvh_triangle_data(t));
+    DeviceBvh dbvh(*dc_, bvh.nodes, t);
     const std::vector<TraceHit> hits = tracer_->trace(dbvh, rays);
     for (size_t i = 0; i < hits.size(); ++i) {
         ASSERT_TRUE(hits[i].hit()) << "ray " << i;
@@ -364,7 +364,7 @@ TEST_F(BvhTest, EmptyScene) {
     const BvhBuildResult bvh = build_bvh({});
     ASSERT_EQ(bvh.nodes.size(), 1u);
     EXPECT_EQ(bvh.leaf_count, 0u);
-    DeviceBvh dbvh(*dc_, bvh.nodes, bvh_triangle_data({}));
+    DeviceBvh dbvh(*dc_, bvh.nodes, {});
     std::vector<TraceRay> rays;
     for (int i = 0; i < 100; ++i)
         rays.push_back(make_ray(random_dir(), maybe_axis_parallel(random_dir(), i), INFINITY, i % 2));
@@ -411,8 +411,61 @@ TEST_F(BvhTest, SahBeatsMedianSplit) {
     }
 }
 
+TEST_F(BvhTest, LeafBlocksHoldEachLeafsTrianglesExactly) {
+    for (const Tris& input : {random_soup(3000), icosphere(4, 1.0)}) {
+        BvhBuildOptions big;
+        big.max_leaf = 11; // leaves of 1 to 3 blocks, the last one partly filled
+        big.node_cost = 3;
+        for (const BvhBuildOptions& opt : {BvhBuildOptions(), big}) {
+            const BvhBuildResult bvh = build_bvh(input, opt);
+            Tris tris;
+            for (uint32_t i : bvh.tri_order)
+                for (int k = 0; k < 3; ++k) tris.push_back(input[3 * i + k]);
+            std::vector<dev::BvhNode> nodes = bvh.nodes;
+            const std::vector<dev::BvhTriBlock> blocks = bvh_leaf_blocks(nodes, tris);
+            std::vector<int> seen(tris.size() / 3, 0);
+            size_t expected_blocks = 0, multi = 0;
+            for (size_t n = 0; n < nodes.size(); ++n) {
+                for (int i = 0; i < BVH_WIDTH; ++i) {
+                    const int32_t before = bvh.nodes[n].child[i];
+                    ASSERT_EQ(nodes[n].count[i], bvh.nodes[n].count[i]);
+                    if (before >= 0 || bvh.nodes[n].count[i] == 0) {
+                        EXPECT_EQ(nodes[n].child[i], before) << "inner or empty slot unchanged";
+                        continue;
+                    }
+                    const uint32_t first_tri = uint32_t(~before), count = nodes[n].count[i];
+                    const uint32_t first_block = uint32_t(~nodes[n].child[i]);
+                    const uint32_t nb = (count + BVH_TRI_BLOCK - 1) / BVH_TRI_BLOCK;
+                    EXPECT_EQ(first_block, expected_blocks) << "blocks follow the node array";
+                    expected_blocks += nb;
+                    multi += nb > 1;
+                    ASSERT_LE(first_block + nb, blocks.size());
+                    for (uint32_t k = 0; k < nb * BVH_TRI_BLOCK; ++k) {
+                        const dev::BvhTriBlock& b = blocks[first_block + k / BVH_TRI_BLOCK];
+                        const uint32_t lane = k % BVH_TRI_BLOCK, t = first_tri + std::min(k, count - 1);
+                        ASSERT_EQ(b.prim[lane], t) << "lane " << k << " of a leaf of " << count;
+                        if (k < count) ++seen[t];
+                        for (int j = 0; j < 3; ++j) {
+                            const Vec3& v = tris[3 * size_t(t) + size_t(j)];
+                            EXPECT_EQ(b.v[3 * j][lane], v.x); // bitwise: shared vertices stay shared
+                            EXPECT_EQ(b.v[3 * j + 1][lane], v.y);
+                            EXPECT_EQ(b.v[3 * j + 2][lane], v.z);
+                        }
+                    }
+                }
+            }
+            EXPECT_EQ(blocks.size(), expected_blocks);
+            for (size_t t = 0; t < seen.size(); ++t) ASSERT_EQ(seen[t], 1) << "triangle " << t;
+            if (opt.max_leaf > BVH_TRI_BLOCK) {
+                EXPECT_GT(multi, 0u) << "some leaf spans several blocks";
+            }
+        }
+    }
+}
+
 TEST_F(BvhTest, TriangleDataReconstructsVertices) {
-    // The kernel recomputes v1 = v0 + e1: mostly bitwise exact, else within the bound in v0.w.
+    // Hit points (kernels/scene.cl) recompute v1 = v0 + e1: mostly bitwise exact, else within the
+    // bound in v0.w.
     for (const Tris& mesh : {icosphere(3, 1.0), transformed(icosphere(3, 1.0), 7.3, 1.7), grid_cube(5)}) {
         const auto data = bvh_triangle_data(mesh);
         size_t exact = 0, total = 0;

@@ -350,9 +350,15 @@ TEST(Extremes, ASceneOfOnlySpecularSurfaces) {
 // Degenerate triangles (a point, a line) and needles (length 1.5, width 1e-7), diffuse and
 // emissive, inside the diffuse box: the BVH, intersection, light setup (zero-area emitters are
 // no lights) and emission must cope. Images finite, and within 10% of the box without them (4 x 4
-// blocks; the needles cover almost nothing).
+// blocks; the needles cover almost nothing; the added lights decorrelate the two renders' noise,
+// which reached 8.3% in the worst block over seeds 2 to 6 at 4 passes: 16 passes halve it).
 TEST(Extremes, DegenerateAndNeedleTrianglesRenderFinite) {
     Scene box = diffuse_box(false);
+    // Off the box's axis: from its centre the box's edges pass exactly through pixel centres, where
+    // PPM's one eye ray per pixel ties between two walls, and which wall wins depends on the BVH's
+    // layout, which the added triangles change (a whole pixel flips between white and red).
+    box.cameras[0].position[0] += 0.0123f;
+    box.cameras[0].position[1] += 0.0071f;
     Scene odd = box;
     uint32_t white = 0, glow = add_material(odd, 0.5f, 0.5f, 0.5f, 20.f, true);
     Vec3 p{0.1f, -0.2f, 0.1f};
@@ -365,8 +371,8 @@ TEST(Extremes, DegenerateAndNeedleTrianglesRenderFinite) {
     }
     for (Integrator integ : {Integrator::PPM, Integrator::SPPM}) {
         RenderSettings s = small(16, 20000, DirectLighting::Sample, integ);
-        std::vector<double> ref = block_means(render(box, s, 4));
-        std::vector<double> b = block_means(render(odd, s, 4));
+        std::vector<double> ref = block_means(render(box, s, 16));
+        std::vector<double> b = block_means(render(odd, s, 16));
         for (size_t i = 0; i < b.size(); ++i) EXPECT_NEAR(b[i] / ref[i], 1.0, 0.1) << name(integ) << " block " << i;
     }
 }

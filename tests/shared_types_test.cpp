@@ -20,6 +20,7 @@ namespace {
 #define LAYOUT_FIELDS(X)                                                                            \
     X(sizeof(TriShading)) X(offsetof(TriShading, uv0)) X(offsetof(TriShading, material))            \
     X(sizeof(BvhNode)) X(offsetof(BvhNode, bmax_x)) X(offsetof(BvhNode, child)) X(offsetof(BvhNode, count)) \
+    X(sizeof(BvhTriBlock)) X(offsetof(BvhTriBlock, prim))                                            \
     X(sizeof(Material)) X(offsetof(Material, emission)) X(offsetof(Material, metallic))                \
     X(offsetof(Material, base_color_tex)) X(offsetof(Material, specular_color)) X(offsetof(Material, normal_tex))                                 \
     X(sizeof(Texture)) X(offsetof(Texture, wrap)) X(offsetof(Texture, texcoord))                                                     \

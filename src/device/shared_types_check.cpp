@@ -17,6 +17,8 @@ CLPPM_CHECK_SIZE(BvhNode, 32 * BVH_WIDTH);
 CLPPM_CHECK_OFFSET(BvhNode, bmax_x, 12 * BVH_WIDTH);
 CLPPM_CHECK_OFFSET(BvhNode, child, 24 * BVH_WIDTH);
 CLPPM_CHECK_OFFSET(BvhNode, count, 28 * BVH_WIDTH);
+CLPPM_CHECK_SIZE(BvhTriBlock, 40 * BVH_TRI_BLOCK);
+CLPPM_CHECK_OFFSET(BvhTriBlock, prim, 36 * BVH_TRI_BLOCK);
 static_assert(BVH_WIDTH == 4 || BVH_WIDTH == 8, "bvh_traverse.cl has float4 and float8 node tests");
 
 CLPPM_CHECK_SIZE(Material, 128);

@@ -22,10 +22,11 @@ MemoryEstimate estimate_memory(const Scene& scene, const RenderSettings& setting
                                const DeviceInfo& device, bool error_estimation) {
     MemoryEstimate m;
     const size_t tris = scene.num_triangles();
-    // A wide BVH has about one node per two triangles at most.
+    // A wide BVH has about one node per two triangles at most, and a triangle block per leaf.
     m.scene = tris * (3 * 16 + sizeof(dev::TriShading)) + (tris / 2 + 1) * sizeof(dev::BvhNode) +
-              scene.texels.size() * 16 + scene.tangents.size() * 16 + scene.colors.size() * 16 + scene.uv1.size() * 8 +
-              scene.materials.size() * sizeof(dev::Material) + tris * sizeof(dev::Light);
+              (tris / 2 + 1) * sizeof(dev::BvhTriBlock) + scene.texels.size() * 16 + scene.tangents.size() * 16 +
+              scene.colors.size() * 16 + scene.uv1.size() * 8 + scene.materials.size() * sizeof(dev::Material) +
+              tris * sizeof(dev::Light);
     // An environment map's sampling distribution: about two floats per texel (environment.h).
     if (scene.environment.present && scene.environment.texture >= 0) {
         const dev::Texture& t = scene.textures[size_t(scene.environment.texture)];

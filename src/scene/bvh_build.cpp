@@ -60,6 +60,10 @@ dev::BvhNode empty_node() {
     return n;
 }
 
+// A leaf's triangles are tested BVH_TRI_BLOCK at a time (bvh_leaf_blocks): its cost in the SAH is
+// its number of blocks, as in Embree's builders.
+double leaf_blocks(uint32_t n) { return double((n + BVH_TRI_BLOCK - 1) / BVH_TRI_BLOCK); }
+
 class Builder {
 public:
     Builder(const std::vector<Vec3>& positions, const BvhBuildOptions& options) : opt_(options) {
@@ -129,7 +133,8 @@ private:
     }
 
     // Binned SAH split. Returns false when the centroids have no extent on any axis. *cost is the
-    // SAH cost of the two halves relative to the parent, (A_L N_L + A_R N_R) / A.
+    // SAH cost of the two halves relative to the parent, (A_L B_L + A_R B_R) / A with B the blocks
+    // of BVH_TRI_BLOCK triangles a side would need as one leaf.
     bool split_sah(const Range& r, Range& left, Range& right, double* cost) {
         struct Bin {
             Box box;
@@ -168,7 +173,7 @@ private:
             for (int s = kBins - 1; s > 0; --s) {
                 acc.grow(bins[k][s].box);
                 n += bins[k][s].count;
-                right_cost[s] = acc.half_area() * n;
+                right_cost[s] = acc.half_area() * blocks(n);
             }
             acc = Box();
             n = 0;
@@ -176,7 +181,7 @@ private:
                 acc.grow(bins[k][s].box);
                 n += bins[k][s].count;
                 if (n == 0 || n == r.size()) continue;
-                const double c = acc.half_area() * n + right_cost[s + 1];
+                const double c = acc.half_area() * blocks(n) + right_cost[s + 1];
                 if (c < best) best = c, best_axis = k, best_split = s;
             }
         }
@@ -187,21 +192,23 @@ private:
         left = make_range(r.begin, mid);
         right = make_range(mid, r.end);
         const double area = r.box.half_area();
-        *cost = area > 0 ? best / area : double(r.size());
+        *cost = area > 0 ? best / area : blocks(r.size());
         return true;
     }
 
+    static double blocks(uint32_t n) { return leaf_blocks(n); }
+
     // Splits r by SAH (median when forced or when SAH finds no split); returns the relative cost.
     double split(const Range& r, bool median, Range& left, Range& right) {
-        double cost = r.size();
+        double cost = blocks(r.size());
         if (median || !split_sah(r, left, right, &cost)) split_median(r, left, right);
         return cost;
     }
 
     // A range becomes a leaf when it is small enough and the SAH does not favour a split: the
-    // leaf costs one triangle test each, the split its expected tests plus one more slot to visit.
+    // leaf costs one test per block, the split its expected tests plus one more slot to visit.
     bool leaf_is_better(const Range& r, double split_cost) const {
-        return r.size() <= opt_.max_leaf && double(r.size()) <= split_cost + opt_.node_cost;
+        return r.size() <= opt_.max_leaf && blocks(r.size()) <= split_cost + opt_.node_cost;
     }
 
     int32_t build_inner(const Range& r, unsigned depth) {
@@ -302,7 +309,8 @@ double sah_cost_of(const std::vector<dev::BvhNode>& nodes, int32_t index, double
         const double dx = double(n.bmax_x[i]) - n.bmin_x[i], dy = double(n.bmax_y[i]) - n.bmin_y[i],
                      dz = double(n.bmax_z[i]) - n.bmin_z[i];
         const double area = dx * dy + dy * dz + dz * dx;
-        cost += n.child[i] >= 0 ? area * node_cost + sah_cost_of(nodes, n.child[i], node_cost) : area * n.count[i];
+        cost += n.child[i] >= 0 ? area * node_cost + sah_cost_of(nodes, n.child[i], node_cost)
+                                : area * leaf_blocks(n.count[i]);
     }
     return cost; // sum of area-weighted costs; normalised by the caller
 }
@@ -338,6 +346,33 @@ std::vector<std::array<float, 4>> bvh_triangle_data(const std::vector<Vec3>& p) 
         out[t] = {a.x, a.y, a.z, delta};
     }
     return out;
+}
+
+std::vector<dev::BvhTriBlock> bvh_leaf_blocks(std::vector<dev::BvhNode>& nodes, const std::vector<Vec3>& p) {
+    std::vector<dev::BvhTriBlock> blocks;
+    blocks.reserve(p.size() / 3 / BVH_TRI_BLOCK + nodes.size());
+    for (dev::BvhNode& n : nodes) {
+        for (int i = 0; i < kWidth; ++i) {
+            if (n.child[i] >= 0 || n.count[i] == 0) continue;
+            const uint32_t first = uint32_t(~n.child[i]), count = n.count[i];
+            n.child[i] = ~int32_t(blocks.size());
+            for (uint32_t b = 0; b < count; b += BVH_TRI_BLOCK) {
+                dev::BvhTriBlock blk;
+                for (uint32_t lane = 0; lane < BVH_TRI_BLOCK; ++lane) {
+                    const uint32_t t = first + std::min(b + lane, count - 1); // unused lanes repeat the last
+                    for (int j = 0; j < 3; ++j) {
+                        const Vec3& v = p[3 * size_t(t) + size_t(j)];
+                        blk.v[3 * j + 0][lane] = v.x;
+                        blk.v[3 * j + 1][lane] = v.y;
+                        blk.v[3 * j + 2][lane] = v.z;
+                    }
+                    blk.prim[lane] = t;
+                }
+                blocks.push_back(blk);
+            }
+        }
+    }
+    return blocks;
 }
 
 double bvh_sah_cost(const std::vector<dev::BvhNode>& nodes, double node_cost) {

@@ -19,9 +19,13 @@ cl::Buffer upload(const DeviceContext& dc, const std::vector<T>& v) {
 
 } // namespace
 
-DeviceBvh::DeviceBvh(const DeviceContext& dc, const std::vector<dev::BvhNode>& n,
-                     const std::vector<std::array<float, 4>>& t)
-    : nodes(upload(dc, n)), tris(upload(dc, t)) {}
+DeviceBvh::DeviceBvh(const DeviceContext& dc, const std::vector<dev::BvhNode>& built,
+                     const std::vector<Vec3>& positions) {
+    std::vector<dev::BvhNode> n = built;
+    const std::vector<dev::BvhTriBlock> b = bvh_leaf_blocks(n, positions);
+    nodes = upload(dc, n);
+    blocks = upload(dc, b);
+}
 
 RayTracer::RayTracer(const DeviceContext& dc, const std::string& build_options)
     : dc_(dc), program_(build_program(dc, "trace_rays.cl", build_options)), kernel_(program_, "trace_rays") {}
@@ -29,7 +33,7 @@ RayTracer::RayTracer(const DeviceContext& dc, const std::string& build_options)
 cl::Event RayTracer::enqueue(const DeviceBvh& bvh, const cl::Buffer& rays, const cl::Buffer& hits, uint32_t n,
                              size_t local_size) {
     kernel_.setArg(0, bvh.nodes);
-    kernel_.setArg(1, bvh.tris);
+    kernel_.setArg(1, bvh.blocks);
     kernel_.setArg(2, rays);
     kernel_.setArg(3, hits);
     kernel_.setArg(4, n);

@@ -11,11 +11,11 @@
 
 namespace clppm {
 
-// Node and triangle buffers of one BVH (triangles in BvhBuildResult::tri_order).
+// Node and triangle-block buffers of one BVH as build_bvh left it (leaves pointing at triangles in
+// BvhBuildResult::tri_order; `positions` already in that order).
 struct DeviceBvh {
-    cl::Buffer nodes, tris;
-    DeviceBvh(const DeviceContext& dc, const std::vector<dev::BvhNode>& nodes,
-              const std::vector<std::array<float, 4>>& tris);
+    cl::Buffer nodes, blocks;
+    DeviceBvh(const DeviceContext& dc, const std::vector<dev::BvhNode>& nodes, const std::vector<Vec3>& positions);
 };
 
 // A ray for trace_rays: 8 floats, ox oy oz tmax dx dy dz any_hit.

@@ -215,10 +215,11 @@ namespace {
 
 // The buffers kernels receive as SCENE_PARAMS (kernels/scene.cl), in its order: the one list
 // both set_scene_args and clone_to go by, so a new scene buffer cannot be left out of either.
-const std::array<cl::Buffer DeviceScene::*, 12> kSceneBuffers = {
-    &DeviceScene::bvh_nodes_buf, &DeviceScene::tris_buf,   &DeviceScene::shading_buf,   &DeviceScene::materials_buf,
-    &DeviceScene::textures_buf,  &DeviceScene::texels_buf, &DeviceScene::tangents_buf,  &DeviceScene::colors_buf,
-    &DeviceScene::uv1_buf,       &DeviceScene::lights_buf, &DeviceScene::light_cdf_buf, &DeviceScene::info_buf};
+const std::array<cl::Buffer DeviceScene::*, 13> kSceneBuffers = {
+    &DeviceScene::bvh_nodes_buf, &DeviceScene::tri_blocks_buf, &DeviceScene::tris_buf,   &DeviceScene::shading_buf,
+    &DeviceScene::materials_buf, &DeviceScene::textures_buf,   &DeviceScene::texels_buf, &DeviceScene::tangents_buf,
+    &DeviceScene::colors_buf,    &DeviceScene::uv1_buf,        &DeviceScene::lights_buf, &DeviceScene::light_cdf_buf,
+    &DeviceScene::info_buf};
 
 } // namespace
 
@@ -340,8 +341,10 @@ DeviceScene upload_scene(const DeviceContext& dc, Scene& scene, const SceneSetti
     if (!note.empty()) ds.notes.push_back(note);
 
     std::vector<std::array<float, 4>> tri_data = bvh_triangle_data(scene.positions);
+    const std::vector<dev::BvhTriBlock> blocks = bvh_leaf_blocks(bvh.nodes, scene.positions);
     size_t& bytes = ds.device_bytes;
     ds.bvh_nodes_buf = upload(dc, bvh.nodes, &bytes);
+    ds.tri_blocks_buf = upload(dc, blocks, &bytes);
     ds.tris_buf = upload(dc, tri_data, &bytes);
     ds.shading_buf = upload(dc, scene.shading, &bytes);
     ds.materials_buf = upload(dc, scene.materials, &bytes);

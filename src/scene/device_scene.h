@@ -25,8 +25,8 @@ struct DeviceScene {
     std::vector<std::string> notes;    // things the user should be told (default camera, ...)
     std::vector<std::string> warnings; // things the user must be told, --quiet or not (dropped lights)
 
-    cl::Buffer bvh_nodes_buf, tris_buf, shading_buf, materials_buf, textures_buf, texels_buf, tangents_buf, colors_buf,
-        uv1_buf, lights_buf, light_cdf_buf, info_buf, camera_buf;
+    cl::Buffer bvh_nodes_buf, tri_blocks_buf, tris_buf, shading_buf, materials_buf, textures_buf, texels_buf,
+        tangents_buf, colors_buf, uv1_buf, lights_buf, light_cdf_buf, info_buf, camera_buf;
 
     // The same scene on another device (another context): every buffer copied through the host.
     DeviceScene clone_to(const DeviceContext& from, const DeviceContext& to) const;
