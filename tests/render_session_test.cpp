@@ -210,6 +210,48 @@ TEST(RenderSession, AnEmptyDeviceListNamesAnUnwritableCache) {
         << out;
 }
 
+// PoCL keeps built programs itself: clppm then caches none (fetching a binary from PoCL compiles
+// every kernel once more) and says whose cache served. With PoCL's cache off, clppm's own serves
+// the second render.
+TEST(RenderSession, ProgramsAreCachedOnceByTheDriverOrByClppm) {
+    const bool pocl = test_device().platform_name.find("Portable Computing Language") != std::string::npos ||
+                      test_device().platform_name.find("PoCL") != std::string::npos;
+    std::string d = make_temp_dir("program_cache"), out;
+    auto render = [&](const std::string& env, const char* name) {
+        const std::string stats = d + "/" + name + ".json";
+        EXPECT_EQ(run_command(env + " CLPPM_CACHE_DIR=" + d + "/clppm_cache " + clppm_binary() + kArgs +
+                                  " --quiet --passes 1 -o " + d + "/" + name + ".exr --stats-json " + stats,
+                              &out),
+                  0)
+            << out;
+        std::ifstream f(stats);
+        return nlohmann::json::parse(f)["kernel_build"];
+    };
+    auto cached_files = [&]() {
+        std::string listing;
+        run_command("(ls " + d + "/clppm_cache 2>/dev/null)", &listing);
+        return listing;
+    };
+    const std::string own_pocl = "POCL_CACHE_DIR=" + d + "/pocl";
+    nlohmann::json first = render(own_pocl, "a"), second = render(own_pocl, "b");
+    EXPECT_EQ(first["driver_cache"], pocl);
+    EXPECT_FALSE(first["from_cache"]);
+    if (pocl) {
+        EXPECT_EQ(cached_files(), "") << "PoCL's cache serves; clppm's stays empty";
+        EXPECT_FALSE(second["from_cache"]);
+        EXPECT_TRUE(second["driver_cache"]);
+        // Without PoCL's cache clppm keeps the program, and the next render loads it.
+        const std::string no_pocl = "POCL_KERNEL_CACHE=0 POCL_CACHE_DIR=" + d + "/pocl_off";
+        nlohmann::json third = render(no_pocl, "c"), fourth = render(no_pocl, "d");
+        EXPECT_FALSE(third["driver_cache"]);
+        EXPECT_FALSE(third["from_cache"]);
+        EXPECT_NE(cached_files().find(".bin"), std::string::npos) << cached_files();
+        EXPECT_TRUE(fourth["from_cache"]);
+    } else {
+        EXPECT_TRUE(second["from_cache"]);
+    }
+}
+
 // Two renders given the same output: the second is refused at once, naming the file and the
 // first render's pid, and the first finishes undisturbed; the lock goes with the first.
 TEST(RenderSession, ASecondRenderToTheSameOutputsIsRefused) {

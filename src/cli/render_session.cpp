@@ -236,7 +236,10 @@ Json make_stats(const Options& opt, const DeviceContext& dc, const DeviceScene& 
     Json phases = Json::object();
     for (const auto& [k, v] : st.phase_seconds) phases[k] = v;
     j["phase_seconds"] = phases;
-    j["kernel_build"] = {{"seconds", build.seconds}, {"from_cache", build.from_cache}, {"options", build.options}};
+    j["kernel_build"] = {{"seconds", build.seconds},
+                         {"from_cache", build.from_cache},
+                         {"driver_cache", build.driver_cache},
+                         {"options", build.options}};
     j["bvh"] = {{"build_seconds", ds.bvh_build_seconds}, {"nodes", ds.bvh_nodes}, {"triangles", ds.num_triangles}};
     j["lights"] = ds.lights.size();
     j["device_memory_bytes"] = {{"scene", ds.device_bytes},
@@ -379,7 +382,8 @@ int render_session(const Options& given) {
                   std::to_string(ds.num_triangles) + " triangles, " + std::to_string(ds.lights.size()) +
                   " lights, kernels " +
                   (opt.generic_kernels ? std::string("generic") : "for " + describe_features(features)) + " " +
-                  (build.from_cache ? "cached" : "built") + " in " + std::to_string(build.seconds).substr(0, 5) + " s");
+                  (build.from_cache ? "cached" : "built") + " in " + std::to_string(build.seconds).substr(0, 5) + " s" +
+                  (build.driver_cache ? " (the driver's cache)" : ""));
 
     if (!integrator_note.empty()) note(opt, integrator_note);
     if (cl.distributed())

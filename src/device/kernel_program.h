@@ -20,13 +20,15 @@ std::string assemble_kernel_source(const std::string& name);
 
 struct ProgramBuildStats {
     double seconds = 0;
-    bool from_cache = false;
+    bool from_cache = false;   // loaded from clppm's cache
+    bool driver_cache = false; // the driver keeps its own (PoCL), so clppm's is not used
     std::string options; // as passed to the compiler
 };
 
 // Builds (or loads from the cache) the program for `entry_file` with `options`. Throws Error with
 // the device's build log on failure. The cache lives in $CLPPM_CACHE_DIR, else
-// $XDG_CACHE_HOME/clppm, else ~/.cache/clppm; CLPPM_NO_CACHE=1 disables it.
+// $XDG_CACHE_HOME/clppm, else ~/.cache/clppm; CLPPM_NO_CACHE=1 disables it. Drivers that keep
+// their own cache (PoCL) get none from clppm.
 cl::Program build_program(const DeviceContext& dc, const std::string& entry_file, const std::string& options,
                           ProgramBuildStats* stats = nullptr);
 
