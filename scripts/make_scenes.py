@@ -3,6 +3,7 @@
 
 Deterministic: the same script writes the same bytes. Run from anywhere:
     python3 scripts/make_scenes.py [output_dir]
+    python3 scripts/make_scenes.py --large DIR   # bunny_1m.gltf (1.0M triangles) for bench/scaling_10x.sh
 
 The GltfBuilder class here is also used by tests/data/make_test_gltf.py.
 """
@@ -458,11 +459,11 @@ def blob_displacement(d):
         + 0.05 * math.sin(11.0 * x) * math.sin(9.0 * z)
 
 
-def bunny_100k(out_dir):
+def bunny_100k(out_dir, segments=320, name="bunny_100k"):
     b = GltfBuilder()
     walls, light = cornell_walls(b)
     mat = b.material("blob", (0.72, 0.62, 0.45), specular=0.0)
-    pos, nrm, idx = uv_sphere(320, 160, radius=0.5, displace=blob_displacement)
+    pos, nrm, idx = uv_sphere(segments, segments // 2, radius=0.5, displace=blob_displacement)
     # Rest the lowest vertex just above the floor (y = -1).
     lift = -0.999 - min(p[1] for p in pos)
     pos = [(p[0], p[1] + lift, p[2] - 0.05) for p in pos]
@@ -470,12 +471,21 @@ def bunny_100k(out_dir):
     blob = b.mesh([b.primitive(pos, idx, nrm, material=mat, index_type=UINT)], "blob")
     b.scene([b.node(name="walls", mesh=walls), b.node(name="light", mesh=light),
              b.node(name="blob", mesh=blob), cornell_camera(b)])
-    b.write_external(os.path.join(out_dir, "bunny_100k.gltf"))
+    b.write_external(os.path.join(out_dir, name + ".gltf"))
     return 12 + len(idx) // 3
+
+
+def bunny_1m(out_dir):
+    """The same blob with 10x the triangles (1.0M), for bench/scaling_10x.sh: not shipped."""
+    return bunny_100k(out_dir, 1012, "bunny_1m")
 
 
 def main():
     here = os.path.dirname(os.path.abspath(__file__))
+    if len(sys.argv) > 2 and sys.argv[1] == "--large":
+        os.makedirs(sys.argv[2], exist_ok=True)
+        print("%-20s %7d triangles" % ("bunny_1m", bunny_1m(sys.argv[2])))
+        return
     out_dir = sys.argv[1] if len(sys.argv) > 1 else os.path.join(here, "..", "scenes")
     os.makedirs(out_dir, exist_ok=True)
     for make in (cornell_box, caustic, furnace, plane_point_light, bunny_100k):
