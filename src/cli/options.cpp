@@ -405,7 +405,8 @@ constexpr size_t kHelpColumn = 30, kHelpWidth = 100;
 std::string environment_help() {
     const char* env[][2] = {
         {"CLPPM_KERNEL_DIR", "load the kernel sources from this folder instead of the embedded copies"},
-        {"CLPPM_CACHE_DIR", "where built programs are cached (else $XDG_CACHE_HOME/clppm, else ~/.cache/clppm; not for PoCL, which keeps its own)"},
+        {"CLPPM_CACHE_DIR", "where built programs are cached (else $XDG_CACHE_HOME/clppm, else ~/.cache/clppm; not for "
+                            "PoCL, which keeps its own)"},
         {"CLPPM_NO_CACHE", "1: build the kernels every time, cache nothing"},
         {"CLPPM_BUILD_LOG", "1: print the compiler's log of successful kernel builds"},
         {"CLPPM_LOCAL_SIZE", "force this work-group size (the image does not change)"},

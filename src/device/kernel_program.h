@@ -22,7 +22,7 @@ struct ProgramBuildStats {
     double seconds = 0;
     bool from_cache = false;   // loaded from clppm's cache
     bool driver_cache = false; // the driver keeps its own (PoCL), so clppm's is not used
-    std::string options; // as passed to the compiler
+    std::string options;       // as passed to the compiler
 };
 
 // Builds (or loads from the cache) the program for `entry_file` with `options`. Throws Error with
