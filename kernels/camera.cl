@@ -15,9 +15,10 @@ void camera_ray(__constant Camera* cam, float px, float py, float2 lens_u, float
     if (HAS_THIN_LENS && cam->lens_radius > 0.0f) {
         /* Thin lens: all rays through a pixel meet on the plane of focus (pbrt-v4 PerspectiveCamera). */
         float3 focus = o + d * cam->focus_distance;
-        float r = cam->lens_radius * sqrt(lens_u.x), phi = 2.0f * PI_F * lens_u.y;
+        float r = cam->lens_radius * sqrt(lens_u.x);
+        float2 c = unit_circle(lens_u.y);
         float3 right = normalize(load3c(cam->right)), up = normalize(load3c(cam->up));
-        o = o + right * (r * cos(phi)) + up * (r * sin(phi));
+        o = o + right * (r * c.x) + up * (r * c.y);
         d = focus - o;
     }
     *org = o;
@@ -43,8 +44,9 @@ bool camera_project(__constant Camera* cam, float3 x, float2 lens_u, uint* pixel
     float3 e = o;
     bool lens = HAS_THIN_LENS && cam->lens_radius > 0.0f;
     if (lens) {
-        float rad = cam->lens_radius * sqrt(lens_u.x), phi = 2.0f * PI_F * lens_u.y;
-        e = o + normalize(r) * (rad * cos(phi)) + normalize(u) * (rad * sin(phi));
+        float rad = cam->lens_radius * sqrt(lens_u.x);
+        float2 c = unit_circle(lens_u.y);
+        e = o + normalize(r) * (rad * c.x) + normalize(u) * (rad * c.y);
     }
     float3 d = x - e;
     float len = length(d);

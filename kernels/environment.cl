@@ -19,9 +19,10 @@
 
 /* The map's direction for (u, v) in [0, 1]^2, before the light's rotation. */
 float3 env_direction_local(float u, float v) {
-    float theta = v * PI_F, phi = (u - 0.5f) * (2.0f * PI_F);
-    float s = sin(theta);
-    return (float3)(s * sin(phi), cos(theta), -s * cos(phi));
+    /* theta = v pi, phi = (u - 1/2) 2 pi */
+    float s = sinpi(v);
+    float2 c = unit_circle(u - 0.5f);
+    return (float3)(s * c.y, cospi(v), -s * c.x);
 }
 
 /* (u, v) of a direction before the light's rotation. */
@@ -93,8 +94,9 @@ float3 env_sample(__global const Light* L, __global const Texture* textures, __g
                   float u2, float* pdf) {
     if (L->prim == ENV_UNIFORM) {
         *pdf = 0.25f * INV_PI_F;
-        float z = 1.0f - 2.0f * u1, r = sqrt(fmax(0.0f, 1.0f - z * z)), phi = 2.0f * PI_F * u2;
-        return (float3)(r * cos(phi), z, r * sin(phi));
+        float z = 1.0f - 2.0f * u1, r = sqrt(fmax(0.0f, 1.0f - z * z));
+        float2 c = unit_circle(u2);
+        return (float3)(r * c.x, z, r * c.y);
     }
     __global const Texture* t = &textures[L->prim];
     uint W = t->width, H = t->height;

@@ -68,8 +68,9 @@ float3 ggx_sample_h(float3 n, float3 wo, float alpha, float u1, float u2) {
     float lensq = vh.x * vh.x + vh.y * vh.y;
     float3 T1 = lensq > 0.0f ? (float3)(-vh.y, vh.x, 0.0f) * rsqrt(lensq) : (float3)(1.0f, 0.0f, 0.0f);
     float3 T2 = cross(vh, T1);
-    float r = sqrt(u1), phi = 2.0f * PI_F * u2;
-    float t1 = r * cos(phi), t2 = r * sin(phi);
+    float r = sqrt(u1);
+    float2 c = unit_circle(u2);
+    float t1 = r * c.x, t2 = r * c.y;
     float s = 0.5f * (1.0f + vh.z);
     t2 = (1.0f - s) * sqrt(fmax(0.0f, 1.0f - t1 * t1)) + s * t2;
     float3 nh = t1 * T1 + t2 * T2 + sqrt(fmax(0.0f, 1.0f - t1 * t1 - t2 * t2)) * vh;

@@ -112,9 +112,9 @@ void emit_light(SCENE_PARAMS, Rng* rng, LightEmission* e) {
     } else if (HAS_POINT_LIGHTS && L->type == LIGHT_POINT) {
         float z = 1.0f - 2.0f * rng_float(rng);
         float r = sqrt(fmax(0.0f, 1.0f - z * z));
-        float phi = 2.0f * PI_F * rng_float(rng);
+        float2 c = unit_circle(rng_float(rng));
         e->org = load3g(L->position);
-        e->dir = (float3)(r * cos(phi), r * sin(phi), z);
+        e->dir = (float3)(r * c.x, r * c.y, z);
         e->flux = rad * (4.0f * PI_F / (pick * info->total_power)); /* I / (pick / 4pi) */
         e->direct_pdf_a = pick;
         e->emission_pdf_w = pick * 0.25f * INV_PI_F;
@@ -134,8 +134,9 @@ void emit_light(SCENE_PARAMS, Rng* rng, LightEmission* e) {
         if (!(pdf > 0.0f)) return;
         float3 t, b;
         make_frame(w, &t, &b);
-        float r = sqrt(rng_float(rng)) * info->radius, phi = 2.0f * PI_F * rng_float(rng);
-        e->org = load3c(info->center) + w * (1.01f * info->radius) + t * (r * cos(phi)) + b * (r * sin(phi));
+        float r = sqrt(rng_float(rng)) * info->radius;
+        float2 c = unit_circle(rng_float(rng));
+        e->org = load3c(info->center) + w * (1.01f * info->radius) + t * (r * c.x) + b * (r * c.y);
         e->dir = -w;
         float area = PI_F * info->radius * info->radius;
         e->flux = env_radiance(L, textures, texels, w) * (area / (pdf * pick * info->total_power));
@@ -148,8 +149,8 @@ void emit_light(SCENE_PARAMS, Rng* rng, LightEmission* e) {
         float3 t, b;
         make_frame(d, &t, &b);
         float2 disc;
-        float r = sqrt(rng_float(rng)) * info->radius, phi = 2.0f * PI_F * rng_float(rng);
-        disc = (float2)(r * cos(phi), r * sin(phi));
+        float r = sqrt(rng_float(rng)) * info->radius;
+        disc = r * unit_circle(rng_float(rng));
         e->org = load3c(info->center) - d * (1.01f * info->radius) + t * disc.x + b * disc.y;
         e->dir = d;
         float area = PI_F * info->radius * info->radius;
