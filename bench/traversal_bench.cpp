@@ -3,9 +3,10 @@
 // shadow rays, closest-hit and any-hit; BVH build time; optionally Embree 3 on the same rays.
 //
 //   traversal_bench [--json FILE] [--rays N] [--runs N] [--local N] [--options "-D..."] [--device SPEC]
-//                   [--stats] [--quick] [--leaf N] [--node-cost C]
+//                   [--stats] [--quick] [--only NAME] [--leaf N] [--node-cost C]
 // --stats: nodes visited and triangles tested per ray (a -DBVH_STATS build of the kernel);
 // --quick: only the closest-hit cases, no work-group sweep.
+// --only NAME: only the cases whose name contains NAME ("shadow", "any", "diffuse closest"), e.g. to profile one.
 // --ab-options S / --ab-leaf N / --ab-node-cost C: an A/B comparison against a second variant
 //   (kernel options and/or build options), timed in alternation so that load from other
 //   processes hits both alike; prints the speed-up of B and exits.
@@ -314,6 +315,7 @@ int run(int argc, char** argv) {
     size_t nrays = 1000000, forced_local = 0;
     int runs = 5;
     bool forced = false, stats = false, quick = false;
+    std::string only;
     BvhBuildOptions build_options, ab_build;
     std::string ab_options;
     bool ab = false;
@@ -331,6 +333,7 @@ int run(int argc, char** argv) {
         else if (a == "--device") device_spec = next();
         else if (a == "--stats") stats = true;
         else if (a == "--quick") quick = true, forced = true;
+        else if (a == "--only") only = next();
         else if (a == "--leaf") build_options.max_leaf = unsigned(std::stoul(next()));
         else if (a == "--node-cost") build_options.node_cost = std::stof(next());
         else if (a == "--ab-options") ab_options = next(), ab = true;
@@ -381,6 +384,10 @@ int run(int argc, char** argv) {
         add("diffuse any", with_any_hit(diffuse, true));
         add("shadow any", shadow_rays(surf, nrays, eps));
     }
+    cases.erase(std::remove_if(cases.begin(), cases.end(),
+                               [&](const Case& c) { return c.name.find(only) == std::string::npos; }),
+                cases.end());
+    if (cases.empty()) throw Error("--only " + only + ": no case has that in its name");
     if (ab) {
         // Variant B: same scene and rays, its own BVH (triangle order differs) and kernel build.
         if (ab_options.empty()) ab_options = options;

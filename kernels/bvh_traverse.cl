@@ -40,6 +40,22 @@ typedef float4 bvh_floatw;
 inline int bvh_lane_mask(int4 in) { return (in.x & 1) | (in.y & 2) | (in.z & 4) | (in.w & 8); }
 #endif
 
+/* One vector lane per triangle of a block. */
+#if BVH_TRI_BLOCK == 8
+typedef float8 bvh_floatb;
+typedef int8 bvh_intb;
+#define BVH_VSTOREB vstore8
+inline int bvh_block_mask(int8 in) {
+    return (in.s0 & 1) | (in.s1 & 2) | (in.s2 & 4) | (in.s3 & 8) | (in.s4 & 16) | (in.s5 & 32) | (in.s6 & 64) |
+           (in.s7 & 128);
+}
+#else
+typedef float4 bvh_floatb;
+typedef int4 bvh_intb;
+#define BVH_VSTOREB vstore4
+inline int bvh_block_mask(int4 in) { return (in.x & 1) | (in.y & 2) | (in.z & 4) | (in.w & 8); }
+#endif
+
 /* Ize 2013, "Robust BVH ray traversal", Sec. 3: widening the far slab distance by 1 + 2 gamma(3)
  * keeps rounding in the slab test from culling a box the ray grazes. */
 #define BVH_FAR_SCALE 1.00000036f
@@ -85,28 +101,28 @@ inline RayShear ray_shear(float3 org, float3 dir) {
  * 0 < t < tmax, with t, u (weight of v1), v (weight of v2) per lane. */
 /* Inlined by force: as a call (PoCL's inliner declines) every leaf would spill the ray state. */
 inline __attribute__((always_inline)) int intersect_block(__global const BvhTriBlock* block, const RayShear* s,
-                                                          float tmax, float4* t_out, float4* u_out,
-                                                          float4* v_out) {
+                                                          float tmax, bvh_floatb* t_out, bvh_floatb* u_out,
+                                                          bvh_floatb* v_out) {
     /* No fused multiply-add here: edge(P, Q) must be exactly -edge(Q, P) for shared edges. */
 #pragma OPENCL FP_CONTRACT OFF
-    __global const float4* row = (__global const float4*)block;
-    const float4 az = row[s->kz] - s->oz, bz = row[3 + s->kz] - s->oz, cz = row[6 + s->kz] - s->oz;
-    const float4 ax = (row[s->kx] - s->ox) - s->sx * az, ay = (row[s->ky] - s->oy) - s->sy * az;
-    const float4 bx = (row[3 + s->kx] - s->ox) - s->sx * bz, by = (row[3 + s->ky] - s->oy) - s->sy * bz;
-    const float4 cx = (row[6 + s->kx] - s->ox) - s->sx * cz, cy = (row[6 + s->ky] - s->oy) - s->sy * cz;
-    const float4 U = cx * by - cy * bx;
-    const float4 V = ax * cy - ay * cx;
-    const float4 W = bx * ay - by * ax;
-    const float4 zero = (float4)(0.0f);
-    const int4 outside = ((U < zero) | (V < zero) | (W < zero)) & ((U > zero) | (V > zero) | (W > zero));
-    const float4 det = U + V + W;
-    const float4 T = U * (s->sz * az) + V * (s->sz * bz) + W * (s->sz * cz);
+    __global const bvh_floatb* row = (__global const bvh_floatb*)block;
+    const bvh_floatb az = row[s->kz] - s->oz, bz = row[3 + s->kz] - s->oz, cz = row[6 + s->kz] - s->oz;
+    const bvh_floatb ax = (row[s->kx] - s->ox) - s->sx * az, ay = (row[s->ky] - s->oy) - s->sy * az;
+    const bvh_floatb bx = (row[3 + s->kx] - s->ox) - s->sx * bz, by = (row[3 + s->ky] - s->oy) - s->sy * bz;
+    const bvh_floatb cx = (row[6 + s->kx] - s->ox) - s->sx * cz, cy = (row[6 + s->ky] - s->oy) - s->sy * cz;
+    const bvh_floatb U = cx * by - cy * bx;
+    const bvh_floatb V = ax * cy - ay * cx;
+    const bvh_floatb W = bx * ay - by * ax;
+    const bvh_floatb zero = (bvh_floatb)(0.0f);
+    const bvh_intb outside = ((U < zero) | (V < zero) | (W < zero)) & ((U > zero) | (V > zero) | (W > zero));
+    const bvh_floatb det = U + V + W;
+    const bvh_floatb T = U * (s->sz * az) + V * (s->sz * bz) + W * (s->sz * cz);
     /* 0 < t = T / det < tmax, tested before paying for the division. */
-    const float4 abs_det = fabs(det), abs_T = select(T, -T, det < zero);
-    const int4 ok = ~outside & (det != zero) & (abs_T > zero) & (abs_T < tmax * abs_det);
-    const int mask = (ok.x & 1) | (ok.y & 2) | (ok.z & 4) | (ok.w & 8);
+    const bvh_floatb abs_det = fabs(det), abs_T = select(T, -T, det < zero);
+    const bvh_intb ok = ~outside & (det != zero) & (abs_T > zero) & (abs_T < tmax * abs_det);
+    const int mask = bvh_block_mask(ok);
     if (mask == 0) return 0;
-    const float4 inv_det = 1.0f / det;
+    const bvh_floatb inv_det = 1.0f / det;
     *t_out = T * inv_det;
     *u_out = V * inv_det;
     *v_out = W * inv_det;
@@ -205,13 +221,13 @@ bool bvh_intersect(__global const BvhNode* nodes, __global const BvhTriBlock* bl
 #ifdef BVH_STATS
                 hit->tris_tested += min(cur_count - (b - first) * BVH_TRI_BLOCK, (uint)BVH_TRI_BLOCK);
 #endif
-                float4 t4, u4, v4;
+                bvh_floatb t4, u4, v4;
                 int lanes = intersect_block(blocks + b, &shear, t_best, &t4, &u4, &v4);
                 if (lanes == 0) continue;
                 float t[BVH_TRI_BLOCK], u[BVH_TRI_BLOCK], v[BVH_TRI_BLOCK];
-                vstore4(t4, 0, t);
-                vstore4(u4, 0, u);
-                vstore4(v4, 0, v);
+                BVH_VSTOREB(t4, 0, t);
+                BVH_VSTOREB(u4, 0, u);
+                BVH_VSTOREB(v4, 0, v);
                 /* Every lane that hits, nearer than the best so far and accepted by the filter. A
                  * repeated triangle (unused lanes) is the same hit again and changes nothing. */
                 for (; lanes != 0; lanes &= lanes - 1) {

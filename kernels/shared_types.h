@@ -54,14 +54,17 @@ typedef struct {
 
 /* A leaf's triangles for traversal, BVH_TRI_BLOCK at a time (a leaf of n triangles owns
  * ceil(n / BVH_TRI_BLOCK) consecutive blocks): vertex coordinates as SoA so one watertight test
- * covers the block in float4 lanes, stored as the mesh has them (shared vertices bitwise equal).
+ * covers the block in vector lanes, stored as the mesh has them (shared vertices bitwise equal).
  * A leaf's last block repeats its last triangle in unused lanes. Row 3 j + k of the block as
- * float4 rows is coordinate k of vertex j; prim: triangle ids (leaf order). */
-#define BVH_TRI_BLOCK 4
+ * BVH_TRI_BLOCK-wide rows is coordinate k of vertex j; prim: triangle ids (leaf order).
+ * 8, not 4: one float8 test per leaf of up to 8 triangles, so the SAH makes fewer, fuller leaves
+ * (bench/RESULTS.md, "Closer to the hardware": 7.5 triangles a block, 10-15% more rays per second
+ * than blocks of 4 on PoCL). The kernel also takes 4. */
+#define BVH_TRI_BLOCK 8
 typedef struct {
     float v[9][BVH_TRI_BLOCK];
     u32 prim[BVH_TRI_BLOCK];
-} BvhTriBlock; /* 160 bytes */
+} BvhTriBlock; /* 40 * BVH_TRI_BLOCK bytes */
 
 /* The builder guarantees at most this many inner nodes on any root-to-leaf path (root = 1), so a
  * traversal stack of (BVH_WIDTH - 1) * BVH_MAX_DEPTH + 1 entries cannot overflow: each level
