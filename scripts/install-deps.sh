@@ -8,7 +8,7 @@ required=(
   pocl-opencl-icd ocl-icd-opencl-dev opencl-headers opencl-clhpp-headers clinfo
   libglm-dev libopenexr-dev libtinygltf-dev nlohmann-json3-dev libstb-dev libdraco-dev libwebp-dev
   libgtest-dev googletest libcli11-dev libcpp-httplib-dev cmake g++ make pkg-config python3
-  clang-format cppcheck openmpi-bin libopenmpi-dev
+  clang-format clang-15 cppcheck openmpi-bin libopenmpi-dev
 )
 # Optional, for the benchmarks only: Embree (the CPU traversal yardstick) and gnuplot (plots).
 optional=(libembree-dev gnuplot-nox chromium) # chromium: the live view's browser test
