@@ -163,8 +163,9 @@ protected:
     }
 
     // Builds, traces on the device (in the permuted order) and compares with the reference.
-    void trace_and_compare(const Tris& input, std::vector<TraceRay> rays, bool must_hit, const char* what) {
-        const BvhBuildResult bvh = build_bvh(input);
+    void trace_and_compare(const Tris& input, std::vector<TraceRay> rays, bool must_hit, const char* what,
+                           const BvhBuildOptions& options = BvhBuildOptions()) {
+        const BvhBuildResult bvh = build_bvh(input, options);
         check_structure(input, bvh);
         Tris tris;
         for (uint32_t i : bvh.tri_order)
@@ -292,6 +293,26 @@ TEST_F(BvhTest, RandomSoupScaled) {
     }
 }
 
+// The default build makes leaves of at most one block; a leaf cap above BVH_TRI_BLOCK makes the
+// kernel walk several blocks per leaf, which must find the same hits, watertight included.
+TEST_F(BvhTest, LeavesOfSeveralBlocksTraceLikeTheReference) {
+    BvhBuildOptions big;
+    big.max_leaf = 2 * BVH_TRI_BLOCK + 3;
+    big.node_cost = 3;
+    const Tris soup = random_soup(3000), sphere = icosphere(3, 1.0);
+    for (const Tris* t : {&soup, &sphere}) {
+        const BvhBuildResult bvh = build_bvh(*t, big);
+        size_t multi = 0;
+        for (const dev::BvhNode& n : bvh.nodes)
+            for (int i = 0; i < BVH_WIDTH; ++i) multi += n.child[i] < 0 && n.count[i] > BVH_TRI_BLOCK;
+        EXPECT_GT(multi, 10u) << "leaves of several blocks";
+    }
+    trace_and_compare(soup, mixed_rays(soup, 4000), false, "soup, big leaves", big);
+    std::vector<D3> targets;
+    for (const Vec3& p : sphere) targets.push_back(d3(p));
+    trace_and_compare(sphere, rays_from_inside(sphere, 0.5, 4000, targets), true, "sphere, big leaves", big);
+}
+
 TEST_F(BvhTest, ClosedSphereFromInside) {
     const Tris sphere = icosphere(3, 1.0);
     std::vector<D3> targets; // the sphere's vertices: where 5 or 6 triangles meet
@@ -414,7 +435,7 @@ TEST_F(BvhTest, SahBeatsMedianSplit) {
 TEST_F(BvhTest, LeafBlocksHoldEachLeafsTrianglesExactly) {
     for (const Tris& input : {random_soup(3000), icosphere(4, 1.0)}) {
         BvhBuildOptions big;
-        big.max_leaf = 11; // leaves of 1 to 3 blocks, the last one partly filled
+        big.max_leaf = 2 * BVH_TRI_BLOCK + 3; // leaves of 1 to 3 blocks, the last one partly filled
         big.node_cost = 3;
         for (const BvhBuildOptions& opt : {BvhBuildOptions(), big}) {
             const BvhBuildResult bvh = build_bvh(input, opt);
