@@ -10,7 +10,7 @@
 
 #include "device/device.h"
 #include "device/kernel_program.h"
-#include "integrators/integrator_factory.h"
+#include "integrators/integrator_table.h"
 #include "scene/device_scene.h"
 #include "scene/environment.h"
 #include "scene/gltf/gltf_load.h"
@@ -50,7 +50,8 @@ struct Render {
         : dc(device), scene(load_named_scene(scene_name)) {
         ds = upload_scene(dc, scene, s);
         std::string features = generic ? std::string() : feature_build_options(scene_features(scene, ds));
-        program = build_program(dc, integrator_program_file(s), integrator_build_options(s, device, features), &build);
+        program = build_program(dc, integrator_row(s.integrator).program_file,
+                                integrator_build_options(s, device, features), &build);
         integ = make_integrator(dc, ds, s, program);
         if (error_estimation) integ->enable_error_estimation();
         double t0 = now_s();

@@ -47,7 +47,7 @@ Image reference_image(const Args& a, const DeviceInfo& dev) {
     const std::string path = a.out + "/reference_" + a.scene + "_" + std::to_string(a.size) + ".exr";
     if (exists(path)) return read_exr(path);
     RenderSettings s;
-    s.integrator = Integrator::SPPM;
+    s.integrator = "sppm";
     s.width = s.height = a.size;
     s.photons = a.quick ? 50000 : 1000000;
     s.seed = 1000;
@@ -88,13 +88,13 @@ int main(int argc, char** argv) try {
     double r0 = 0;
     {
         RenderSettings s;
-        s.integrator = Integrator::SPPM;
+        s.integrator = "sppm";
         s.width = s.height = a.size;
         s.photons = 1000;
         Render probe(dev, a.scene, s);
         r0 = probe.integ->stats().initial_radius;
     }
-    auto base = [&](Integrator integ) {
+    auto base = [&](const std::string& integ) {
         RenderSettings s;
         s.integrator = integ;
         s.width = s.height = a.size;
@@ -103,25 +103,24 @@ int main(int argc, char** argv) try {
         return s;
     };
     std::vector<Setting> settings;
-    for (Integrator integ : {Integrator::PPM, Integrator::SPPM, Integrator::PPPM, Integrator::PT})
-        settings.push_back({"integrator", to_string(integ), base(integ)});
+    for (std::string integ : {"ppm", "sppm", "pppm", "pt"}) settings.push_back({"integrator", integ, base(integ)});
     for (double alpha : {0.3, 0.5, 0.7, 0.9}) {
-        Setting st{"alpha", "alpha " + fmt("%.1f", alpha), base(Integrator::SPPM)};
+        Setting st{"alpha", "alpha " + fmt("%.1f", alpha), base("sppm")};
         st.s.alpha = alpha;
         settings.push_back(st);
     }
     for (uint64_t ph : a.quick ? std::vector<uint64_t>{2000, 20000} : std::vector<uint64_t>{50000, 200000, 1000000}) {
-        Setting st{"photons", std::to_string(ph) + " photons", base(Integrator::SPPM)};
+        Setting st{"photons", std::to_string(ph) + " photons", base("sppm")};
         st.s.photons = ph;
         settings.push_back(st);
     }
     for (double f : {0.5, 1.0, 2.0, 4.0}) {
-        Setting st{"radius", "radius " + fmt("%.1f", f) + "x", base(Integrator::SPPM)};
+        Setting st{"radius", "radius " + fmt("%.1f", f) + "x", base("sppm")};
         st.s.radius = f * r0;
         settings.push_back(st);
     }
     for (DirectLighting d : {DirectLighting::Sample, DirectLighting::Photons}) {
-        Setting st{"direct", std::string("ppm --direct ") + to_string(d), base(Integrator::PPM)};
+        Setting st{"direct", std::string("ppm --direct ") + to_string(d), base("ppm")};
         st.s.direct = d;
         st.s.spp = 4; // stratified hit points: PPM then converges to nearly the box-filtered reference
         settings.push_back(st);

@@ -38,9 +38,9 @@ struct Args {
     double confidence = 0.95;
 };
 
-Integrator parse_integrator(const std::string& name) {
-    for (Integrator i : {Integrator::PPM, Integrator::SPPM, Integrator::PPPM, Integrator::PT})
-        if (name == to_string(i)) return i;
+std::string parse_integrator(const std::string& name) {
+    for (const char* i : {"ppm", "sppm", "pppm", "pt"})
+        if (name == i) return i;
     throw Error("--integrators: " + name + " is not ppm, sppm, pppm or pt");
 }
 
@@ -131,12 +131,12 @@ int main(int argc, char** argv) {
                 s.integrator = parse_integrator(name);
                 s.photons = a.photons;
                 s.seed = 1;
-                if (s.integrator == Integrator::PPM) s.spp = 4;
+                if (s.integrator == "ppm") s.spp = 4;
                 Render r(device, scene, s, false, true);
                 const double t0 = now_s();
                 // The path tracer's passes are one sample per pixel each, far cheaper than a photon
                 // pass: it runs --pt-pass-factor times as many (the table shows its real count).
-                const uint64_t factor = s.integrator == Integrator::PT ? a.pt_pass_factor : 1;
+                const uint64_t factor = s.integrator == "pt" ? a.pt_pass_factor : 1;
                 for (uint64_t q = 1; q <= a.passes * factor; ++q) {
                     const uint64_t p = (q + factor - 1) / factor;
                     if (q % factor) {

@@ -1,17 +1,19 @@
 #!/usr/bin/env python3
 """Checks that every #include in src/ runs downwards through the layers (README, "Layout"):
 
-    util < io < device < scene < integrators < cli
+    util < io < device < scene < integrators < render < cli, python
 
-A file may include its own layer and any layer below it, never one above. Kernel headers
+A file may include its own layer and any layer below it, never one above; the front ends (cli/,
+python/) stand side by side and include neither each other. Kernel headers
 (kernels/, e.g. shared_types.h) and system headers sit below every layer. Exits 1 and names each
 offending include."""
 import pathlib
 import re
 import sys
 
-LAYERS = ["util", "io", "device", "scene", "integrators", "cli"]
+LAYERS = ["util", "io", "device", "scene", "integrators", "render", "cli", "python"]
 RANK = {name: i for i, name in enumerate(LAYERS)}
+RANK["python"] = RANK["cli"]  # front ends of the same rank
 
 
 def main() -> int:
@@ -33,13 +35,13 @@ def main() -> int:
                 if "/" in m.group(1):
                     bad.append(f"{path.relative_to(src)}:{number}: include of unknown layer \"{m.group(1)}\"")
                 continue  # a kernel header (shared_types.h) or generated file
-            if RANK[target] > RANK[layer]:
+            if RANK[target] > RANK[layer] or (RANK[target] == RANK[layer] and target != layer):
                 bad.append(f"{path.relative_to(src)}:{number}: {layer}/ includes \"{m.group(1)}\" from the "
                            f"higher layer {target}/")
     for b in bad:
         print(b, file=sys.stderr)
     if not bad:
-        print("check_layers: every include runs downwards (" + " < ".join(LAYERS) + ")")
+        print("check_layers: every include runs downwards (" + " < ".join(LAYERS[:-1]) + ", " + LAYERS[-1] + ")")
     return 1 if bad else 0
 
 

@@ -3,7 +3,7 @@
 // light; SPPM (so that the error is plain: "no lights") when there is no light at all.
 #include <gtest/gtest.h>
 
-#include "cli/default_integrator.h"
+#include "integrators/default_integrator.h"
 #include "scene/environment.h"
 #include "scene_builders.h"
 
@@ -12,13 +12,13 @@ using namespace clppm::test;
 
 TEST(DefaultIntegrator, LightsOfItsOwnGetPhotonMapping) {
     Scene s = plane_under_point_light(0.5f, 10.f, 1.f);
-    EXPECT_EQ(default_integrator(s).integrator, Integrator::SPPM);
+    EXPECT_EQ(default_integrator(s).integrator, "sppm");
     EnvironmentSettings env;
     env.has_color = true;
     env.color = {1.f, 1.f, 1.f};
     apply_environment(s, env, nullptr);
     ASSERT_TRUE(s.environment.present);
-    EXPECT_EQ(default_integrator(s).integrator, Integrator::SPPM); // the lamp still casts what photons find
+    EXPECT_EQ(default_integrator(s).integrator, "sppm"); // the lamp still casts what photons find
 }
 
 TEST(DefaultIntegrator, AnEnvironmentAloneGetsThePathTracer) {
@@ -27,7 +27,7 @@ TEST(DefaultIntegrator, AnEnvironmentAloneGetsThePathTracer) {
     apply_environment(s, EnvironmentSettings{}, nullptr); // the default white world
     ASSERT_TRUE(s.environment.present);
     const IntegratorChoice c = default_integrator(s);
-    EXPECT_EQ(c.integrator, Integrator::PT);
+    EXPECT_EQ(c.integrator, "pt");
     EXPECT_NE(c.reason.find("lit only by its environment"), std::string::npos);
 }
 
@@ -37,5 +37,5 @@ TEST(DefaultIntegrator, NoLightAtAllStaysWithPhotonMapping) {
     EnvironmentSettings off;
     off.default_light = false;
     apply_environment(s, off, nullptr);
-    EXPECT_EQ(default_integrator(s).integrator, Integrator::SPPM);
+    EXPECT_EQ(default_integrator(s).integrator, "sppm");
 }

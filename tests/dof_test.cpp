@@ -42,7 +42,7 @@ TEST(DepthOfField, FocalPlaneSharpDefocusMatchesCircleOfConfusion) {
     const int size = 64;
     const double f = 2.0, far = 4.0, aperture = 0.2, yfov = 0.8;
     RenderSettings s;
-    s.integrator = Integrator::SPPM;
+    s.integrator = "sppm";
     s.width = s.height = size;
     s.photons = 1000;
     s.aperture = aperture;

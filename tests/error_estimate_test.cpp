@@ -9,10 +9,10 @@
 
 #include <nlohmann/json.hpp>
 
-#include "cli/progress.h"
 #include "device/kernel_program.h"
 #include "integrators/error_estimate.h"
-#include "integrators/integrator_factory.h"
+#include "integrators/integrator_table.h"
+#include "render/progress.h"
 #include "scene_builders.h"
 #include "test_util.h"
 
@@ -76,7 +76,8 @@ struct Rendered {
 Rendered render_with_errors(Scene scene, const RenderSettings& s, uint64_t passes, double confidence) {
     DeviceContext dc(test_device());
     DeviceScene ds = upload_scene(dc, scene, s);
-    cl::Program program = build_program(dc, integrator_program_file(s), integrator_build_options(s, dc.info));
+    cl::Program program =
+        build_program(dc, integrator_row(s.integrator).program_file, integrator_build_options(s, dc.info));
     std::unique_ptr<IntegratorBase> integ = make_integrator(dc, ds, s, program);
     EXPECT_TRUE(integ->estimates_error());
     integ->enable_error_estimation();
@@ -87,7 +88,7 @@ Rendered render_with_errors(Scene scene, const RenderSettings& s, uint64_t passe
 
 RenderSettings plane_settings(unsigned size, uint64_t photons) {
     RenderSettings s;
-    s.integrator = Integrator::SPPM;
+    s.integrator = "sppm";
     s.direct = DirectLighting::Photons;
     s.width = s.height = size;
     s.photons = photons;
@@ -330,7 +331,7 @@ TEST(ErrorEstimate, TargetErrorHaltsTheRender) {
 // in closed form) at the confidence asked for, and --target-error stops it.
 TEST(ErrorEstimate, PathTracerEstimatesItsNoise) {
     RenderSettings s = plane_settings(24, 1000);
-    s.integrator = Integrator::PT;
+    s.integrator = "pt";
     s.direct = DirectLighting::Sample;
     Rendered r = render_with_errors(plane_under_point_light(kRho, kIntensity, kHeight), s, 64, 0.95);
     size_t within = 0, n = 0;

@@ -19,16 +19,17 @@ using namespace clppm::test;
 
 namespace {
 
-RenderSettings small(unsigned size, uint64_t photons, DirectLighting direct, Integrator integrator = Integrator::PPM) {
+RenderSettings small(unsigned size, uint64_t photons, DirectLighting direct, const std::string& integrator = "ppm") {
     RenderSettings s;
     s.width = s.height = size;
     s.photons = photons;
     s.direct = direct;
     s.integrator = integrator;
+    s.spp = 1;
     return s;
 }
 
-const char* name(Integrator i) { return i == Integrator::PPM ? "PPM" : i == Integrator::SPPM ? "SPPM" : "PPPM"; }
+const char* name(const std::string& i) { return i == "ppm" ? "PPM" : i == "sppm" ? "SPPM" : "PPPM"; }
 
 // Renders and checks the one thing every render must satisfy.
 Image render(const Scene& scene, const RenderSettings& s, uint64_t passes, IntegratorStats* stats = nullptr) {
@@ -114,10 +115,10 @@ std::vector<double> block_means(const Image& img) {
 // Radius: alpha = 1 is photon mapping with a fixed radius (mean R stays R0, to float summation:
 // 1e-6); smaller alpha shrinks R faster.
 TEST(Extremes, AlphaFromOneHundredthToOneConvergesOnTheFurnace) {
-    for (Integrator integ : {Integrator::PPM, Integrator::SPPM, Integrator::PPPM}) {
+    for (std::string integ : {"ppm", "sppm", "pppm"}) {
         double previous_radius = 0;
         for (double alpha : {0.01, 0.5, 0.99, 1.0}) {
-            if (integ != Integrator::PPM && alpha != 0.5 && alpha != 1.0) continue; // the cheap subset
+            if (integ != "ppm" && alpha != 0.5 && alpha != 1.0) continue; // the cheap subset
             RenderSettings s = small(16, 10000, DirectLighting::Photons, integ);
             s.alpha = alpha;
             IntegratorStats st;
@@ -130,7 +131,7 @@ TEST(Extremes, AlphaFromOneHundredthToOneConvergesOnTheFurnace) {
             } else {
                 EXPECT_LT(st.mean_radius, st.initial_radius) << name(integ) << " alpha " << alpha;
             }
-            if (integ == Integrator::PPM) {
+            if (integ == "ppm") {
                 EXPECT_GT(st.mean_radius, previous_radius) << "R grows with alpha";
             }
             previous_radius = st.mean_radius;
@@ -148,7 +149,7 @@ TEST(Extremes, InitialRadiusOfAThousandthOfAPixel) {
     Scene scene = plane_under_point_light(rho, I, h);
     // The camera is 3 above the plane with yfov 0.6: one pixel of 16 spans 3 * 2 tan(0.3) / 16.
     const double footprint = 3 * 2 * std::tan(0.3) / 16;
-    for (Integrator integ : {Integrator::PPM, Integrator::SPPM}) {
+    for (std::string integ : {"ppm", "sppm"}) {
         RenderSettings s = small(16, 20000, DirectLighting::Sample, integ);
         s.radius = 1e-3 * footprint;
         IntegratorStats st;
@@ -167,7 +168,7 @@ TEST(Extremes, InitialRadiusOfAThousandthOfAPixel) {
 // pi r^2, so the furnace stays unbiased: 2.0 within 1.5%. On the plane under a point light the
 // blur flattens the peak: finite, positive, not above the closed form's maximum.
 TEST(Extremes, InitialRadiusOfATenthOfTheScene) {
-    for (Integrator integ : {Integrator::PPM, Integrator::SPPM}) {
+    for (std::string integ : {"ppm", "sppm"}) {
         RenderSettings s = small(16, 20000, DirectLighting::Photons, integ);
         s.radius = 0.2;
         Image img = render(furnace(0.5f, 1.0f), s, 8);
@@ -191,7 +192,7 @@ TEST(Extremes, InitialRadiusOfATenthOfTheScene) {
 TEST(Extremes, SceneScaledBy1eMinus4And1e4RendersTheSame) {
     const float rho = 0.5f, I = 10.f, h = 1.f;
     for (double scale : {1e-4, 1.0, 1e4})
-        for (Integrator integ : {Integrator::PPM, Integrator::SPPM})
+        for (std::string integ : {"ppm", "sppm"})
             for (DirectLighting direct : {DirectLighting::Sample, DirectLighting::Photons}) {
                 Scene scene = scaled(plane_under_point_light(rho, I, h), scale);
                 RenderSettings s = small(16, 50000, direct, integ);
@@ -235,7 +236,7 @@ TEST(Extremes, LightPowerScalesTheImageLinearly) {
     };
     std::vector<Case> cases = {{diffuse_box(false), DirectLighting::Sample},
                                {plane_under_point_light(0.5f, 10.f, 1.f), DirectLighting::Photons}};
-    for (Integrator integ : {Integrator::PPM, Integrator::SPPM})
+    for (std::string integ : {"ppm", "sppm"})
         for (const Case& c : cases) {
             RenderSettings s = small(16, 10000, c.direct, integ);
             Image base = render(c.scene, s, 3);
@@ -265,10 +266,10 @@ TEST(Extremes, HitPointsNoPhotonReachesStayZeroForThousandsOfPasses) {
     add_quad(s, {-1, 0, -1}, {-1, 0, 1}, {1, 0, 1}, {1, 0, -1}, m);
     add_spot_light(s, {0, -0.5f, 0}, 100.f, 0.4f, 0.6f); // points straight down, away from the plane
     add_camera(s, {0, 2, 0}, {0, -1, 0}, {0, 0, -1}, 0.8f);
-    for (Integrator integ : {Integrator::PPM, Integrator::SPPM}) {
+    for (std::string integ : {"ppm", "sppm"}) {
         RenderSettings rs = small(4, 256, DirectLighting::Sample, integ);
         IntegratorStats st;
-        Image img = render(s, rs, integ == Integrator::PPM ? 2000 : 200, &st);
+        Image img = render(s, rs, integ == "ppm" ? 2000 : 200, &st);
         for (float v : img.rgb) ASSERT_EQ(v, 0.0f) << name(integ);
         EXPECT_EQ(st.photons_stored, 0u) << name(integ);
         EXPECT_NEAR(st.mean_radius / st.initial_radius, 1.0, 1e-6) << name(integ) << ": R changed without photons";
@@ -287,7 +288,7 @@ TEST(Extremes, ALightNoSurfaceSeesChangesNothing) {
     const float rho = 0.5f, I = 10.f, h = 1.f;
     Scene scene = plane_under_point_light(rho, I, h);
     add_spot_light(scene, {0, -0.5f, 0}, 3 * I, 0.4f, 0.6f); // below the plane, pointing down
-    for (Integrator integ : {Integrator::PPM, Integrator::SPPM})
+    for (std::string integ : {"ppm", "sppm"})
         for (DirectLighting direct : {DirectLighting::Sample, DirectLighting::Photons}) {
             const bool sample = direct == DirectLighting::Sample;
             RenderSettings s = small(16, sample ? 5000 : 50000, direct, integ);
@@ -306,7 +307,7 @@ TEST(Extremes, PhotonsEscapingAnOpenSceneLeaveTheSkyBlack) {
     Scene scene = plane_under_point_light(0.5f, 10.f, 1.f);
     scene.cameras.clear();
     add_camera(scene, {0, 0.5f, 3.5f}, {0, 0, -1}, {0, 1, 0}, 0.9f); // horizon at mid-image, far edge at z = -4
-    for (Integrator integ : {Integrator::PPM, Integrator::SPPM}) {
+    for (std::string integ : {"ppm", "sppm"}) {
         RenderSettings s = small(16, 20000, DirectLighting::Sample, integ);
         Image img = render(scene, s, 4);
         for (int y = 0; y < 6; ++y)
@@ -335,12 +336,12 @@ TEST(Extremes, ASceneOfOnlySpecularSurfaces) {
     add_quad(s, {-0.3f, 0.99f, -0.3f}, {0.3f, 0.99f, -0.3f}, {0.3f, 0.99f, 0.3f}, {-0.3f, 0.99f, 0.3f}, lamp);
     add_sphere(s, {0.2f, -0.5f, -0.2f}, 0.4f, 8, 16, glass);
     add_camera(s, {0, 0, 0.95f}, {0, 0, -1}, {0, 1, 0}, 1.3f);
-    for (Integrator integ : {Integrator::PPM, Integrator::SPPM})
+    for (std::string integ : {"ppm", "sppm"})
         for (DirectLighting direct : {DirectLighting::Sample, DirectLighting::Photons}) {
             IntegratorStats st;
             Image img = render(s, small(16, 5000, direct, integ), 3, &st);
             EXPECT_EQ(st.photons_stored, 0u) << name(integ);
-            if (integ == Integrator::PPM) {
+            if (integ == "ppm") {
                 EXPECT_EQ(st.hitpoints, 0u);
             }
             EXPECT_GT(mean_radiance(img), 0.0) << name(integ) << ": the lamp is seen in the mirrors";
@@ -369,7 +370,7 @@ TEST(Extremes, DegenerateAndNeedleTrianglesRenderFinite) {
         add_triangle(odd, {0.3f, -0.9f, 0.2f}, {0.3f, 0.6f, 0.2f}, {0.3000001f, 0.6f, 0.2f}, m);     // needle
         p.x += 0.2f;
     }
-    for (Integrator integ : {Integrator::PPM, Integrator::SPPM}) {
+    for (std::string integ : {"ppm", "sppm"}) {
         RenderSettings s = small(16, 20000, DirectLighting::Sample, integ);
         std::vector<double> ref = block_means(render(box, s, 16));
         std::vector<double> b = block_means(render(odd, s, 16));
@@ -393,7 +394,7 @@ TEST(Extremes, HugeTextureCoordinatesStayFinite) {
             const float* c = coords[t % 2];
             sh.uv0[0] = c[0], sh.uv0[1] = c[1], sh.uv1[0] = c[2], sh.uv1[1] = c[3], sh.uv2[0] = c[4], sh.uv2[1] = c[5];
         }
-        for (Integrator integ : {Integrator::PPM, Integrator::SPPM}) {
+        for (std::string integ : {"ppm", "sppm"}) {
             Image img = render(scene, small(16, 5000, DirectLighting::Sample, integ), 2);
             EXPECT_EQ(count_nonfinite(img), 0u) << name(integ) << " wrap " << wrap;
             EXPECT_EQ(count_negative(img), 0u) << name(integ) << " wrap " << wrap;

@@ -16,9 +16,9 @@
 #include <nlohmann/json.hpp>
 #include <stb_image.h>
 
-#include "cli/live_view.h"
 #include "io/half_image.h"
 #include "io/image_io.h"
+#include "render/live_view.h"
 #include "test_util.h"
 #include "util/error.h"
 

@@ -15,6 +15,8 @@ namespace {
 
 RenderSettings small(unsigned w, unsigned h, uint64_t photons, DirectLighting direct) {
     RenderSettings s;
+    s.integrator = "ppm";
+    s.spp = 1;
     s.width = w, s.height = h;
     s.photons = photons;
     s.direct = direct;
@@ -98,7 +100,7 @@ TEST(Ppm, AgreesWithPathTracerOnDiffuseBox) {
     // A radius well below the 32-pixel footprint keeps PPM's boundary bias in the corners small.
     s.radius = 0.04;
     Image ppm = render_passes(diffuse_box(), s, 32);
-    s.integrator = Integrator::PT;
+    s.integrator = "pt";
     Image pt = render_passes(diffuse_box(), s, 512);
     EXPECT_EQ(count_nonfinite(ppm), 0u);
     EXPECT_EQ(count_nonfinite(pt), 0u);
@@ -127,7 +129,7 @@ TEST(Ppm, SameSeedGivesTheSameImageBitForBit) {
 // converged path-traced reference falls as passes (and so photons) grow.
 TEST(Ppm, ErrorFallsAsPassesGrow) {
     RenderSettings pt = small(24, 24, 0, DirectLighting::Photons);
-    pt.integrator = Integrator::PT;
+    pt.integrator = "pt";
     Image ref = render_passes(diffuse_box(), pt, 4096);
     auto rel_rmse = [&](const Image& img) {
         double se = 0, mean = mean_radiance(ref);

@@ -1,5 +1,5 @@
 // progress: the pure line formatting, and how often the reporter draws on a terminal and in logs.
-#include "cli/progress.h"
+#include "render/progress.h"
 
 #include <algorithm>
 #include <cstdio>

@@ -13,7 +13,7 @@ using namespace clppm::test;
 
 namespace {
 
-RenderSettings settings(Integrator integ, unsigned size, uint64_t photons) {
+RenderSettings settings(const std::string& integ, unsigned size, uint64_t photons) {
     RenderSettings s;
     s.integrator = integ;
     s.width = s.height = size;
@@ -40,22 +40,22 @@ void expect_images_agree(const Image& a, const Image& b, double mean_tol, double
 // Without distributed effects (pixel-centred PPM vs jittered SPPM/PPPM differ only by the pixel
 // filter, which averages out in region means) the three photon mappers agree.
 TEST(Sppm, ThreeIntegratorsConvergeToTheSameImage) {
-    RenderSettings s = settings(Integrator::PPM, 32, 50000);
+    RenderSettings s = settings("ppm", 32, 50000);
     s.radius = 0.04;
     Image ppm = render_passes(diffuse_box(), s, 48);
-    s.integrator = Integrator::SPPM;
+    s.integrator = "sppm";
     Image sppm = render_passes(diffuse_box(), s, 48);
-    s.integrator = Integrator::PPPM;
+    s.integrator = "pppm";
     Image pppm = render_passes(diffuse_box(), s, 48);
     expect_images_agree(sppm, ppm, 0.015, 0.04, "sppm vs ppm");
     expect_images_agree(pppm, ppm, 0.015, 0.04, "pppm vs ppm");
 }
 
 TEST(Sppm, GlossyBoxAgreesWithPathTracer) {
-    RenderSettings s = settings(Integrator::SPPM, 32, 50000);
+    RenderSettings s = settings("sppm", 32, 50000);
     s.radius = 0.04;
     Image sppm = render_passes(glossy_box(), s, 64);
-    s.integrator = Integrator::PT;
+    s.integrator = "pt";
     Image pt = render_passes(glossy_box(), s, 1024);
     expect_images_agree(sppm, pt, 0.02, 0.06, "glossy sppm vs pt");
 }
@@ -63,9 +63,9 @@ TEST(Sppm, GlossyBoxAgreesWithPathTracer) {
 // A glossy conductor never reflects more than arrives: the glossy furnace stays below the
 // Lambertian furnace of the same F0 (Le / (1 - F0)), and SPPM and PT agree on it.
 TEST(Sppm, GlossyFurnaceDoesNotGainEnergy) {
-    RenderSettings s = settings(Integrator::SPPM, 16, 50000);
+    RenderSettings s = settings("sppm", 16, 50000);
     Image sppm = render_passes(glossy_furnace(0.5f, 0.6f, 1.f), s, 16);
-    s.integrator = Integrator::PT;
+    s.integrator = "pt";
     Image pt = render_passes(glossy_furnace(0.5f, 0.6f, 1.f), s, 512);
     EXPECT_LT(mean_radiance(sppm), 2.0 * 1.01);
     EXPECT_LT(mean_radiance(pt), 2.0 * 1.01);

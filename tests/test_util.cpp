@@ -80,7 +80,7 @@ void expect_scenes_render_alike(const std::string& file, const std::string& refe
 } // namespace clppm::test
 
 #include "device/kernel_program.h"
-#include "integrators/integrator_factory.h"
+#include "integrators/integrator_table.h"
 #include "scene/device_scene.h"
 
 namespace clppm::test {
@@ -88,8 +88,8 @@ namespace clppm::test {
 Image render_passes(Scene scene, const RenderSettings& settings, uint64_t passes, IntegratorStats* stats) {
     DeviceContext dc(test_device());
     DeviceScene ds = upload_scene(dc, scene, settings);
-    cl::Program program =
-        build_program(dc, integrator_program_file(settings), integrator_build_options(settings, dc.info));
+    cl::Program program = build_program(dc, integrator_row(settings.integrator).program_file,
+                                        integrator_build_options(settings, dc.info));
     std::unique_ptr<IntegratorBase> integ = make_integrator(dc, ds, settings, program);
     integ->prepare();
     for (uint64_t p = 0; p < passes; ++p) integ->run_pass();

@@ -11,8 +11,8 @@
 #include <thread>
 #include <unistd.h>
 
-#include "cli/tev_client.h"
 #include "io/image_io.h"
+#include "render/tev_client.h"
 #include "test_util.h"
 #include "util/error.h"
 

@@ -1,11 +1,11 @@
 // clppm: progressive photon mapping on OpenCL. Dispatches to the compare command, the device
-// list, or a render session (src/render_session.cpp).
+// list, or a render (cli/render_command.h).
 #include <cstdio>
 #include <string>
 
 #include "cli/compare_command.h"
 #include "cli/options.h"
-#include "cli/render_session.h"
+#include "cli/render_command.h"
 #include "device/cluster.h"
 #include "device/device.h"
 #include "util/error.h"
@@ -18,7 +18,7 @@ int main(int argc, char** argv) {
         // mpirun -np N: one render on N processes (device/cluster.h); otherwise a cluster of one.
         const ClusterSession mpi(&argc, &argv);
         if (argc >= 2 && std::string(argv[1]) == "compare") return compare_command(argc - 2, argv + 2);
-        Options opt = parse_options(argc, argv);
+        const CommandLine opt = parse_options(argc, argv);
         if (opt.help) {
             std::fputs(usage().c_str(), stdout);
             return 0;
@@ -31,7 +31,7 @@ int main(int argc, char** argv) {
             std::fputs(describe_devices(list_devices()).c_str(), stdout);
             return 0;
         }
-        return render_session(opt);
+        return render_command(opt.render);
     } catch (const Error& e) {
         std::fprintf(stderr, "clppm: %serror: %s\n", cluster().prefix().c_str(), e.what());
         return 1;

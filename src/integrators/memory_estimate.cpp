@@ -2,9 +2,7 @@
 
 #include <algorithm>
 
-#include "integrators/integrator_factory.h"
-#include "integrators/photon_map.h"
-#include "integrators/vcm_integrator.h"
+#include "integrators/integrator_table.h"
 #include "shared_types.h"
 #include "util/error.h"
 
@@ -32,23 +30,13 @@ MemoryEstimate estimate_memory(const Scene& scene, const RenderSettings& setting
         const dev::Texture& t = scene.textures[size_t(scene.environment.texture)];
         m.scene += (2 * size_t(t.width) + 3) * t.height * sizeof(float);
     }
-    const IntegratorMemory own = integrator_memory(settings, width, height, error_estimation);
+    const IntegratorRow& row = integrator_row(settings.integrator);
+    const size_t pixels = size_t(width) * height;
+    const IntegratorMemory own = row.memory(settings, pixels, error_estimation);
     m.integrator = own.bytes;
-    m.largest_buffer = std::max(own.largest_buffer, tris * sizeof(dev::TriShading));
-    switch (settings.integrator) {
-    case Integrator::PPM:
-    case Integrator::SPPM:
-    case Integrator::PPPM:
-        m.photons = PhotonMap::memory_needed(settings, device);
-        m.largest_buffer = std::max(m.largest_buffer, m.photons / 2);
-        break;
-    case Integrator::PT: break;
-    case Integrator::VCM:
-    case Integrator::BPT: // the light vertices and their grid
-        m.photons = VcmIntegrator::light_vertex_bytes(size_t(width) * height, device);
-        m.largest_buffer = std::max(m.largest_buffer, m.photons / 2);
-        break;
-    }
+    // Photons or light vertices: two buffers of them (traced and sorted) and their grid.
+    m.photons = row.transport_memory(settings, pixels, device);
+    m.largest_buffer = std::max({own.largest_buffer, tris * sizeof(dev::TriShading), m.photons / 2});
     return m;
 }
 

@@ -22,8 +22,9 @@ double now_seconds() {
 } // namespace
 
 PtIntegrator::PtIntegrator(const DeviceContext& dc, const DeviceScene& scene, const RenderSettings& settings,
-                           const cl::Program& program)
+                           const cl::Program& program, const SecondaryDevices& secondaries)
     : dc_(dc), scene_(scene), settings_(settings), program_(program) {
+    if (!secondaries.devices.empty()) throw Error("the path tracer renders on one device only");
     k_trace_ = cl::Kernel(program, "path_trace");
     k_film_ = cl::Kernel(program, "mean_film");
     num_pixels_ = scene.camera.width * scene.camera.height;
@@ -42,6 +43,16 @@ IntegratorMemory PtIntegrator::memory_needed(size_t pixels, bool error_estimatio
         m.largest_buffer = std::max(m.largest_buffer, pixels * sizeof(dev::ErrorStats));
     }
     return m;
+}
+
+std::vector<std::string> PtIntegrator::warnings(const Scene& scene, const SceneFeatures& features) {
+    // Roughness below 0.01 is where kernels/bsdf.cl makes the lobe a delta.
+    bool smooth = false;
+    for (const dev::Material& m : scene.materials)
+        smooth = smooth || (m.roughness < 0.01f && (m.metallic > 0.f || m.transmission > 0.f));
+    if (!smooth || !(features.point_lights || features.spot_lights || features.directional_lights)) return {};
+    return {"the path tracer cannot find caustics of point, spot or directional lights through glass or mirrors: "
+            "that light is missing from its image and from its error estimate (--integrator sppm finds it)"};
 }
 
 void PtIntegrator::enable_error_estimation() {

@@ -9,13 +9,16 @@
 #include "integrators/render_settings.h"
 #include "integrators/work_balance.h"
 #include "scene/device_scene.h"
+#include "scene/scene.h"
+#include "scene/scene_features.h"
 
 namespace clppm {
 
 class PtIntegrator : public IntegratorBase {
 public:
+    // The path tracer renders on the first device alone: `secondaries` must be empty.
     PtIntegrator(const DeviceContext& dc, const DeviceScene& scene, const RenderSettings& settings,
-                 const cl::Program& program);
+                 const cl::Program& program, const SecondaryDevices& secondaries = {});
     std::string name() const override { return "pt"; }
     void prepare() override;
     void run_pass() override;
@@ -30,6 +33,10 @@ public:
 
     // The buffers prepare() (and enable_error_estimation()) allocate for `pixels` pixels.
     static IntegratorMemory memory_needed(size_t pixels, bool error_estimation = false);
+
+    // Light it never finds: a point, spot or directional light seen through smooth glass or a
+    // mirror (a caustic) is a path of two delta events it never samples.
+    static std::vector<std::string> warnings(const Scene& scene, const SceneFeatures& features);
 
 private:
     WorkBalance balance_; // this rank's seconds against its pixels, for the ranks' split

@@ -2,18 +2,6 @@
 
 namespace clppm {
 
-const char* to_string(Integrator integrator) {
-    switch (integrator) {
-    case Integrator::PPM: return "ppm";
-    case Integrator::SPPM: return "sppm";
-    case Integrator::PPPM: return "pppm";
-    case Integrator::PT: return "pt";
-    case Integrator::VCM: return "vcm";
-    case Integrator::BPT: return "bpt";
-    }
-    return "?";
-}
-
 const char* to_string(PixelFilter filter) {
     switch (filter) {
     case PixelFilter::Box: return "box";

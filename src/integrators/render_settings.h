@@ -1,24 +1,27 @@
 // What one render is asked to do, independent of how the command line spelled it.
 #pragma once
 #include <cstdint>
+#include <string>
 
 #include "scene/scene_settings.h"
 
 namespace clppm {
 
-enum class Integrator { PPM, SPPM, PPPM, PT, VCM, BPT }; // --integrator ppm|sppm|pppm|pt|vcm|bpt
-enum class DirectLighting { Photons, Sample };           // --direct photons|sample
-enum class PixelFilter { Box, Tent };                    // --filter box|tent
+enum class DirectLighting { Photons, Sample }; // --direct photons|sample
+enum class PixelFilter { Box, Tent };          // --filter box|tent
 
-const char* to_string(Integrator integrator); // "ppm", "pt"
 const char* to_string(DirectLighting direct); // "photons", "sample"
 const char* to_string(PixelFilter filter);    // "box", "tent"
 
-// The scene's part (camera, resolution, lens, path length) is the SceneSettings base.
+// The one set of defaults for what shapes an image, whichever front end asks (the command line,
+// the Python module, the tests). The scene's part (camera, resolution, lens, path length) is the
+// SceneSettings base.
 struct RenderSettings : SceneSettings {
-    Integrator integrator = Integrator::PPM;
+    // A name of integrators/integrator_table.h, or "auto": the default integrator picks one for the
+    // scene (integrators/default_integrator.h) before anything is made.
+    std::string integrator = "auto";
     DirectLighting direct = DirectLighting::Sample;
-    unsigned spp = 1;          // hit points (PPM) per pixel
+    unsigned spp = 4;          // PPM: hit points per pixel (4 anti-alias: bench/RESULTS.md)
     uint64_t photons = 200000; // photons per pass (M)
     double alpha = 0.7;
     double radius = 0; // initial radius in world units; 0: heuristic

@@ -14,8 +14,7 @@ namespace clppm {
 
 SppmIntegrator::SppmIntegrator(const DeviceContext& dc, const DeviceScene& scene, const RenderSettings& settings,
                                const cl::Program& program, const SecondaryDevices& secondaries)
-    : dc_(dc), scene_(scene), settings_(settings), probabilistic_(settings.integrator == Integrator::PPPM),
-      program_(program) {
+    : dc_(dc), scene_(scene), settings_(settings), probabilistic_(settings.integrator == "pppm"), program_(program) {
     photons_ = std::make_unique<PhotonPasses>(dc, scene, settings_, program, stats_, secondaries.devices,
                                               secondaries.program_file, secondaries.build_options);
     k_eye_ = cl::Kernel(program, "eye_pass");

@@ -46,7 +46,7 @@ uint64_t initial_capacity(uint64_t paths, const DeviceInfo& device) {
 
 uint32_t technique_mode(const RenderSettings& s) {
     if (s.vcm_techniques >= 0) return uint32_t(s.vcm_techniques);
-    return s.integrator == Integrator::BPT ? VCM_MODE_BPT : VCM_MODE_VCM;
+    return s.integrator == "bpt" ? VCM_MODE_BPT : VCM_MODE_VCM;
 }
 
 } // namespace
@@ -81,9 +81,6 @@ struct VcmIntegrator::Worker {
 VcmIntegrator::VcmIntegrator(const DeviceContext& dc, const DeviceScene& scene, const RenderSettings& settings,
                              const cl::Program& program, const SecondaryDevices& secondaries)
     : dc_(dc), scene_(scene), settings_(settings), mode_(technique_mode(settings)), grid_(dc, program, stats_) {
-    if (settings.filter != PixelFilter::Box)
-        throw Error("--integrator " + name() + ": light tracing splats with the box filter only; drop --filter " +
-                    to_string(settings.filter));
     k_light_ = cl::Kernel(program, "vcm_light");
     k_camera_ = cl::Kernel(program, "vcm_camera");
     k_film_ = cl::Kernel(program, "mean_film");

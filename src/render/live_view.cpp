@@ -1,4 +1,4 @@
-#include "cli/live_view.h"
+#include "render/live_view.h"
 
 #include <chrono>
 #include <cstdio>
@@ -6,9 +6,9 @@
 
 #include <httplib.h>
 
-#include "cli/live_view_page.h"
 #include "integrators/error_estimate.h" // false_colour
 #include "io/half_image.h"
+#include "render/live_view_page.h"
 #include "util/error.h"
 
 namespace clppm {

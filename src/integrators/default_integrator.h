@@ -12,8 +12,8 @@
 namespace clppm {
 
 struct IntegratorChoice {
-    Integrator integrator;
-    std::string reason; // for the note: why this one
+    std::string integrator; // a row of integrators/integrator_table.h
+    std::string reason;     // for the note: why this one
 };
 
 // `scene` after apply_environment.

@@ -1,0 +1,14 @@
+#include "integrators/default_integrator.h"
+
+#include "scene/environment.h"
+
+namespace clppm {
+
+IntegratorChoice default_integrator(const Scene& scene) {
+    if (!scene_has_lights(scene) && scene.environment.present)
+        return {"pt", "the scene is lit only by its environment, where the path tracer converges fastest "
+                      "(--integrator sppm for photon mapping)"};
+    return {"sppm", "the scene has lights of its own: stochastic progressive photon mapping"};
+}
+
+} // namespace clppm

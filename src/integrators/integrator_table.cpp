@@ -1,0 +1,107 @@
+#include "integrators/integrator_table.h"
+
+#include <cctype>
+
+#include "integrators/photon_map.h"
+#include "integrators/ppm_integrator.h"
+#include "integrators/pt_integrator.h"
+#include "integrators/sppm_integrator.h"
+#include "integrators/vcm_integrator.h"
+#include "shared_types.h"
+#include "util/error.h"
+
+namespace clppm {
+
+namespace {
+
+template <class T>
+std::unique_ptr<IntegratorBase> make(const DeviceContext& dc, const DeviceScene& scene, const RenderSettings& settings,
+                                     const cl::Program& program, const SecondaryDevices& secondaries) {
+    return std::make_unique<T>(dc, scene, settings, program, secondaries);
+}
+
+IntegratorMemory sppm_memory(const RenderSettings&, size_t pixels, bool errors) {
+    return SppmIntegrator::memory_needed(pixels, errors);
+}
+IntegratorMemory pt_memory(const RenderSettings&, size_t pixels, bool errors) {
+    return PtIntegrator::memory_needed(pixels, errors);
+}
+IntegratorMemory vcm_memory(const RenderSettings&, size_t pixels, bool) { return VcmIntegrator::memory_needed(pixels); }
+size_t photon_memory(const RenderSettings& settings, size_t, const DeviceInfo& device) {
+    return PhotonMap::memory_needed(settings, device);
+}
+size_t no_transport_memory(const RenderSettings&, size_t, const DeviceInfo&) { return 0; }
+size_t light_vertex_memory(const RenderSettings&, size_t pixels, const DeviceInfo& device) {
+    return VcmIntegrator::light_vertex_bytes(pixels, device);
+}
+
+// Passes of one sample per pixel are about 8 times cheaper than a photon pass at 512x512: 512 of
+// them take about as long as 64 photon passes.
+constexpr uint64_t kPhotonPasses = 64, kPixelPasses = 512;
+
+const std::vector<IntegratorRow> kTable = {
+    {"ppm", nullptr, "progressive photon mapping (fixed hit points, Hachisuka et al. 2008)", "ppm_program.cl",
+     PPM_EYE_SLOTS, WorkUnit::Photons, kPhotonPasses, true, true, "", PpmIntegrator::memory_needed, photon_memory,
+     make<PpmIntegrator>, nullptr},
+    {"sppm", nullptr, "stochastic PPM (a new eye sample per pixel every pass)", "sppm_program.cl", SPPM_EYE_SLOTS,
+     WorkUnit::Photons, kPhotonPasses, true, true, "", sppm_memory, photon_memory, make<SppmIntegrator>, nullptr},
+    {"pppm", nullptr, "probabilistic PPM (independent passes, Knaus and Zwicker 2011)", "sppm_program.cl",
+     SPPM_EYE_SLOTS, WorkUnit::Photons, kPhotonPasses, true, true, "", sppm_memory, photon_memory, make<SppmIntegrator>,
+     nullptr},
+    {"pt", nullptr, "path tracing", "path_trace.cl", PPM_EYE_SLOTS, WorkUnit::Pixels, kPixelPasses, false, true, "",
+     pt_memory, no_transport_memory, make<PtIntegrator>, PtIntegrator::warnings},
+    {"vcm", nullptr, "vertex connection and merging (bidirectional path tracing and photon merging under MIS)",
+     "vcm_program.cl", PPM_EYE_SLOTS, WorkUnit::Pixels, kPixelPasses, true, false,
+     " (every process traces all light sub-paths)", vcm_memory, light_vertex_memory, make<VcmIntegrator>, nullptr},
+    {"bpt", "bdpt", "bidirectional path tracing", "vcm_program.cl", PPM_EYE_SLOTS, WorkUnit::Pixels, kPixelPasses, true,
+     false, " (every process traces all light sub-paths)", vcm_memory, light_vertex_memory, make<VcmIntegrator>,
+     nullptr},
+};
+
+std::string lower(std::string s) {
+    for (char& c : s) c = char(std::tolower(static_cast<unsigned char>(c)));
+    return s;
+}
+
+} // namespace
+
+const std::vector<IntegratorRow>& integrator_table() { return kTable; }
+
+const IntegratorRow& integrator_row(const std::string& name) {
+    const std::string n = lower(name);
+    for (const IntegratorRow& row : kTable)
+        if (n == row.name || (row.alias && n == row.alias)) return row;
+    throw Error("unknown integrator " + name + " (one of " + integrator_names() + ")");
+}
+
+std::string integrator_names() {
+    std::string s;
+    for (size_t i = 0; i < kTable.size(); ++i)
+        s += (i == 0 ? "" : i + 1 == kTable.size() ? " or " : ", ") + std::string(kTable[i].name);
+    return s;
+}
+
+std::unique_ptr<IntegratorBase> make_integrator(const DeviceContext& dc, const DeviceScene& scene,
+                                                const RenderSettings& settings, const cl::Program& program,
+                                                const SecondaryDevices& secondaries) {
+    const IntegratorRow& row = integrator_row(settings.integrator);
+    RenderSettings canonical = settings; // the integrators compare names as the table spells them
+    canonical.integrator = row.name;
+    return row.make(dc, scene, canonical, program, secondaries);
+}
+
+std::string integrator_build_options(const RenderSettings& settings, const DeviceInfo& device,
+                                     const std::string& features) {
+    if (!device.fp64)
+        throw Error("device " + device.name +
+                    " lacks double precision (cl_khr_fp64), which clppm's hit point statistics need; pick another "
+                    "with --device");
+    // PPM splits an eye sample at glass and metal into several hit points; SPPM and PPPM keep
+    // one visible point per pixel and pass.
+    std::string options = "-DEYE_SLOTS=" + std::to_string(integrator_row(settings.integrator).eye_slots);
+    if (settings.filter == PixelFilter::Tent) options += " -DPIXEL_FILTER_TENT";
+    if (!features.empty()) options += " " + features;
+    return options;
+}
+
+} // namespace clppm

@@ -1,0 +1,266 @@
+#include "render/option_table.h"
+
+#include <climits>
+#include <cstdint>
+
+#include "integrators/integrator_table.h"
+#include "render/live_view.h"
+#include "util/error.h"
+
+namespace clppm {
+
+namespace {
+
+bool is_integrator(const std::string& v) {
+    for (const IntegratorRow& row : integrator_table())
+        if (v == row.name || (row.alias && v == row.alias)) return true;
+    return false;
+}
+
+const std::string& integrator_range() {
+    static const std::string s = "auto, " + integrator_names();
+    return s;
+}
+
+const std::string& integrator_help() {
+    static const std::string s = [] {
+        std::string h = "Integrator: auto = the fastest for the scene (sppm for a scene with lights of its own, pt for "
+                        "one lit only by an environment; measured: bench/RESULTS.md)";
+        for (const IntegratorRow& row : integrator_table()) h += std::string("; ") + row.name + " = " + row.summary;
+        return h;
+    }();
+    return s;
+}
+
+const std::string& default_passes_text() {
+    static const std::string s = [] {
+        std::string photons, pixels;
+        uint64_t photon_passes = 0, pixel_passes = 0;
+        for (const IntegratorRow& row : integrator_table()) {
+            std::string& list = row.unit == WorkUnit::Photons ? photons : pixels;
+            list += (list.empty() ? "" : ", ") + std::string(row.name);
+            (row.unit == WorkUnit::Photons ? photon_passes : pixel_passes) = row.default_passes;
+        }
+        return std::to_string(photon_passes) + " (" + photons + "), " + std::to_string(pixel_passes) + " (" + pixels +
+               "); unlimited with --time";
+    }();
+    return s;
+}
+
+} // namespace
+
+const std::vector<RenderOptionSpec>& render_option_table() {
+    static const std::vector<RenderOptionSpec> table = {
+        {"Output", "--output", "-o", "FILE", "Output image (a PNG preview is written beside it)",
+         "a file name ending in .exr", "clppm.exr (the command line; none from Python)",
+         [](RenderOptions& o, const OptionArg& a) {
+             if (!ends_with_ci(a.value, ".exr") || a.value.size() <= 4) bad_value(a);
+             o.output = a.value;
+         }},
+        {"Output", "--no-png", nullptr, nullptr, "Do not write the PNG preview", nullptr, nullptr,
+         [](RenderOptions& o, const OptionArg&) { o.write_png = false; }},
+        {"Output", "--tonemap", nullptr, "CURVE",
+         "The PNG's tone curve: clip = linear up to white, aces = a filmic curve (Narkowicz's ACES fit), "
+         "reinhard = x / (1 + x); the EXR stays linear",
+         "clip, aces or reinhard", "aces",
+         [](RenderOptions& o, const OptionArg& a) {
+             if (!parse_tone_curve(a.value, &o.tone.curve)) bad_value(a);
+         }},
+        {"Output", "--exposure", nullptr, "EV",
+         "The PNG's exposure in stops (x 2^EV before the tone curve; with --auto-exposure, added to it)",
+         "a number in -64..64", "0",
+         [](RenderOptions& o, const OptionArg& a) {
+             o.tone.exposure_ev = parse_real(a, [](double x) { return x >= -64 && x <= 64; });
+         }},
+        {"Output", "--auto-exposure", nullptr, nullptr,
+         "Expose the PNG so that the image's log-average luminance shows as middle grey (0.18)", nullptr, nullptr,
+         [](RenderOptions& o, const OptionArg&) { o.tone.auto_exposure = true; }},
+        {"Output", "--stats-json", nullptr, "FILE", "Write render statistics as JSON", "a file name", "none",
+         [](RenderOptions& o, const OptionArg& a) { o.stats_json = non_empty(a); }},
+        {"Output", "--progressive-output", nullptr, "K", "Also save the images every K passes",
+         "an integer >= 0 (0 = off)", "0",
+         [](RenderOptions& o, const OptionArg& a) {
+             o.progressive_output = static_cast<uint64_t>(parse_int(a, 0, INT64_MAX));
+         }},
+        {"Output", "--serve", nullptr, "[ADDR:]PORT",
+         "Serve a live view of the render at http://ADDR:PORT/ (image, progress, error map, save and stop buttons); "
+         "ADDR defaults to 127.0.0.1, PORT 0 picks a free port",
+         "[ADDR:]PORT with a port in 0..65535", "off",
+         [](RenderOptions& o, const OptionArg& a) {
+             parse_serve_address(a.value); // checked now: a typo fails before the scene loads
+             o.serve = a.value;
+         }},
+        {"Output", "--display-server", nullptr, "HOST:PORT",
+         "Send the image as it converges to the tev viewer listening at HOST:PORT (tev's own protocol, as pbrt-v4's "
+         "--display-server; tev listens on 127.0.0.1:14158)",
+         "HOST:PORT", "off", [](RenderOptions& o, const OptionArg& a) { o.display_server = non_empty(a); }},
+        {"Output", "--quiet", nullptr, nullptr, "No progress output", nullptr, nullptr,
+         [](RenderOptions& o, const OptionArg&) { o.quiet = true; }},
+        // 0 is refused, not read as "the camera's": leaving the option out says that.
+        {"Image and camera", "--width", nullptr, "N", "Image width in pixels", "an integer in 1..16384",
+         "the camera's aspect times the height",
+         [](RenderOptions& o, const OptionArg& a) { o.settings.width = unsigned(parse_int(a, 1, 16384)); }},
+        {"Image and camera", "--height", nullptr, "N", "Image height in pixels", "an integer in 1..16384",
+         "512, or the width over the camera's aspect",
+         [](RenderOptions& o, const OptionArg& a) { o.settings.height = unsigned(parse_int(a, 1, 16384)); }},
+        {"Image and camera", "--camera", nullptr, "N", "Index of the glTF camera to render through", "an integer >= 0",
+         "0", [](RenderOptions& o, const OptionArg& a) { o.settings.camera = unsigned(parse_int(a, 0, INT_MAX)); }},
+        {"Image and camera", "--aperture", nullptr, "R", "Thin-lens aperture radius in scene units (depth of field)",
+         "a finite number >= 0 (0 = pinhole)", "the camera's, else 0",
+         [](RenderOptions& o, const OptionArg& a) {
+             o.settings.aperture = parse_real(a, [](double x) { return x >= 0; });
+         }},
+        {"Image and camera", "--focus-distance", nullptr, "D", "Distance to the plane in focus, in scene units",
+         "a finite number > 0", "the camera's, else the scene centre's distance",
+         [](RenderOptions& o, const OptionArg& a) {
+             o.settings.focus_distance = parse_real(a, [](double x) { return x > 0; });
+         }},
+        {"Image and camera", "--filter", nullptr, "NAME",
+         "Pixel filter, importance-sampled: box = the pixel's square, tent = separable tent of radius 1 pixel",
+         "box or tent", "box",
+         [](RenderOptions& o, const OptionArg& a) {
+             const std::string v = lower(a.value);
+             if (v == "box") o.settings.filter = PixelFilter::Box;
+             else if (v == "tent") o.settings.filter = PixelFilter::Tent;
+             else bad_value(a);
+         }},
+        {"Integrator", "--integrator", nullptr, "NAME", integrator_help().c_str(), integrator_range().c_str(), "auto",
+         [](RenderOptions& o, const OptionArg& a) {
+             const std::string v = lower(a.value);
+             if (v == "auto") o.settings.integrator = "auto";
+             else if (is_integrator(v)) o.settings.integrator = integrator_row(v).name;
+             else bad_value(a);
+         }},
+        {"Integrator", "--passes", nullptr, "N", "Stop after N passes (with --time: whichever comes first)",
+         "an integer >= 1 (0 = unlimited, with --time)", default_passes_text().c_str(),
+         [](RenderOptions& o, const OptionArg& a) { o.passes = static_cast<uint64_t>(parse_int(a, 0, INT64_MAX)); }},
+        {"Integrator", "--time", nullptr, "SECONDS", "Stop after this much render time", "a number of seconds > 0",
+         "none",
+         [](RenderOptions& o, const OptionArg& a) { o.time_limit = parse_real(a, [](double x) { return x > 0; }); }},
+        {"Integrator", "--photons", nullptr, "N", "Photons traced per pass", "an integer in 1..2147483647", "200000",
+         [](RenderOptions& o, const OptionArg& a) { o.settings.photons = uint64_t(parse_int(a, 1, INT32_MAX)); }},
+        // alpha of Hachisuka et al. 2008 (radius reduction): R^2 <- R^2 (N + alpha M) / (N + M).
+        {"Integrator", "--alpha", nullptr, "A", "Fraction of new photons kept per pass (radius reduction)", "in (0, 1]",
+         "0.7",
+         [](RenderOptions& o, const OptionArg& a) {
+             o.settings.alpha = parse_real(a, [](double x) { return x > 0 && x <= 1; });
+         }},
+        {"Integrator", "--radius", nullptr, "R",
+         "Initial gather radius R0 in scene units (and VCM's merging radius), at most the scene's bounding diameter",
+         "a finite number > 0", "a heuristic from the pixels' footprints (README)",
+         [](RenderOptions& o, const OptionArg& a) {
+             o.settings.radius = parse_real(a, [](double x) { return x > 0; });
+         }},
+        {"Integrator", "--spp", nullptr, "N", "Hit points (samples) per pixel per pass", "an integer in 1..256", "4",
+         [](RenderOptions& o, const OptionArg& a) { o.settings.spp = unsigned(parse_int(a, 1, 256)); }},
+        {"Integrator", "--direct", nullptr, "MODE",
+         "Direct light from photons (density estimate) or by sampling lights at hit points", "photons or sample",
+         "sample",
+         [](RenderOptions& o, const OptionArg& a) {
+             const std::string v = lower(a.value);
+             if (v == "photons") o.settings.direct = DirectLighting::Photons;
+             else if (v == "sample") o.settings.direct = DirectLighting::Sample;
+             else bad_value(a);
+         }},
+        {"Integrator", "--max-bounces", nullptr, "N", "Longest eye or photon path", "an integer in 1..1024", "16",
+         [](RenderOptions& o, const OptionArg& a) { o.settings.max_bounces = unsigned(parse_int(a, 1, 1024)); }},
+        {"Integrator", "--seed", nullptr, "S", "Random seed", "an integer in 0..18446744073709551615", "1",
+         [](RenderOptions& o, const OptionArg& a) { o.settings.seed = parse_u64(a); }},
+        // Hachisuka, Jarosz and Jensen 2010: per-pixel bias and noise (integrators/error_estimate.h).
+        {"Error estimation", "--target-error", nullptr, "E",
+         "Stop once the estimated error is at most E: the 90th percentile over pixels of |L - L_true| / L, "
+         "calibrated so that the actual error at the stop is between E/2 and E; --passes and --time still "
+         "bound the render",
+         "a number > 0", "none",
+         [](RenderOptions& o, const OptionArg& a) { o.target_error = parse_real(a, [](double x) { return x > 0; }); }},
+        {"Error estimation", "--error-bound", nullptr, nullptr,
+         "With --target-error: stop on the conservative bound instead (the 90th percentile of per-pixel bounds "
+         "that hold at --confidence; typically 3 to 4 times the actual error)",
+         nullptr, nullptr, [](RenderOptions& o, const OptionArg&) { o.error_bound = true; }},
+        {"Error estimation", "--confidence", nullptr, "P",
+         "Confidence of the per-pixel error bounds (with --target-error or --error-output)", "in (0, 1)", "0.95",
+         [](RenderOptions& o, const OptionArg& a) {
+             o.confidence = parse_real(a, [](double x) { return x > 0 && x < 1; });
+         }},
+        {"Error estimation", "--error-output", nullptr, "FILE",
+         "Write the per-pixel relative error bound to FILE (EXR) and a false-colour PNG beside it; the main "
+         "EXR gets an \"error\" layer too",
+         "a file name ending in .exr", "none",
+         [](RenderOptions& o, const OptionArg& a) {
+             if (!ends_with_ci(a.value, ".exr") || a.value.size() <= 4) bad_value(a);
+             o.error_output = a.value;
+         }},
+        {"Lighting", "--env", nullptr, "FILE",
+         "Light the scene with an equirectangular environment map (top row +Y, centre -Z, u towards +X)",
+         "an .exr or .hdr file", "none", [](RenderOptions& o, const OptionArg& a) { o.env.file = non_empty(a); }},
+        {"Lighting", "--env-color", nullptr, "R,G,B", "Light the scene with a uniform environment of this radiance",
+         "three numbers >= 0, comma-separated", "none",
+         [](RenderOptions& o, const OptionArg& a) {
+             o.env.color = parse_rgb(a);
+             o.env.has_color = true;
+         }},
+        {"Lighting", "--env-strength", nullptr, "S", "Scale the environment (also the default one)",
+         "a finite number >= 0", "1",
+         [](RenderOptions& o, const OptionArg& a) { o.env.strength = parse_real(a, [](double x) { return x >= 0; }); }},
+        {"Lighting", "--env-rotate", nullptr, "DEG", "Turn the environment about +Y (right-handed: +X towards -Z)",
+         "a finite number of degrees", "0",
+         [](RenderOptions& o, const OptionArg& a) {
+             o.env.rotate_degrees = parse_real(a, [](double) { return true; });
+         }},
+        {"Lighting", "--env-hidden", nullptr, nullptr,
+         "Camera rays that leave the scene see black; the environment still lights it", nullptr, nullptr,
+         [](RenderOptions& o, const OptionArg&) { o.env.hidden = true; }},
+        {"Lighting", "--no-default-light", nullptr, nullptr,
+         "Refuse a scene without lights instead of lighting it with a uniform white environment of radiance 1", nullptr,
+         nullptr, [](RenderOptions& o, const OptionArg&) { o.env.default_light = false; }},
+        {"Checkpoints", "--checkpoint", nullptr, "FILE",
+         "Save the complete progressive state to FILE (atomically) periodically, on Ctrl-C and at the end",
+         "a file name", "none", [](RenderOptions& o, const OptionArg& a) { o.checkpoint = non_empty(a); }},
+        {"Checkpoints", "--checkpoint-every", nullptr, "K", "Save the checkpoint every K passes",
+         "an integer >= 0 (0 = off)", "0",
+         [](RenderOptions& o, const OptionArg& a) {
+             o.checkpoint_every = static_cast<uint64_t>(parse_int(a, 0, INT64_MAX));
+         }},
+        {"Checkpoints", "--checkpoint-interval", nullptr, "SECONDS", "Save the checkpoint every SECONDS of rendering",
+         "a number of seconds > 0", "300",
+         [](RenderOptions& o, const OptionArg& a) {
+             o.checkpoint_interval = parse_real(a, [](double x) { return x > 0; });
+         }},
+        {"Checkpoints", "--resume", nullptr, "FILE",
+         "Continue the render saved in checkpoint FILE (same scene and image-shaping options; --passes "
+         "counts from the start of the original render, --time this run only)",
+         "a checkpoint file", "none", [](RenderOptions& o, const OptionArg& a) { o.resume = non_empty(a); }},
+        {"Devices and kernels", "--device", nullptr, "SPEC", "Device to render on; repeatable (see --list-devices)",
+         "a device index, cpu, gpu or part of a device name", "automatic",
+         [](RenderOptions& o, const OptionArg& a) { o.devices.push_back(non_empty(a)); }},
+        {"Devices and kernels", "--generic-kernels", nullptr, nullptr,
+         "Build the generic kernels instead of ones specialised for the scene's materials, lights and camera", nullptr,
+         nullptr, [](RenderOptions& o, const OptionArg&) { o.generic_kernels = true; }},
+        {"Devices and kernels", "--kernel-dir", nullptr, "DIR", "Load kernels from DIR instead of the embedded copies",
+         "a directory", "embedded", [](RenderOptions& o, const OptionArg& a) { o.kernel_dir = non_empty(a); }},
+        {"Devices and kernels", "--dump-kernel-source", nullptr, "FILE",
+         "Write the assembled kernel source and build options to FILE", "a file name", "none",
+         [](RenderOptions& o, const OptionArg& a) { o.dump_kernel_source = non_empty(a); }},
+    };
+    return table;
+}
+
+const RenderOptionSpec* find_render_option(const std::string& name) {
+    for (const RenderOptionSpec& spec : render_option_table())
+        if (name == spec.name || (spec.short_name && name == spec.short_name)) return &spec;
+    return nullptr;
+}
+
+void apply_render_option(RenderOptions& options, const RenderOptionSpec& spec, const std::string& shown,
+                         const std::string& value) {
+    spec.apply(options, OptionArg{shown, value, spec.range});
+}
+
+void check_render_options(const RenderOptions& o) {
+    if (o.passes && *o.passes == 0 && !(o.time_limit > 0)) throw Error("--passes 0: unlimited passes need --time");
+    if (o.error_bound && !(o.target_error > 0)) throw Error("--error-bound: needs --target-error");
+    if (o.confidence && !wants_error_estimate(o)) throw Error("--confidence: needs --target-error or --error-output");
+    if (o.progressive_output > 0 && o.output.empty()) throw Error("--progressive-output: needs an output image");
+}
+
+} // namespace clppm

@@ -1,0 +1,49 @@
+// The one render loop (SmallVCM's RunIteration, Cycles' Session): runs passes of a RenderJob
+// until the stop policy says enough, tells the observers after each, and at the end writes what
+// the options ask for. The command line runs it whole (run()); the Python module also steps it a
+// pass at a time. With several processes (device/cluster.h) rank 0's decision to go on is every
+// rank's, so that all run the same passes; rank 0 alone writes.
+#pragma once
+#include <memory>
+#include <vector>
+
+#include "render/render_job.h"
+#include "render/render_observer.h"
+#include "render/stop_policy.h"
+
+namespace clppm {
+
+class RenderLoop {
+public:
+    RenderLoop(RenderJob& job, std::vector<std::unique_ptr<RenderObserver>> observers);
+
+    // Whether another pass should run: the stop policy, asked before every pass.
+    bool should_continue();
+    // One pass, then the observers. False when a stop request cancelled it: the state is then the
+    // last complete pass's.
+    bool run_pass();
+    // should_continue() and then run_pass().
+    bool step() { return should_continue() && run_pass(); }
+    // Ends the run: the observers' finished(), then on rank 0 the outputs, what the render says
+    // of its result (the error reached, pixels that are not finite), --stats-json. Once.
+    RenderEnd finish();
+    // Passes until the policy stops them, then finish().
+    RenderEnd run();
+
+    bool interrupted() const { return interrupted_; }
+    StopReason stop_reason() const { return reason_; }
+
+private:
+    void start();
+    void say_result(const RenderEnd& end) const;
+
+    RenderJob& job_;
+    std::vector<std::unique_ptr<RenderObserver>> observers_;
+    StopPolicy policy_;
+    bool started_ = false, finished_ = false;
+    bool interrupted_ = false, stopped_by_viewer_ = false;
+    StopReason reason_ = StopReason::None;
+    RenderEnd end_;
+};
+
+} // namespace clppm
