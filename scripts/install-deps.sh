@@ -9,9 +9,11 @@ required=(
   libglm-dev libopenexr-dev libtinygltf-dev nlohmann-json3-dev libstb-dev libdraco-dev libwebp-dev
   libgtest-dev googletest libcli11-dev libcpp-httplib-dev cmake g++ make pkg-config python3
   clang-format clang-15 cppcheck openmpi-bin libopenmpi-dev
+  pybind11-dev python3-dev python3-venv python3-numpy python3-pytest # the Python module and its tests
 )
 # Optional, for the benchmarks only: Embree (the CPU traversal yardstick) and gnuplot (plots).
-optional=(libembree-dev gnuplot-nox chromium) # chromium: the live view's browser test
+optional=(libembree-dev gnuplot-nox chromium python3-matplotlib) # chromium: the live view's browser test;
+# matplotlib: examples/alpha_sweep.py
 
 # Prints the packages of "$@" that are not fully installed (one dpkg-query for all of them).
 missing_of() {

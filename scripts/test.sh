@@ -6,7 +6,11 @@ cd "$(dirname "${BASH_SOURCE[0]}")/.."
 
 ./scripts/install-deps.sh
 jobs=$(nproc 2>/dev/null || echo 2)
-cmake -S . -B build -DCMAKE_BUILD_TYPE=Release
+# The Python module is built for, and tested with, Debian's python3 (its numpy and pytest come
+# from install-deps.sh), whatever python3 comes first on PATH.
+python=/usr/bin/python3
+[[ -x $python ]] || python=$(command -v python3)
+cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DPython_EXECUTABLE="$python"
 cmake --build build -j "$jobs"
 # Generous: rendering tests run on PoCL's CPU device, which is slow on small machines.
 exec ctest --test-dir build --output-on-failure -j "$jobs" --timeout 1800

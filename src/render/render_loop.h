@@ -31,6 +31,9 @@ public:
     RenderEnd run();
 
     bool interrupted() const { return interrupted_; }
+    // The interrupt has been answered (the Python module raised KeyboardInterrupt) and the render
+    // may go on: the image no longer counts as interrupted.
+    void clear_interrupt() { interrupted_ = false; }
     StopReason stop_reason() const { return reason_; }
 
 private:

@@ -15,4 +15,6 @@ void request_cancel() { g_cancel.store(true, std::memory_order_relaxed); }
 
 bool cancel_requested() { return g_cancel.load(std::memory_order_relaxed); }
 
+void clear_cancel() { g_cancel.store(false, std::memory_order_relaxed); }
+
 } // namespace clppm

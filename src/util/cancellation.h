@@ -10,6 +10,9 @@ namespace clppm {
 // Async-signal-safe (a lock-free atomic store).
 void request_cancel();
 bool cancel_requested();
+// Withdraws the request, once it has been answered: a library's caller (the Python module) renders
+// again after an interrupted render. The command line never withdraws one.
+void clear_cancel();
 
 struct PassCancelled : std::exception {
     const char* what() const noexcept override { return "the pass was cancelled"; }

@@ -1,0 +1,366 @@
+// The Python module's native part, _clppm (python/clppm/__init__.py is its face): the render loop
+// of render/render_loop.h with the observers the options ask for, as the command line runs it,
+// stepped from Python. Options arrive as ("--name", "value") pairs and go through the command
+// line's option table, so they take the same values, defaults and one-line messages; a render
+// with the same options, seed and device is the command line's, bit for bit.
+//
+// Long calls release the GIL. While they run in the main thread, SIGINT (Ctrl-C) asks the render
+// to stop at its next photon batch, as on the command line (util/cancellation.h), and the call
+// returns False; the Python side raises KeyboardInterrupt (clppm.Interrupted) with the last
+// complete pass kept.
+#include <csignal>
+#include <cstdlib>
+#include <memory>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include "device/cluster.h"
+#include "device/device.h"
+#include "io/image_io.h"
+#include "render/option_table.h"
+#include "render/render_job.h"
+#include "render/render_loop.h"
+#include "render/standard_observers.h"
+#include "util/cancellation.h"
+#include "util/error.h"
+#include "util/version.h"
+
+namespace py = pybind11;
+
+namespace clppm {
+namespace {
+
+volatile std::sig_atomic_t g_sigint = 0;
+
+extern "C" void on_sigint(int) {
+    g_sigint = 1;
+    request_cancel(); // the pass in progress stops at its next batch
+}
+
+// While a long call runs without the GIL: SIGINT becomes a stop request instead of Python's flag,
+// which nobody would look at until the call returned. Only in the main thread, where Python
+// handles signals; elsewhere Python's handler stays.
+class InterruptScope {
+public:
+    InterruptScope() {
+        const py::module_ threading = py::module_::import("threading");
+        installed_ = threading.attr("current_thread")().is(threading.attr("main_thread")());
+        if (!installed_) return;
+        g_sigint = 0;
+        struct sigaction sa {};
+        sa.sa_handler = on_sigint;
+        sigemptyset(&sa.sa_mask);
+        sa.sa_flags = SA_RESTART;
+        sigaction(SIGINT, &sa, &previous_);
+    }
+    ~InterruptScope() {
+        if (installed_) sigaction(SIGINT, &previous_, nullptr);
+    }
+    InterruptScope(const InterruptScope&) = delete;
+    InterruptScope& operator=(const InterruptScope&) = delete;
+    bool interrupted() const { return installed_ && g_sigint != 0; }
+
+private:
+    bool installed_ = false;
+    struct sigaction previous_ {};
+};
+
+py::array_t<float> to_numpy(Image img) {
+    auto* rgb = new std::vector<float>(std::move(img.rgb));
+    py::capsule owner(rgb, [](void* p) { delete static_cast<std::vector<float>*>(p); });
+    return py::array_t<float>({py::ssize_t(img.height), py::ssize_t(img.width), py::ssize_t(3)}, rgb->data(), owner);
+}
+
+py::array_t<float> plane_to_numpy(const std::vector<float>& v, int width, int height) {
+    py::array_t<float> a({py::ssize_t(height), py::ssize_t(width)});
+    std::copy(v.begin(), v.end(), a.mutable_data());
+    return a;
+}
+
+py::object json_to_python(const Json& j) { return py::module_::import("json").attr("loads")(j.dump()); }
+
+RenderOptions options_from(const std::optional<std::string>& scene,
+                           const std::vector<std::pair<std::string, std::string>>& args) {
+    RenderOptions o;
+    if (scene) set_scene(o, *scene);
+    for (const auto& [name, value] : args) {
+        const RenderOptionSpec* spec = find_render_option(name);
+        if (!spec) throw Error("unknown option " + name);
+        apply_render_option(o, *spec, name, value);
+    }
+    check_render_options(o);
+    return o;
+}
+
+// A render set up and stepped from Python: RenderJob and RenderLoop with the standard observers.
+class Renderer {
+public:
+    Renderer(const std::optional<std::string>& scene, const std::vector<std::pair<std::string, std::string>>& args) {
+        const RenderOptions options = options_from(scene, args);
+        log_ = std::make_unique<RenderLog>(options.quiet);
+        InterruptScope scope;
+        {
+            py::gil_scoped_release release;
+            auto observers = standard_observers(options, *log_);
+            job_ = std::make_unique<RenderJob>(options, *log_);
+            loop_ = std::make_unique<RenderLoop>(*job_, std::move(observers));
+        }
+        if (scope.interrupted()) { // during the set-up (the kernel build, say): there is no render yet
+            clear_cancel();
+            PyErr_SetNone(PyExc_KeyboardInterrupt);
+            throw py::error_already_set();
+        }
+    }
+
+    // One pass whatever the stop policy says; False when interrupted.
+    bool run_pass() {
+        return stepped([this] { return loop_->run_pass(); });
+    }
+
+    // The stop policy, then a pass: True when a pass ran, False when the policy stops the render
+    // (interrupted() says whether a stop request did).
+    bool step() {
+        return stepped([this] { return loop_->step(); });
+    }
+
+    // Passes until the policy stops them, then the end (outputs written as the options say).
+    bool render() {
+        const bool whole = stepped([this] {
+            while (loop_->step()) {}
+            return !loop_->interrupted();
+        });
+        finish();
+        return whole;
+    }
+
+    py::dict finish() {
+        need_open();
+        RenderEnd end;
+        {
+            py::gil_scoped_release release;
+            end = loop_->finish();
+        }
+        finished_ = true;
+        py::dict d;
+        d["interrupted"] = end.interrupted;
+        d["stopped_by_viewer"] = end.stopped_by_viewer;
+        d["render_seconds"] = end.render_seconds;
+        d["nothing_written"] = end.nothing_written;
+        d["defective_pixels"] = end.defective_pixels;
+        return d;
+    }
+
+    void close() {
+        if (!job_) return;
+        if (!finished_) finish();
+        loop_.reset();
+        job_.reset();
+    }
+
+    bool interrupted() const { return signalled_ || (loop_ && loop_->interrupted()); }
+    void clear_interrupt() {
+        clear_cancel();
+        signalled_ = false;
+        if (loop_) loop_->clear_interrupt();
+    }
+
+    py::array_t<float> image() {
+        need_job();
+        Image img;
+        {
+            py::gil_scoped_release release;
+            img = job_->image(interrupted());
+        }
+        return to_numpy(std::move(img));
+    }
+
+    py::object error_estimate() {
+        need_job();
+        if (!job_->estimating()) return py::none();
+        const ErrorImage& e = job_->error();
+        py::dict d;
+        d["estimated"] = e.expected_error;
+        d["bound"] = e.image_error;
+        d["target"] = job_->options().target_error;
+        d["reached"] = job_->error_target_reached();
+        d["passes"] = e.passes;
+        d["relative"] = plane_to_numpy(e.relative, e.width, e.height);
+        return std::move(d);
+    }
+
+    py::object stats() {
+        need_job();
+        RenderEnd end;
+        end.interrupted = interrupted();
+        end.render_seconds = job_->render_seconds();
+        return json_to_python(job_->stats_json(end));
+    }
+
+    void save(const std::string& path) {
+        need_job();
+        RenderOptions o;
+        const RenderOptionSpec* spec = find_render_option("--output");
+        apply_render_option(o, *spec, "save", path); // the same check as --output: an .exr name
+        py::gil_scoped_release release;
+        job_->save_images(path, job_->options().write_png, interrupted());
+    }
+
+    uint64_t passes() const {
+        need_job();
+        return job_->passes();
+    }
+    uint64_t pass_limit() const {
+        need_job();
+        return job_->pass_limit();
+    }
+    std::vector<std::string> warnings() const { return log_ ? log_->warnings() : std::vector<std::string>{}; }
+    py::dict settings() const {
+        need_job();
+        const RenderOptions& o = job_->options();
+        py::dict d;
+        d["scene"] = o.scene;
+        d["integrator"] = o.settings.integrator;
+        d["width"] = o.settings.width;
+        d["height"] = o.settings.height;
+        d["photons"] = o.settings.photons;
+        d["alpha"] = o.settings.alpha;
+        d["seed"] = o.settings.seed;
+        d["pass_limit"] = job_->pass_limit();
+        d["time_limit"] = o.time_limit;
+        d["target_error"] = o.target_error;
+        d["output"] = o.output;
+        return d;
+    }
+
+private:
+    template <class F>
+    bool stepped(F f) {
+        need_open();
+        InterruptScope scope;
+        bool ok;
+        {
+            py::gil_scoped_release release;
+            ok = f();
+        }
+        // Ctrl-C during a pass that completed anyway (it came after its last photon batch): the
+        // pass is kept, and the call still answers the interrupt.
+        signalled_ = signalled_ || scope.interrupted();
+        return ok && !scope.interrupted();
+    }
+    void need_job() const {
+        if (!job_) throw Error("this Renderer is closed");
+    }
+    void need_open() const {
+        need_job();
+        if (finished_) throw Error("this Renderer has finished its render (render() or close()): make a new one");
+    }
+
+    std::unique_ptr<RenderLog> log_;
+    std::unique_ptr<RenderJob> job_;
+    std::unique_ptr<RenderLoop> loop_;
+    bool finished_ = false;
+    bool signalled_ = false; // a SIGINT during the last call
+};
+
+py::list device_list() {
+    py::list out;
+    for (const DeviceInfo& d : list_devices()) {
+        py::dict e;
+        e["index"] = d.index;
+        e["name"] = d.name;
+        e["platform"] = d.platform_name;
+        e["type"] = d.type_name();
+        e["driver"] = d.driver_version;
+        e["compute_units"] = d.compute_units;
+        e["global_memory"] = d.global_mem;
+        e["fp64"] = d.fp64;
+        out.append(e);
+    }
+    return out;
+}
+
+py::list option_list() {
+    py::list out;
+    for (const RenderOptionSpec& s : render_option_table()) {
+        py::dict e;
+        e["name"] = s.name;
+        e["group"] = s.group;
+        e["flag"] = s.metavar == nullptr;
+        e["metavar"] = s.metavar ? py::object(py::str(s.metavar)) : py::none();
+        e["help"] = s.help;
+        e["range"] = s.range ? py::object(py::str(s.range)) : py::none();
+        e["default"] = s.default_text ? py::object(py::str(s.default_text)) : py::none();
+        out.append(e);
+    }
+    return out;
+}
+
+std::unique_ptr<ClusterSession> g_mpi;
+
+} // namespace
+} // namespace clppm
+
+PYBIND11_MODULE(_clppm, m) {
+    using namespace clppm;
+    m.doc() = "clppm's native module; use the clppm package (python/clppm/__init__.py).";
+    static py::exception<Error> error(m, "Error");
+    py::register_exception_translator([](std::exception_ptr p) {
+        try {
+            if (p) std::rethrow_exception(p);
+        } catch (const Error& e) {
+            PyErr_SetString(error.ptr(), e.what());
+        } catch (const cl::Error& e) {
+            const std::string msg =
+                std::string("OpenCL call ") + e.what() + " failed with code " + std::to_string(e.err());
+            PyErr_SetString(error.ptr(), msg.c_str());
+        } catch (const PassCancelled&) {
+            PyErr_SetNone(PyExc_KeyboardInterrupt);
+        }
+    });
+    // Started by an MPI launcher (mpirun -np N python script.py): every process renders its share
+    // of each pass, as the command line's do; MPI ends with the interpreter.
+    if (launcher_process_count([](const char* name) -> const char* { return std::getenv(name); }) > 0) {
+        g_mpi = std::make_unique<ClusterSession>(nullptr, nullptr);
+        py::module_::import("atexit").attr("register")(py::cpp_function([] { g_mpi.reset(); }));
+    }
+    m.attr("__version__") = kVersion;
+    m.attr("mpi_rank") = cluster().rank();
+    m.attr("mpi_size") = cluster().size();
+    m.def("devices", &device_list, "The OpenCL devices, as --list-devices lists them.");
+    m.def("option_table", &option_list, "The render options: name, flag, range, default, help, group.");
+    m.def(
+        "read_exr",
+        [](const std::string& path) {
+            Image img;
+            {
+                py::gil_scoped_release release;
+                img = read_exr(path);
+            }
+            return to_numpy(std::move(img));
+        },
+        py::arg("path"), "The R, G, B of an OpenEXR file as float32 (height, width, 3).");
+    py::class_<Renderer>(m, "Renderer")
+        .def(py::init<const std::optional<std::string>&, const std::vector<std::pair<std::string, std::string>>&>(),
+             py::arg("scene"), py::arg("args"))
+        .def("run_pass", &Renderer::run_pass)
+        .def("step", &Renderer::step)
+        .def("render", &Renderer::render)
+        .def("finish", &Renderer::finish)
+        .def("close", &Renderer::close)
+        .def("interrupted", &Renderer::interrupted)
+        .def("clear_interrupt", &Renderer::clear_interrupt)
+        .def("image", &Renderer::image)
+        .def("error_estimate", &Renderer::error_estimate)
+        .def("stats", &Renderer::stats)
+        .def("save", &Renderer::save, py::arg("path"))
+        .def_property_readonly("passes", &Renderer::passes)
+        .def_property_readonly("pass_limit", &Renderer::pass_limit)
+        .def_property_readonly("warnings", &Renderer::warnings)
+        .def_property_readonly("settings", &Renderer::settings);
+}
