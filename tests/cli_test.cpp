@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <map>
 #include <sys/stat.h>
 
 #include <nlohmann/json.hpp>
@@ -180,6 +181,35 @@ TEST(Cli, VcmAndBptRenderAndRefuseWhatTheyCannotDo) {
     }
 }
 
+// An aperture wider than the scene images nothing (at the lens's scale floats lose the scene's
+// detail: VCM and BPT rendered black and exited 0): every integrator refuses it alike, naming the
+// scene's size, before rendering. A wide lens within the scene renders alike in every integrator.
+TEST(Cli, ApertureWiderThanTheSceneIsRefusedByEveryIntegrator) {
+    const std::string dir = make_temp_dir("aperture");
+    std::string out;
+    for (const char* integrator : {"ppm", "sppm", "pppm", "pt", "vcm", "bpt"}) {
+        EXPECT_EQ(
+            run_clppm(std::string(kSmall) + " --integrator " + integrator + " --aperture 1e30 -o " + dir + "/x.exr",
+                      &out),
+            1)
+            << integrator;
+        expect_one_line_error(out, "--aperture 1e+30: larger than the scene's bounding diameter 3.4641");
+    }
+    std::map<std::string, double> mean;
+    for (const char* integrator : {"sppm", "pt", "vcm"}) {
+        const std::string stats = dir + "/" + integrator + ".json";
+        ASSERT_EQ(run_clppm(std::string("--width 32 --height 32 --passes 64 --photons 50000 --quiet --no-png "
+                                        "--aperture 0.5 --integrator ") +
+                                integrator + " -o " + dir + "/w.exr --stats-json " + stats,
+                            &out),
+                  0)
+            << out;
+        mean[integrator] = nlohmann::json::parse(slurp(stats))["mean_radiance"].get<double>();
+    }
+    EXPECT_NEAR(mean["vcm"] / mean["pt"], 1.0, 0.05);
+    EXPECT_NEAR(mean["sppm"] / mean["pt"], 1.0, 0.05);
+}
+
 TEST(Cli, ListDevicesShowsTheDevice) {
     std::string out;
     ASSERT_EQ(run_clppm("--list-devices", &out), 0) << out;
@@ -193,6 +223,29 @@ TEST(Cli, MissingSceneIsAOneLineErrorNamingTheFile) {
     std::string out;
     EXPECT_EQ(run_clppm("/nonexistent/scene.gltf -o " + make_temp_dir("out") + "/x.exr", &out), 1);
     expect_one_line_error(out, "/nonexistent/scene.gltf");
+}
+
+// A FIFO (or any path that is not a regular file) as the scene, the environment, a checkpoint to
+// resume or an image to compare would block the read for ever: each is refused at once, naming
+// the path (under a timeout here, so that a regression fails instead of hanging the suite).
+TEST(Cli, PathsThatAreNotRegularFilesAreRefusedAtOnce) {
+    const std::string d = make_temp_dir("fifo");
+    for (const char* name : {"/s.gltf", "/e.hdr", "/e.exr", "/c.ck", "/a.exr"})
+        ASSERT_EQ(mkfifo((d + name).c_str(), 0600), 0) << name;
+    const std::string ok = d + "/ok.exr", args = " --width 8 --height 8 --passes 1 --photons 1000 --quiet -o " + ok;
+    std::string out;
+    ASSERT_EQ(run_clppm(args, &out), 0) << out;
+    const std::string cases[][2] = {
+        {d + "/s.gltf" + args, d + "/s.gltf"},
+        {"--env " + d + "/e.hdr" + args, "--env " + d + "/e.hdr: not a regular file"},
+        {"--env " + d + "/e.exr" + args, "--env " + d + "/e.exr: not a regular file"},
+        {"--resume " + d + "/c.ck" + args, d + "/c.ck: cannot read checkpoint (not a regular"},
+        {"compare " + d + "/a.exr " + ok, "cannot read " + d + "/a.exr: not a regular file"},
+        {"compare " + ok + " " + d, "cannot read " + d + ": a folder, not a file"}};
+    for (const auto& [args_, message] : cases) {
+        EXPECT_EQ(run_command("timeout 60 " + clppm_binary() + " " + args_, &out), 1) << args_ << "\n" << out;
+        EXPECT_NE(out.find(message), std::string::npos) << out;
+    }
 }
 
 TEST(Cli, MalformedGltfIsAOneLineError) {

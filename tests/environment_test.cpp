@@ -9,13 +9,18 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstring>
+#include <fstream>
 #include <random>
 #include <string>
 
+#include <stb_image.h>
+#include <stb_image_write.h>
 #include <unistd.h>
 
 #include "device/kernel_program.h"
 #include "io/image_io.h"
+#include "io/radiance_hdr.h"
 #include "scene/environment.h"
 #include "stat_tests.h"
 #include "test_util.h"
@@ -408,4 +413,62 @@ TEST(Environment, IntegratorsAgreeUnderASunMap) {
     std::printf("sun map: mean PT %.4f, SPPM %.4f (ratio %.4f), box-4 relative MSE %.5f\n", mp, ms, ms / mp, rel);
     EXPECT_NEAR(ms / mp, 1.0, 0.01);
     EXPECT_LT(rel, 0.01);
+}
+
+// A half-written Radiance file, or a header that claims more pixels than the file holds, is a
+// one-line error naming the map; stb_image alone would fill the missing rows with black and the
+// render would go on (issue 33's hostile trial). A complete run-length file still renders.
+TEST(Environment, TruncatedHdrMapsAreRefused) {
+    const std::string d = make_temp_dir("env_truncated");
+    Image map;
+    map.width = 64, map.height = 32;
+    for (int i = 0; i < 64 * 32 * 3; ++i) map.rgb.push_back(0.5f + 0.25f * float(i % 7));
+    ASSERT_TRUE(stbi_write_hdr((d + "/whole.hdr").c_str(), 64, 32, 3, map.rgb.data())); // run-length scanlines
+    std::string whole = slurp(d + "/whole.hdr");
+    auto write = [&](const std::string& name, const std::string& bytes) {
+        std::ofstream(d + "/" + name, std::ios::binary) << bytes;
+        return d + "/" + name;
+    };
+    const std::string args = " --width 16 --height 16 --passes 1 --photons 2000 --quiet --no-png -o " + d + "/x.exr";
+    std::string out;
+    EXPECT_EQ(run_clppm(data("env_sphere.gltf") + " --env " + d + "/whole.hdr" + args, &out), 0) << out;
+    const std::string cases[][2] = {
+        {write("half.hdr", whole.substr(0, whole.size() * 6 / 10)), "the file ends in a scanline"},
+        {write("header.hdr", whole.substr(0, whole.find("+X 64\n") + 6)), "needs at least"},
+        {write("huge.hdr", "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 8192 +X 16384\n" + whole.substr(whole.size() / 2)),
+         "a 16384x8192 Radiance HDR image needs at least"}};
+    for (const auto& [path, why] : cases) {
+        EXPECT_EQ(run_clppm(data("env_sphere.gltf") + " --env " + path + args, &out), 1) << path;
+        EXPECT_NE(out.find("clppm: error: --env " + path + ": truncated"), std::string::npos) << out;
+        EXPECT_NE(out.find(why), std::string::npos) << out;
+    }
+    // Flat (uncompressed) scanlines, cut in the middle of the pixels.
+    write_flat_hdr(d + "/flat.hdr", 16, 8, 128, 129);
+    const std::string flat = slurp(d + "/flat.hdr");
+    const std::string cut = write("flat_cut.hdr", flat.substr(0, flat.size() - 40));
+    EXPECT_EQ(run_clppm(data("env_sphere.gltf") + " --env " + cut + args, &out), 1);
+    EXPECT_NE(out.find("truncated"), std::string::npos) << out;
+}
+
+// The Radiance reader decodes a complete file as stb_image does, bit for bit: run-length scanlines
+// (stbi_write_hdr writes them for widths of 8 and more), flat ones, and texels of every exponent.
+TEST(Environment, RadianceReaderDecodesAsStbImage) {
+    const std::string d = make_temp_dir("env_hdr_reader");
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<float> u(0.f, 1.f);
+    for (const auto& [w, h] : {std::pair<int, int>{64, 7}, {5, 3}, {300, 2}}) {
+        std::vector<float> rgb;
+        for (int i = 0; i < w * h * 3; ++i) // runs (repeated values) and literals, over many exponents
+            rgb.push_back(i % 11 < 5 ? 3.f : std::ldexp(u(rng), int(i % 40) - 20));
+        const std::string path = d + "/m" + std::to_string(w) + ".hdr";
+        ASSERT_TRUE(stbi_write_hdr(path.c_str(), w, h, 3, rgb.data()));
+        int sw = 0, sh = 0, n = 0;
+        float* stb = stbi_loadf(path.c_str(), &sw, &sh, &n, 3);
+        ASSERT_TRUE(stb != nullptr);
+        const Image ours = read_radiance_hdr(path);
+        ASSERT_EQ(ours.width, sw);
+        ASSERT_EQ(ours.height, sh);
+        EXPECT_EQ(0, std::memcmp(stb, ours.rgb.data(), ours.rgb.size() * sizeof(float))) << w << "x" << h;
+        stbi_image_free(stb);
+    }
 }

@@ -9,6 +9,7 @@
 #include <chrono>
 #include <csignal>
 #include <fstream>
+#include <sys/stat.h>
 #include <thread>
 
 #include <nlohmann/json.hpp>
@@ -193,6 +194,39 @@ TEST(Mpi, AKilledRankEndsTheJob) {
     EXPECT_NE(log.find("the MPI job is ending"), std::string::npos) << log;
     EXPECT_NE(std::stoi(slurp(dir + "/status")), 0);
     EXPECT_GE(std::stoi(read_exr(dir + "/job.exr").attributes.at("clppm:passes")), 1);
+}
+
+// Ranks started with different arguments (mpirun's MPMD form) or given different scene files under
+// one name (other working directories) crashed or hung; now the job ends at once with one error
+// line from rank 0 naming what differs.
+TEST(Mpi, RanksThatDifferAreOneErrorFromRankZero) {
+    REQUIRE_MPI();
+    const std::string dir = make_temp_dir("mpi_differ"), base = std::string(kCommon) + " --passes 2 -o ";
+    const std::string mpirun1 = "timeout 120 mpirun --allow-run-as-root --oversubscribe ";
+    auto expect_one_error = [](const std::string& out, const std::string& what) {
+        const std::string line = "clppm: error: the 2 MPI processes were not started alike";
+        EXPECT_NE(out.find(line), std::string::npos) << out;
+        EXPECT_EQ(out.find(line), out.rfind(line)) << "one line, from rank 0:\n" << out;
+        EXPECT_EQ(out.find("rank 1: error"), std::string::npos) << out;
+        EXPECT_NE(out.find(what), std::string::npos) << out;
+    };
+    std::string out;
+    const std::string a = clppm_binary() + " " + base + dir + "/a.exr";
+    EXPECT_NE(run_command(mpirun1 + "-np 1 " + a + " : -np 1 " + a + " --width 64 --integrator pt 2>&1", &out), 0);
+    EXPECT_EQ(out.find("status=124"), std::string::npos) << out;
+    expect_one_error(out, "--width 48 on rank 0, 64 on rank 1");
+    expect_one_error(out, "--integrator \"auto\" on rank 0, \"pt\" on rank 1");
+    // The same relative scene path, another file's contents on each rank.
+    for (const char* sub : {"/r0", "/r1"}) {
+        ASSERT_EQ(mkdir((dir + sub).c_str(), 0700), 0);
+        std::ofstream(dir + sub + "/s.gltf")
+            << slurp(std::string(CLPPM_TEST_DATA) + (sub[2] == '0' ? "/lights.gltf" : "/texture.gltf"));
+    }
+    const std::string s = clppm_binary() + " s.gltf " + base + dir + "/s.exr";
+    EXPECT_NE(run_command(
+                  mpirun1 + "-np 1 --wdir " + dir + "/r0 " + s + " : -np 1 --wdir " + dir + "/r1 " + s + " 2>&1", &out),
+              0);
+    expect_one_error(out, "the scene's contents (s.gltf)");
 }
 
 TEST(Cluster, LauncherProcessCountComesFromTheEnvironment) {

@@ -5,6 +5,8 @@
 #include <gtest/gtest.h>
 
 #include <arpa/inet.h>
+#include <chrono>
+#include <cstdio>
 #include <cstring>
 #include <netinet/in.h>
 #include <sys/socket.h>
@@ -157,4 +159,52 @@ TEST(Tev, ARenderSendsItsImage) {
     EXPECT_EQ(creates, 1u);
     EXPECT_GE(updates, 1u);
     EXPECT_TRUE(last == img.rgb) << "tev's last image is not the EXR";
+}
+
+// A viewer that accepts the connection and then reads nothing (it held a render for good before:
+// 126 s until killed) costs frames, never time: the render ends as it would unwatched, with one
+// warning naming the viewer. The command runs under a timeout, so that a regression fails here
+// instead of hanging the suite.
+TEST(Tev, AViewerThatNeverReadsDoesNotHoldTheRenderBack) {
+    const int server = ::socket(AF_INET, SOCK_STREAM, 0);
+    const int small = 4096; // a receive window of a few kilobytes: the sender's buffer fills fast
+    ::setsockopt(server, SOL_SOCKET, SO_RCVBUF, &small, sizeof small);
+    sockaddr_in a{};
+    a.sin_family = AF_INET;
+    a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    ASSERT_EQ(::bind(server, reinterpret_cast<sockaddr*>(&a), sizeof a), 0);
+    ASSERT_EQ(::listen(server, 1), 0);
+    socklen_t len = sizeof a;
+    ::getsockname(server, reinterpret_cast<sockaddr*>(&a), &len);
+    int client = -1;
+    std::thread acceptor([&] { client = ::accept(server, nullptr, nullptr); }); // and never read
+    const std::string dir = make_temp_dir("tev_stall");
+    const std::string args =
+        "--width 384 --height 384 --passes 24 --photons 20000 --quiet --no-png -o " + dir + "/t.exr";
+    std::string out;
+    const auto t0 = std::chrono::steady_clock::now();
+    ASSERT_EQ(run_command("timeout 120 " + clppm_binary() + " " + args +
+                              " --display-server 127.0.0.1:" + std::to_string(ntohs(a.sin_port)),
+                          &out),
+              0)
+        << out;
+    const double watched = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    acceptor.join();
+    size_t warnings = 0;
+    for (size_t p = out.find("clppm: warning: --display-server"); p != std::string::npos;
+         p = out.find("clppm: warning: --display-server", p + 1))
+        ++warnings;
+    EXPECT_EQ(warnings, 1u) << out;
+    // Whichever comes first: the sender's stall limit, or the final image's wait.
+    EXPECT_TRUE(out.find("the viewer has read nothing for 2 s; no more updates") != std::string::npos ||
+                out.find("the viewer did not take the last image within 2 s") != std::string::npos)
+        << out;
+    ASSERT_EQ(run_clppm(args, &out), 0) << out;
+    const double unwatched = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() - watched;
+    std::printf("never-reading viewer: %.1f s watched, %.1f s unwatched\n", watched, unwatched);
+    // The stall is noticed within TevClient::kStallSeconds and the last image waits at most
+    // kFinalFlushSeconds: a few seconds over the unwatched render, on a busy machine too.
+    EXPECT_LT(watched, unwatched + 20.0);
+    ::close(client);
+    ::close(server);
 }

@@ -32,6 +32,9 @@ int main(int argc, char** argv) {
             return 0;
         }
         return render_command(opt.render);
+    } catch (const ErrorOnEveryRank& e) {
+        if (cluster().rank() == 0) std::fprintf(stderr, "clppm: error: %s\n", e.what());
+        return 1;
     } catch (const Error& e) {
         std::fprintf(stderr, "clppm: %serror: %s\n", cluster().prefix().c_str(), e.what());
         return 1;

@@ -9,6 +9,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "io/regular_file.h"
 #include "util/embedded_files.h"
 #include "util/error.h"
 #include "util/hash.h"
@@ -21,6 +22,7 @@ std::string g_kernel_dir;
 bool g_kernel_dir_set = false;
 
 bool read_file(const std::string& path, std::string* out) {
+    if (!not_a_regular_file(path).empty()) return false;
     std::ifstream f(path, std::ios::binary);
     if (!f) return false;
     std::ostringstream ss;

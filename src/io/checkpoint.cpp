@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "io/atomic_file.h"
+#include "io/regular_file.h"
 #include "util/error.h"
 #include "util/hash.h"
 
@@ -68,6 +69,8 @@ void write_checkpoint(const std::string& path, const Checkpoint& ck) {
 }
 
 Checkpoint read_checkpoint(const std::string& path) {
+    if (const std::string why = not_a_regular_file(path); !why.empty())
+        throw Error(path + ": cannot read checkpoint (" + why + ")");
     std::ifstream f(path, std::ios::binary);
     if (!f) throw Error(path + ": cannot read checkpoint (" + std::strerror(errno) + ")");
     std::ostringstream ss;

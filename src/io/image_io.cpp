@@ -15,6 +15,7 @@
 #include <ImfStringAttribute.h>
 #include <stb_image_write.h>
 
+#include "io/regular_file.h"
 #include "util/error.h"
 
 namespace clppm {
@@ -174,6 +175,7 @@ void write_png(const std::string& path, const Image& img, const ToneMapping& ton
 }
 
 Image read_exr(const std::string& path) {
+    if (const std::string why = not_a_regular_file(path); !why.empty()) throw Error("cannot read " + path + ": " + why);
     Image img;
     try {
         Imf::InputFile file(path.c_str());

@@ -12,6 +12,7 @@
 #include "io/output_lock.h"
 #include "render/device_choice.h"
 #include "render/job_fingerprint.h"
+#include "render/rank_agreement.h"
 #include "scene/environment.h"
 #include "scene/gltf/gltf_load.h"
 #include "scene/scene_features.h"
@@ -37,6 +38,7 @@ std::string number(const char* format, double x) {
 
 RenderJob::RenderJob(const RenderOptions& options, RenderLog& log)
     : options_(options), log_(log), writer_(cluster().rank() == 0), created_s_(now_seconds()) {
+    require_ranks_agree(options_every_rank_shares(options_)); // before anything can fail on one rank alone
     if (!options_.kernel_dir.empty()) set_kernel_dir(options_.kernel_dir);
     const std::vector<DeviceInfo> chosen = choose_devices(options_.devices, list_devices());
     if (writer_) {
@@ -70,6 +72,9 @@ void RenderJob::load_scene() {
     apply_environment(scene_, options_.env, &env_note);
     if (!env_note.empty()) log_.note(env_note);
     scene_hash_ = scene_fingerprint(scene_);
+    char hash[17];
+    std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(scene_hash_));
+    require_ranks_agree({{"the scene's contents (" + scene_.source + ")", hash}}); // the same file everywhere
 }
 
 void RenderJob::choose_integrator() {

@@ -30,6 +30,41 @@ std::vector<std::string> output_files(const RenderOptions& o) {
     return files;
 }
 
+Json options_every_rank_shares(const RenderOptions& o) {
+    const RenderSettings& s = o.settings;
+    const EnvironmentSettings& e = o.env;
+    return {{"SCENE", o.scene},
+            {"--integrator", s.integrator},
+            {"--direct", to_string(s.direct)},
+            {"--width", s.width},
+            {"--height", s.height},
+            {"--camera", s.camera},
+            {"--spp", s.spp},
+            {"--photons", s.photons},
+            {"--alpha", s.alpha},
+            {"--radius", s.radius},
+            {"--seed", s.seed},
+            {"--max-bounces", s.max_bounces},
+            {"--filter", to_string(s.filter)},
+            {"--aperture", s.aperture},
+            {"--focus-distance", s.focus_distance},
+            {"--passes", o.passes ? Json(*o.passes) : Json("default")},
+            {"--time", o.time_limit},
+            {"--target-error", o.target_error},
+            {"--error-bound", o.error_bound},
+            {"--confidence", confidence_of(o)},
+            {"--error-output", !o.error_output.empty()},
+            {"--env", e.file},
+            {"--env-color", e.has_color ? Json(e.color) : Json()},
+            {"--env-strength", e.strength},
+            {"--env-rotate", e.rotate_degrees},
+            {"--env-hidden", e.hidden},
+            {"--no-default-light", !e.default_light},
+            {"--generic-kernels", o.generic_kernels},
+            {"--kernel-dir", o.kernel_dir},
+            {"--resume", o.resume}};
+}
+
 void set_scene(RenderOptions& o, const std::string& path) {
     if (!o.scene.empty()) throw Error("unexpected second scene file " + path + " (already given " + o.scene + ")");
     if (!ends_with_ci(path, ".gltf") && !ends_with_ci(path, ".glb"))

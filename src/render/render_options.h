@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "integrators/render_settings.h"
+#include "io/stats_json.h"
 #include "io/tone_map.h"
 #include "scene/environment.h"
 
@@ -64,6 +65,11 @@ uint64_t pass_limit(const RenderOptions& options, uint64_t default_passes);
 
 // Every file the options will write (image, PNG, stats, checkpoint, error image and its PNG).
 std::vector<std::string> output_files(const RenderOptions& options);
+
+// The options every process of an MPI job must share, as JSON keyed by option name: what shapes
+// the image, the world, the kernels, and when the passes stop (render/rank_agreement.h). Not the
+// outputs, which rank 0 alone writes, nor --device and --quiet.
+Json options_every_rank_shares(const RenderOptions& options);
 
 // Sets the scene file; throws Error unless it is a .gltf or .glb file, or when one is set already.
 void set_scene(RenderOptions& options, const std::string& path);

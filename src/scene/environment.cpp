@@ -4,9 +4,9 @@
 #include <cmath>
 #include <cstdio>
 
-#include <stb_image.h>
-
 #include "io/image_io.h"
+#include "io/radiance_hdr.h"
+#include "io/regular_file.h"
 #include "util/error.h"
 
 namespace clppm {
@@ -22,17 +22,14 @@ bool ends_with(const std::string& s, const std::string& tail) {
 
 // The map as linear RGB rows, top first.
 Image read_map(const std::string& path) {
+    if (const std::string why = not_a_regular_file(path); !why.empty()) throw Error("--env " + path + ": " + why);
     if (ends_with(path, ".exr")) return read_exr(path);
     if (ends_with(path, ".hdr")) {
-        int w = 0, h = 0, n = 0;
-        float* data = stbi_loadf(path.c_str(), &w, &h, &n, 3);
-        if (!data)
-            throw Error("--env " + path + ": cannot read the Radiance HDR image (" + stbi_failure_reason() + ")");
-        Image img;
-        img.width = w, img.height = h;
-        img.rgb.assign(data, data + size_t(w) * size_t(h) * 3);
-        stbi_image_free(data);
-        return img;
+        try {
+            return read_radiance_hdr(path);
+        } catch (const Error& e) {
+            throw Error("--env " + path + ": " + e.what());
+        }
     }
     throw Error("--env " + path + ": not an equirectangular .exr or .hdr file");
 }

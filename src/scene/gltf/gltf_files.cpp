@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "io/regular_file.h"
 #include "scene/gltf/gltf_context.h"
 
 namespace clppm::gltf {
@@ -11,9 +12,7 @@ namespace fs = std::filesystem;
 
 std::vector<unsigned char> read_whole_file(const std::string& path, std::string* why) {
     std::error_code ec;
-    *why = "";
-    if (!fs::exists(path, ec)) *why = "No such file or directory";
-    else if (!fs::is_regular_file(path, ec)) *why = "not a regular file";
+    *why = not_a_regular_file(path);
     uint64_t size = why->empty() ? fs::file_size(path, ec) : 0;
     if (why->empty() && ec) *why = ec.message();
     if (why->empty() && size > kMaxFileBytes) *why = "larger than 1 GiB";
