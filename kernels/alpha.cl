@@ -54,12 +54,12 @@ bool alpha_covers(__global const TriShading* shading, __global const Material* m
     return alpha_hash(org, dir, prim) < a;
 }
 
-#define BVH_FILTER_PARAMS                                                                                  \
-    , __global const TriShading *shading, __global const Material *materials, __global const Texture *textures, \
-        __global const float4 *texels, __global const float4 *colors, __global const float2 *uv1,          \
+#define BVH_FILTER_PARAMS                                                                                              \
+    , __global const TriShading *shading, __global const Material *materials, __global const Texture *textures,        \
+        __global const float4 *texels, __global const float4 *colors, __global const float2 *uv1,                      \
         __constant SceneInfo *info
 #define BVH_FILTER_ARGS , shading, materials, textures, texels, colors, uv1, info
-#define BVH_FILTER(prim, u, v) \
+#define BVH_FILTER(prim, u, v)                                                                                         \
     alpha_covers(shading, materials, textures, texels, colors, uv1, info, prim, u, v, org, dir)
 
 #endif

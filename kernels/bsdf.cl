@@ -50,15 +50,15 @@
 #define LOBE_ALL 15u
 
 typedef struct {
-    float3 ns, ng; /* shading and geometric normal on the side of wo */
-    float3 nl;     /* the smooth normal, ns before any normal map (bsdf_smooth_side) */
-    float3 base;   /* base colour */
-    float3 f0;     /* dielectric layer: Schlick F0 */
-    float f90;     /* and F90 */
-    float alpha;   /* GGX alpha of both reflection lobes */
+    float3 ns, ng;                  /* shading and geometric normal on the side of wo */
+    float3 nl;                      /* the smooth normal, ns before any normal map (bsdf_smooth_side) */
+    float3 base;                    /* base colour */
+    float3 f0;                      /* dielectric layer: Schlick F0 */
+    float f90;                      /* and F90 */
+    float alpha;                    /* GGX alpha of both reflection lobes */
     float dielectric, glass, metal; /* lobe weights */
-    float eta;     /* LOBE_GLASS: relative index n_t / n_i for light crossing from the ns side */
-    bool thin;     /* LOBE_GLASS: thin-walled, transmission does not bend */
+    float eta;                      /* LOBE_GLASS: relative index n_t / n_i for light crossing from the ns side */
+    bool thin;                      /* LOBE_GLASS: thin-walled, transmission does not bend */
 } Bsdf;
 
 typedef struct {
@@ -66,7 +66,7 @@ typedef struct {
     float3 weight; /* f cos / pdf; for a delta lobe its coefficient over the probability of choosing it */
     float pdf;     /* solid-angle density of wi over the sampled lobe set; 0 for a delta lobe */
     bool delta;
-    bool below;    /* wi leaves through the surface (refraction) */
+    bool below; /* wi leaves through the surface (refraction) */
 } BsdfSample;
 
 /* ---- Fresnel and specular directions ---------------------------------------------------------- */
@@ -139,7 +139,8 @@ float3 layer_albedo(const Bsdf* b, float mu) {
 /* E_avg = 2 int E(mu) mu dmu (Schlick's mean is F0 + (F90 - F0) / 21). */
 float3 layer_albedo_avg(const Bsdf* b) {
     if (bsdf_is_mirror(b)) return b->f0 + (b->f90 - b->f0) * (1.0f / 21.0f);
-    return b->f0 * ggx_table_avg(ggx_albedo_a_avg, b->alpha) + (b->f90 - b->f0) * ggx_table_avg(ggx_albedo_b_avg, b->alpha);
+    return b->f0 * ggx_table_avg(ggx_albedo_a_avg, b->alpha) +
+           (b->f90 - b->f0) * ggx_table_avg(ggx_albedo_b_avg, b->alpha);
 }
 
 /* ---- lobes ------------------------------------------------------------------------------------ */
@@ -336,8 +337,9 @@ float bsdf_pdf_weighted(const Bsdf* b, float3 wo, float3 wi, const LobeWeights* 
 float bsdf_pdf(const Bsdf* b, float3 wo, float3 wi, uint mask) {
     if (bsdf_plain_lambert(b)) {
         float cos_i = dot(b->ns, wi);
-        return (mask & LOBE_DIFFUSE) && dot(b->ns, wo) > 0.0f && cos_i > 0.0f && bsdf_smooth_side(b, wi) ? cos_i * INV_PI_F
-                                                                                                          : 0.0f;
+        return (mask & LOBE_DIFFUSE) && dot(b->ns, wo) > 0.0f && cos_i > 0.0f && bsdf_smooth_side(b, wi)
+                   ? cos_i * INV_PI_F
+                   : 0.0f;
     }
     LobeWeights w = lobe_weights(b, dot(b->ns, wo), mask);
     return bsdf_pdf_weighted(b, wo, wi, &w);
@@ -505,7 +507,8 @@ Bsdf surface_bsdf(SCENE_PARAMS, const Surface* s) {
         metallic *= mr.z;
     }
     float t = HAS_GLASS ? m->transmission : 0.0f;
-    if (HAS_GLASS && HAS_TEXTURES && m->transmission_tex >= 0) t *= texture_lookup(SCENE_ARGS, m->transmission_tex, s->uv).x;
+    if (HAS_GLASS && HAS_TEXTURES && m->transmission_tex >= 0)
+        t *= texture_lookup(SCENE_ARGS, m->transmission_tex, s->uv).x;
     b.metal = metallic;
     b.glass = (1.0f - metallic) * t;
     b.dielectric = (1.0f - metallic) * (1.0f - t);

@@ -178,8 +178,7 @@ bool bvh_intersect(__global const BvhNode* nodes, __global const BvhTriBlock* bl
             const bvh_floatw tny = (row[near_y] - oy) * iy, tfy = (row[far_y] - oy) * iy;
             const bvh_floatw tnz = (row[near_z] - oz) * iz, tfz = (row[far_z] - oz) * iz;
             const bvh_floatw tnear = BVH_VMAX(BVH_VMAX(tnx, tny), BVH_VMAX(tnz, (bvh_floatw)(0.0f)));
-            const bvh_floatw tfar =
-                BVH_VMIN(BVH_VMIN(tfx, tfy), BVH_VMIN(tfz, (bvh_floatw)(t_best))) * BVH_FAR_SCALE;
+            const bvh_floatw tfar = BVH_VMIN(BVH_VMIN(tfx, tfy), BVH_VMIN(tfz, (bvh_floatw)(t_best))) * BVH_FAR_SCALE;
             const int mask = bvh_lane_mask(islessequal(tnear, tfar));
             if (mask != 0) {
                 /* Children straight from the node, without a private copy (no slower in traversal_bench). */

@@ -30,7 +30,8 @@ void camera_ray(__constant Camera* cam, float px, float py, float2 lens_u, float
  * (SmallVCM's imageToSolidAngleFactor for a pixel of unit area). The same from any point of a thin
  * lens: the pixel maps onto the plane of focus scaled by the focus distance, which cancels. */
 float camera_pixel_pdf_w(__constant Camera* cam, float cos_theta) {
-    float a_pix = 4.0f * length(load3c(cam->right)) * length(load3c(cam->up)) / ((float)cam->width * (float)cam->height);
+    float a_pix =
+        4.0f * length(load3c(cam->right)) * length(load3c(cam->up)) / ((float)cam->width * (float)cam->height);
     return 1.0f / (a_pix * cos_theta * cos_theta * cos_theta);
 }
 

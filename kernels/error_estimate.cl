@@ -76,8 +76,8 @@ __kernel void error_reset(__global const HitStats* stats, __global const uint* p
  * tau / R^2 = sum_j tau_M,j / R_j^2). global_r2 > 0: PPPM's radius. */
 __kernel void error_update(__global const PassFlux* pass, __global const long* lap, __global const HitPoint* hitpoints,
                            __global const HitStats* stats, __global const uint* pixel_first,
-                           __global const float4* emitted, uint n, uint spp, double global_r2,
-                           double power_per_photon, __global ErrorStats* es) {
+                           __global const float4* emitted, uint n, uint spp, double global_r2, double power_per_photon,
+                           __global ErrorStats* es) {
     uint p = get_global_id(0);
     if (p >= n) return;
     __global ErrorStats* e = &es[p];

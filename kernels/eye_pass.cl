@@ -35,8 +35,8 @@ typedef struct {
 /* One way an eye path can go on from a surface: a new ray, or a hit point here. */
 typedef struct {
     float3 weight;
-    float3 dir;      /* ray branches */
-    bool below;      /* the ray leaves through the surface (refraction) */
+    float3 dir; /* ray branches */
+    bool below; /* the ray leaves through the surface (refraction) */
     bool hitpoint;
     float magnitude; /* what the branch is expected to carry: chooses between branches */
     float pdf;       /* ray branches: as EyeRay */
@@ -113,14 +113,15 @@ uint surface_branches(const Bsdf* bsdf, float3 wo, float3 weight, Rng* rng, Bran
         br[n++] = ray_branch(weight * (bsdf->glass * F), bsdf_mirror(bsdf, wo), false);
         if (F < 1.0f) {
             float3 t = bsdf->thin ? -wo : refract_dir(-wo, bsdf->ns, bsdf->eta);
-            if (dot(t, bsdf->ng) < 0.0f) br[n++] = ray_branch(weight * bsdf->base * (bsdf->glass * (1.0f - F)), t, true);
+            if (dot(t, bsdf->ng) < 0.0f)
+                br[n++] = ray_branch(weight * bsdf->base * (bsdf->glass * (1.0f - F)), t, true);
         }
     }
     return n;
 }
 
-__kernel void eye_pass(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong pass, uint first_sample, uint num_samples,
-                       uint spp, __global HitPoint* hitpoints, __global float4* sample_emission) {
+__kernel void eye_pass(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong pass, uint first_sample,
+                       uint num_samples, uint spp, __global HitPoint* hitpoints, __global float4* sample_emission) {
     uint i = get_global_id(0);
     if (i >= num_samples) return;
     uint gsample = first_sample + i;
@@ -204,8 +205,13 @@ __kernel void eye_pass(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong p
             if (b.hitpoint) {
                 store_hitpoint(&out[stored++], pixel, sf.p, -r.dir, b.weight, &bsdf, plen * pixel_angle);
             } else {
-                EyeRay nr = {offset_origin(SCENE_ARGS, sf.p, b.below ? -sf.ng : sf.ng), b.dir, b.weight, plen,
-                             r.depth + 1, b.pdf, b.delta};
+                EyeRay nr = {offset_origin(SCENE_ARGS, sf.p, b.below ? -sf.ng : sf.ng),
+                             b.dir,
+                             b.weight,
+                             plen,
+                             r.depth + 1,
+                             b.pdf,
+                             b.delta};
                 stack[top++] = nr;
             }
         }

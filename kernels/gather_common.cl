@@ -36,33 +36,33 @@ bool gather_faces(__global const GRID_ELEM* ph, float3 n, float3* wi) {
 /* Runs the statement(s) `...` for every element of the grid within squared radius r2 of x
  * (grid_within), with `ph` (the element) and `d2` (its squared distance) in scope. OpenCL C has no
  * lambdas: the per-element action is the macro's body, so every gather runs exactly this loop. */
-#define GRID_FOR_EACH_NEAR(g_, sorted_, starts_, x_, r2_, ...)                                                    \
-    do {                                                                                                           \
-        const float gather_r_ = sqrt(r2_);                                                                         \
-        const int3 gather_c0_ = grid_cell(g_, (x_) - gather_r_);                                                   \
-        const int3 gather_c1_ = min(grid_cell(g_, (x_) + gather_r_), gather_c0_ + (GATHER_MAX_CELLS_PER_AXIS - 1));\
-        for (int cz = gather_c0_.z; cz <= gather_c1_.z; ++cz)                                                      \
-            for (int cy = gather_c0_.y; cy <= gather_c1_.y; ++cy)                                                  \
-                for (int cx = gather_c0_.x; cx <= gather_c1_.x; ++cx) {                                            \
-                    const int3 gather_cell_ = (int3)(cx, cy, cz);                                                  \
-                    const uint gather_b_ = grid_bucket(g_, gather_cell_);                                          \
-                    const uint gather_end_ = (starts_)[gather_b_ + 1];                                             \
-                    for (uint gather_k_ = (starts_)[gather_b_]; gather_k_ < gather_end_; ++gather_k_) {             \
-                        __global const GRID_ELEM* ph = &(sorted_)[gather_k_];                                      \
-                        float d2;                                                                                  \
-                        if (!grid_within(g_, ph, x_, r2_, gather_cell_, &d2)) continue;                            \
-                        __VA_ARGS__                                                                                \
-                    }                                                                                              \
-                }                                                                                                  \
+#define GRID_FOR_EACH_NEAR(g_, sorted_, starts_, x_, r2_, ...)                                                         \
+    do {                                                                                                               \
+        const float gather_r_ = sqrt(r2_);                                                                             \
+        const int3 gather_c0_ = grid_cell(g_, (x_)-gather_r_);                                                         \
+        const int3 gather_c1_ = min(grid_cell(g_, (x_) + gather_r_), gather_c0_ + (GATHER_MAX_CELLS_PER_AXIS - 1));    \
+        for (int cz = gather_c0_.z; cz <= gather_c1_.z; ++cz)                                                          \
+            for (int cy = gather_c0_.y; cy <= gather_c1_.y; ++cy)                                                      \
+                for (int cx = gather_c0_.x; cx <= gather_c1_.x; ++cx) {                                                \
+                    const int3 gather_cell_ = (int3)(cx, cy, cz);                                                      \
+                    const uint gather_b_ = grid_bucket(g_, gather_cell_);                                              \
+                    const uint gather_end_ = (starts_)[gather_b_ + 1];                                                 \
+                    for (uint gather_k_ = (starts_)[gather_b_]; gather_k_ < gather_end_; ++gather_k_) {                \
+                        __global const GRID_ELEM* ph = &(sorted_)[gather_k_];                                          \
+                        float d2;                                                                                      \
+                        if (!grid_within(g_, ph, x_, r2_, gather_cell_, &d2)) continue;                                \
+                        __VA_ARGS__                                                                                    \
+                    }                                                                                                  \
+                }                                                                                                      \
     } while (0)
 
 /* GRID_FOR_EACH_NEAR with the gather's acceptance (gather_faces) for a hit point with normal n;
  * `wi` (the photon's incoming direction) is in scope as well. */
-#define GATHER_FOR_EACH_PHOTON(g_, sorted_, starts_, x_, n_, r2_, ...)                                                \
-    GRID_FOR_EACH_NEAR(g_, sorted_, starts_, x_, r2_, {                                                            \
-        float3 wi;                                                                                                 \
-        if (!gather_faces(ph, n_, &wi)) continue;                                                                  \
-        __VA_ARGS__                                                                                                \
+#define GATHER_FOR_EACH_PHOTON(g_, sorted_, starts_, x_, n_, r2_, ...)                                                 \
+    GRID_FOR_EACH_NEAR(g_, sorted_, starts_, x_, r2_, {                                                                \
+        float3 wi;                                                                                                     \
+        if (!gather_faces(ph, n_, &wi)) continue;                                                                      \
+        __VA_ARGS__                                                                                                    \
     })
 
 #endif

@@ -37,7 +37,7 @@ __kernel void grid_count(__constant GridInfo* g, __global const GRID_ELEM* photo
  * each item sums a contiguous chunk, the chunk sums are scanned in local memory, then each item
  * writes its chunk's prefixes. starts[n] is the total. */
 __kernel __attribute__((reqd_work_group_size(GRID_SCAN_WG, 1, 1))) void grid_scan(__global const uint* counts,
-                                                                                   __global uint* starts, uint n) {
+                                                                                  __global uint* starts, uint n) {
     __local uint partial[GRID_SCAN_WG];
     uint lid = get_local_id(0);
     uint chunk = (n + GRID_SCAN_WG - 1) / GRID_SCAN_WG;

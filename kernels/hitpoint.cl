@@ -9,11 +9,19 @@
 
 void store_hitpoint(__global HitPoint* hp, uint pixel, float3 p, float3 wo, float3 weight, const Bsdf* b,
                     float footprint) {
-    hp->pos[0] = p.x; hp->pos[1] = p.y; hp->pos[2] = p.z;
-    hp->weight[0] = weight.x; hp->weight[1] = weight.y; hp->weight[2] = weight.z;
-    hp->color[0] = b->base.x; hp->color[1] = b->base.y; hp->color[2] = b->base.z;
+    hp->pos[0] = p.x;
+    hp->pos[1] = p.y;
+    hp->pos[2] = p.z;
+    hp->weight[0] = weight.x;
+    hp->weight[1] = weight.y;
+    hp->weight[2] = weight.z;
+    hp->color[0] = b->base.x;
+    hp->color[1] = b->base.y;
+    hp->color[2] = b->base.z;
     hp->alpha = b->alpha;
-    hp->f0[0] = b->f0.x; hp->f0[1] = b->f0.y; hp->f0[2] = b->f0.z;
+    hp->f0[0] = b->f0.x;
+    hp->f0[1] = b->f0.y;
+    hp->f0[2] = b->f0.z;
     hp->f90 = b->f90;
     hp->dielectric = b->dielectric;
     hp->metal = b->metal;

@@ -259,7 +259,7 @@ bool sample_light_full(SCENE_PARAMS, float3 x, Rng* rng, LightSample* s) {
     s->contrib = rad * (falloff / (d2 * pick)); /* I / d^2 */
     s->pdf_w = pick * d2;
     s->emission_pdf_w = pick * (HAS_SPOT_LIGHTS && L->type == LIGHT_SPOT ? 1.0f / (2.0f * PI_F * (1.0f - L->cos_outer))
-                                                                           : 0.25f * INV_PI_F);
+                                                                         : 0.25f * INV_PI_F);
     return true;
 }
 

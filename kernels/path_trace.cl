@@ -25,7 +25,8 @@ __kernel void path_trace(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong
     for (uint depth = 0; depth < info->max_bounces; ++depth) {
         Hit hit;
         if (!trace_closest(SCENE_ARGS, org, dir, INFINITY, &hit)) {
-            if (HAS_ENV_LIGHT) L += beta * escaped_radiance(SCENE_ARGS, normalize(dir), depth == 0, prev_delta, prev_pdf);
+            if (HAS_ENV_LIGHT)
+                L += beta * escaped_radiance(SCENE_ARGS, normalize(dir), depth == 0, prev_delta, prev_pdf);
             break;
         }
         Surface sf = make_surface(SCENE_ARGS, dir, &hit);

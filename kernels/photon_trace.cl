@@ -13,15 +13,18 @@ void store_photon(__global Photon* photons, uint capacity, volatile __global uin
     uint slot = atomic_inc(counter);
     if (slot >= capacity) return; /* the host sees counter > capacity, grows the buffer, re-runs */
     __global Photon* ph = &photons[slot];
-    ph->pos[0] = p.x; ph->pos[1] = p.y; ph->pos[2] = p.z;
+    ph->pos[0] = p.x;
+    ph->pos[1] = p.y;
+    ph->pos[2] = p.z;
     ph->normal_oct = oct_encode(n);
-    ph->flux[0] = flux.x; ph->flux[1] = flux.y; ph->flux[2] = flux.z;
+    ph->flux[0] = flux.x;
+    ph->flux[1] = flux.y;
+    ph->flux[2] = flux.z;
     ph->wi_oct = oct_encode(wi);
 }
 
-__kernel void photon_trace(SCENE_PARAMS, ulong seed, ulong pass, uint first_photon, uint num_photons,
-                           uint skip_direct, __global Photon* photons, uint capacity,
-                           volatile __global uint* counter) {
+__kernel void photon_trace(SCENE_PARAMS, ulong seed, ulong pass, uint first_photon, uint num_photons, uint skip_direct,
+                           __global Photon* photons, uint capacity, volatile __global uint* counter) {
     uint i = get_global_id(0);
     if (i >= num_photons || info->num_lights == 0) return;
     Rng rng = rng_make(seed, pass, first_photon + i, RNG_PHOTON);

@@ -17,9 +17,11 @@ void ppm_update_stats(__global HitStats* s, double M, double3 tau_M, double alph
 
 /* Also reduces sum and max of R per work-group into radius_partials (for the next grid's cell
  * size; the image does not depend on it). Launched with local size PPM_UPDATE_WG. */
-__kernel __attribute__((reqd_work_group_size(PPM_UPDATE_WG, 1, 1))) void ppm_update(
-    __global const PassFlux* pass, __global const HitPoint* hitpoints, __global HitStats* stats, uint num_hitpoints,
-    double alpha, __global float2* radius_partials) {
+__kernel __attribute__((reqd_work_group_size(PPM_UPDATE_WG, 1, 1))) void ppm_update(__global const PassFlux* pass,
+                                                                                    __global const HitPoint* hitpoints,
+                                                                                    __global HitStats* stats,
+                                                                                    uint num_hitpoints, double alpha,
+                                                                                    __global float2* radius_partials) {
     __local float2 part[PPM_UPDATE_WG];
     uint i = get_global_id(0), lid = get_local_id(0);
     float2 mine = (float2)(0.0f);
@@ -35,7 +37,8 @@ __kernel __attribute__((reqd_work_group_size(PPM_UPDATE_WG, 1, 1))) void ppm_upd
     part[lid] = mine;
     barrier(CLK_LOCAL_MEM_FENCE);
     for (uint stride = PPM_UPDATE_WG / 2; stride > 0; stride >>= 1) {
-        if (lid < stride) part[lid] = (float2)(part[lid].x + part[lid + stride].x, fmax(part[lid].y, part[lid + stride].y));
+        if (lid < stride)
+            part[lid] = (float2)(part[lid].x + part[lid + stride].x, fmax(part[lid].y, part[lid + stride].y));
         barrier(CLK_LOCAL_MEM_FENCE);
     }
     if (lid == 0) radius_partials[get_group_id(0)] = part[0];

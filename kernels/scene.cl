@@ -10,20 +10,20 @@
 #include "bvh_traverse.cl"
 
 /* One spelling of the scene arguments for kernels and the functions they call. */
-#define SCENE_PARAMS                                                                              \
-    __global const BvhNode *bvh_nodes, __global const BvhTriBlock *tri_blocks,                    \
-        __global const float4 *tris, __global const TriShading *shading, __global const Material *materials,                   \
-        __global const Texture *textures, __global const float4 *texels,                          \
-        __global const float4 *tangents, __global const float4 *colors, __global const float2 *uv1,      \
-        __global const Light *lights, __global const float *light_cdf, __constant SceneInfo *info
-#define SCENE_ARGS                                                                                        \
+#define SCENE_PARAMS                                                                                                   \
+    __global const BvhNode *bvh_nodes, __global const BvhTriBlock *tri_blocks, __global const float4 *tris,            \
+        __global const TriShading *shading, __global const Material *materials, __global const Texture *textures,      \
+        __global const float4 *texels, __global const float4 *tangents, __global const float4 *colors,                 \
+        __global const float2 *uv1, __global const Light *lights, __global const float *light_cdf,                     \
+        __constant SceneInfo *info
+#define SCENE_ARGS                                                                                                     \
     bvh_nodes, tri_blocks, tris, shading, materials, textures, texels, tangents, colors, uv1, lights, light_cdf, info
 
 typedef struct {
     float3 p;
-    float3 ng;  /* geometric normal, on the side the ray came from */
-    float3 ns;  /* shading normal, on the same side */
-    float3 nl;  /* the smooth normal: ns before the normal map (= ns without one), same side */
+    float3 ng; /* geometric normal, on the side the ray came from */
+    float3 ns; /* shading normal, on the same side */
+    float3 nl; /* the smooth normal: ns before the normal map (= ns without one), same side */
     float4 uv; /* xy: TEXCOORD_0, zw: TEXCOORD_1 (= TEXCOORD_0 when the scene has none) */
     uint material;
     uint prim;

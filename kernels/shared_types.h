@@ -102,7 +102,7 @@ typedef struct {
     i32 specular_tex;           /* KHR_materials_specular specularTexture (linear, A); -1 when none */
     i32 specular_color_tex;     /* specularColorTexture (sRGB, RGB); -1 when none */
     u32 pad0;
-} Material;                     /* 128 bytes */
+} Material; /* 128 bytes */
 
 /* Sampler bits of a texture. Wrap per axis (glTF sampler wrapS, wrapT): clamp s, clamp t, mirror
  * s, mirror t; none set is REPEAT. TEXTURE_NEAREST: magFilter NEAREST, the texel the coordinate
@@ -118,9 +118,9 @@ typedef struct {
 typedef struct {
     u32 offset; /* first texel in the texel buffer (float4 linear RGBA) */
     u32 width, height;
-    u32 wrap;        /* TEXTURE_* bits: wrap modes and filter */
-    float xform[6];  /* u' = x0 u + x1 v + x2, v' = x3 u + x4 v + x5 */
-    u32 texcoord;    /* 0: TEXCOORD_0, 1: TEXCOORD_1 */
+    u32 wrap;       /* TEXTURE_* bits: wrap modes and filter */
+    float xform[6]; /* u' = x0 u + x1 v + x2, v' = x3 u + x4 v + x5 */
+    u32 texcoord;   /* 0: TEXCOORD_0, 1: TEXCOORD_1 */
     u32 pad0;
 } Texture; /* 48 bytes */
 
@@ -130,15 +130,16 @@ typedef struct {
 #define LIGHT_POINT 1u       /* KHR_lights_punctual point: intensity in W/sr */
 #define LIGHT_SPOT 2u        /* KHR_lights_punctual spot */
 #define LIGHT_DIRECTIONAL 3u /* KHR_lights_punctual directional: irradiance in W/m^2 */
-#define LIGHT_ENVIRONMENT 4u /* radiance from every direction (--env, --env-color, the default light):
+#define LIGHT_ENVIRONMENT                                                                                              \
+    4u                          /* radiance from every direction (--env, --env-color, the default light):
                               * kernels/environment.cl */
 #define ENV_UNIFORM 0xffffffffu /* LIGHT_ENVIRONMENT.prim without a map */
 
 typedef struct {
     u32 type;
-    u32 prim;       /* LIGHT_TRIANGLE: triangle id */
-    u32 two_sided;  /* LIGHT_TRIANGLE: emits from both faces */
-    float power;    /* scalar power (mean over RGB), W: drives photon emission probability */
+    u32 prim;      /* LIGHT_TRIANGLE: triangle id */
+    u32 two_sided; /* LIGHT_TRIANGLE: emits from both faces */
+    float power;   /* scalar power (mean over RGB), W: drives photon emission probability */
     float position[4];
     float direction[4]; /* spot, directional: unit direction the light travels */
     float radiance[4];  /* triangle: Le (times the emissive texture, when any); point/spot:
@@ -154,26 +155,26 @@ typedef struct {
 
 typedef struct {
     float origin[4];
-    float forward[4];  /* unit view direction */
-    float right[4];    /* right * tan(xfov/2): screen x in [-1,1] maps onto it */
-    float up[4];       /* up * tan(yfov/2) */
+    float forward[4]; /* unit view direction */
+    float right[4];   /* right * tan(xfov/2): screen x in [-1,1] maps onto it */
+    float up[4];      /* up * tan(yfov/2) */
     u32 width, height;
     float lens_radius;    /* 0: pinhole */
     float focus_distance; /* along forward */
-} Camera; /* 80 bytes */
+} Camera;                 /* 80 bytes */
 
 typedef struct {
-    float center[4];     /* bounding sphere of the scene */
-    float radius;        /* bounding sphere radius */
-    float ray_eps;       /* origin offset along the normal, relative to the scene size */
-    float total_power;   /* sum of Light.power: every photon leaves a light carrying this (RGB-scaled) */
+    float center[4];   /* bounding sphere of the scene */
+    float radius;      /* bounding sphere radius */
+    float ray_eps;     /* origin offset along the normal, relative to the scene size */
+    float total_power; /* sum of Light.power: every photon leaves a light carrying this (RGB-scaled) */
     u32 num_lights;
     u32 num_tris;
     u32 num_emissive_tris;
-    u32 max_bounces;     /* eye and photon path depth limit */
-    u32 vertex_colors;   /* 1: the colors buffer holds COLOR_0 for every triangle; 0: it is empty */
-    u32 texcoord1;       /* 1: the uv1 buffer holds TEXCOORD_1 for every triangle; 0: it is empty */
-    u32 env_light;       /* index of the LIGHT_ENVIRONMENT light; ENV_UNIFORM (~0) when there is none */
+    u32 max_bounces;   /* eye and photon path depth limit */
+    u32 vertex_colors; /* 1: the colors buffer holds COLOR_0 for every triangle; 0: it is empty */
+    u32 texcoord1;     /* 1: the uv1 buffer holds TEXCOORD_1 for every triangle; 0: it is empty */
+    u32 env_light;     /* index of the LIGHT_ENVIRONMENT light; ENV_UNIFORM (~0) when there is none */
     u32 pad2, pad3;
 } SceneInfo; /* 64 bytes */
 
@@ -184,9 +185,9 @@ typedef struct {
  * Statistics (R, N, tau) live apart in HitStats. */
 typedef struct {
     float pos[3];
-    u32 pixel;        /* y * width + x; HITPOINT_NONE marks an unused slot */
-    float weight[3];  /* path throughput from the camera up to this surface */
-    float footprint;  /* pixel footprint at the hit, world units (initial radius heuristic) */
+    u32 pixel;       /* y * width + x; HITPOINT_NONE marks an unused slot */
+    float weight[3]; /* path throughput from the camera up to this surface */
+    float footprint; /* pixel footprint at the hit, world units (initial radius heuristic) */
     /* The material there, as kernels/bsdf.cl's Bsdf holds it: the lobes the gather evaluates are
      * the diffuse one and, when alpha >= GLOSSY_HITPOINT_ALPHA, the specular and metal ones. */
     float color[3];   /* base colour */
@@ -199,7 +200,7 @@ typedef struct {
     u32 ng_oct;       /* geometric normal, same side (shadow-ray offsets) */
     u32 wo_oct;       /* unit direction back along the eye path */
     u32 nl_oct;       /* smooth normal (before any normal map), same side */
-} HitPoint; /* 88 bytes */
+} HitPoint;           /* 88 bytes */
 
 #define HITPOINT_NONE 0xffffffffu
 
@@ -214,25 +215,25 @@ typedef struct {
 /* Per hit point statistics of Sec. 4.2, in double: N beyond 2^24 and tau over millions of
  * passes keep their precision (float would stop counting at N = 2^24). */
 typedef struct {
-    double r2;      /* R(x)^2 */
-    double n;       /* N(x): accumulated (alpha-discounted) photon count */
-    double tau[3];  /* unnormalised flux, in units of SceneInfo.total_power */
+    double r2;        /* R(x)^2 */
+    double n;         /* N(x): accumulated (alpha-discounted) photon count */
+    double tau[3];    /* unnormalised flux, in units of SceneInfo.total_power */
     double direct[3]; /* explicit direct lighting: running sum over passes */
-} HitStats; /* 64 bytes */
+} HitStats;           /* 64 bytes */
 
 /* A photon hit on a non-specular surface. */
 typedef struct {
     float pos[3];
-    u32 normal_oct;  /* surface normal, octahedral 2x16 bits */
-    float flux[3];   /* in units of SceneInfo.total_power */
-    u32 wi_oct;      /* unit direction towards where the photon came from, octahedral 2x16 */
-} Photon; /* 32 bytes */
+    u32 normal_oct; /* surface normal, octahedral 2x16 bits */
+    float flux[3];  /* in units of SceneInfo.total_power */
+    u32 wi_oct;     /* unit direction towards where the photon came from, octahedral 2x16 */
+} Photon;           /* 32 bytes */
 
 /* The uniform hashed grid over this pass's photons (Sec. 4.3). */
 typedef struct {
-    float origin[4];  /* bounds minimum */
-    float inv_cell;   /* 1 / cell size */
-    u32 table_size;   /* power of two */
+    float origin[4]; /* bounds minimum */
+    float inv_cell;  /* 1 / cell size */
+    u32 table_size;  /* power of two */
     u32 num_photons;
     u32 pad0;
 } GridInfo; /* 32 bytes */
@@ -242,15 +243,15 @@ typedef struct {
  * connections rebuild the surface from (prim, u, v) and the arrival direction. */
 typedef struct {
     float pos[3];
-    u32 normal_oct;      /* shading normal on the side the light arrived from */
-    float throughput[3]; /* in units of SceneInfo.total_power, as photon flux */
-    u32 wi_oct;          /* unit direction back towards the previous vertex */
+    u32 normal_oct;          /* shading normal on the side the light arrived from */
+    float throughput[3];     /* in units of SceneInfo.total_power, as photon flux */
+    u32 wi_oct;              /* unit direction back towards the previous vertex */
     float d_vcm, d_vc, d_vm; /* the partial MIS sums (kernels/vcm_mis.h) */
     u32 prim;
-    float u, v;          /* barycentrics on prim */
-    u32 prev;            /* the same sub-path's previous stored vertex; VCM_NO_VERTEX at its first */
-    u32 path_length;     /* segments from the light */
-} LightVertex; /* 64 bytes */
+    float u, v;      /* barycentrics on prim */
+    u32 prev;        /* the same sub-path's previous stored vertex; VCM_NO_VERTEX at its first */
+    u32 path_length; /* segments from the light */
+} LightVertex;       /* 64 bytes */
 
 #define VCM_NO_VERTEX 0xffffffffu
 
@@ -275,7 +276,8 @@ typedef struct {
     double m2_l;      /* sum of squared deviations of L_j from their mean (Welford) */
     double mean_bias; /* mean of B_j */
     double m2_bias;   /* sum of squared deviations of B_j from their mean: the bias estimate's own noise */
-    double direct_y;  /* luminance of the pixel's HitStats.direct after the previous pass: this pass's share is the difference */
+    double
+        direct_y; /* luminance of the pixel's HitStats.direct after the previous pass: this pass's share is the difference */
 } ErrorStats; /* 48 bytes */
 
 #ifndef __OPENCL_VERSION__

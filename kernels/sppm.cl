@@ -46,6 +46,7 @@ __kernel void pppm_film(__global const HitStats* stats, uint num_pixels, double 
     double3 L = (double3)(0.0);
     if (passes > 0.0)
         L = ((double3)(s->tau[0], s->tau[1], s->tau[2]) * power_per_photon +
-             (double3)(s->direct[0], s->direct[1], s->direct[2])) / passes;
+             (double3)(s->direct[0], s->direct[1], s->direct[2])) /
+            passes;
     image[p] = (float4)((float)L.x, (float)L.y, (float)L.z, 1.0f);
 }

@@ -39,7 +39,8 @@ float4 texture_rgba(__global const Texture* textures, __global const float4* tex
     const int w = (int)tex->width, h = (int)tex->height;
     const float rs = wrap_coordinate(st.x, cs, ms), rt = wrap_coordinate(st.y, ct, mt);
     if (tex->wrap & TEXTURE_NEAREST) {
-        int px = wrap_texel((int)floor(rs * (float)w), w, cs, ms), py = wrap_texel((int)floor(rt * (float)h), h, ct, mt);
+        int px = wrap_texel((int)floor(rs * (float)w), w, cs, ms),
+            py = wrap_texel((int)floor(rt * (float)h), h, ct, mt);
         return texels[tex->offset + (uint)py * tex->width + (uint)px];
     }
     float x = rs * (float)w - 0.5f, y = rt * (float)h - 0.5f;

@@ -28,7 +28,8 @@
 #include "gather_common.cl"
 #include "fixed_point.cl"
 
-#define RNG_VCM_LIGHT_SAMPLE 7u /* the camera sub-path's light samples: a stream of their own, so that
+#define RNG_VCM_LIGHT_SAMPLE                                                                                           \
+    7u /* the camera sub-path's light samples: a stream of their own, so that
                                  * batches that skip them trace the same camera sub-path */
 
 bool vcm_uses_connections(uint mode) { return mode == VCM_MODE_VCM || mode == VCM_MODE_BPT; }
@@ -70,7 +71,8 @@ void vcm_connect_to_camera(SCENE_PARAMS, __constant Camera* cam, const Surface* 
     float camera_pdf_a = camera_pixel_pdf_w(cam, cos_theta) * fabs(dot(b->ns, w)) / (dist2 / area_scale);
     float weight = 1.0f;
     if (mode != VCM_MODE_LT)
-        weight = vcm_weight_camera_connection(m, camera_pdf_a, light_paths, bsdf_pdf_rev(b, wo, w, LOBE_ALL), vm_factor);
+        weight =
+            vcm_weight_camera_connection(m, camera_pdf_a, light_paths, bsdf_pdf_rev(b, wo, w, LOBE_ALL), vm_factor);
     float3 v = T * f * (weight * camera_pdf_a / light_paths);
     if (!all(isfinite(v)) || !(max3(v) > 0.0f)) return;
     float3 a = offset_origin(SCENE_ARGS, sf->p, dot(w, sf->ng) > 0.0f ? sf->ng : -sf->ng);
@@ -124,9 +126,13 @@ __kernel void vcm_light(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong 
                 uint slot = atomic_inc(counter);
                 if (slot < capacity) {
                     __global LightVertex* v = &verts[slot];
-                    v->pos[0] = sf.p.x; v->pos[1] = sf.p.y; v->pos[2] = sf.p.z;
+                    v->pos[0] = sf.p.x;
+                    v->pos[1] = sf.p.y;
+                    v->pos[2] = sf.p.z;
                     v->normal_oct = oct_encode(sf.ns);
-                    v->throughput[0] = T.x; v->throughput[1] = T.y; v->throughput[2] = T.z;
+                    v->throughput[0] = T.x;
+                    v->throughput[1] = T.y;
+                    v->throughput[2] = T.z;
                     v->wi_oct = oct_encode(wo);
                     v->d_vcm = m.d_vcm;
                     v->d_vc = m.d_vc;
@@ -211,9 +217,9 @@ float3 vcm_connect(SCENE_PARAMS, const Surface* sf, const Bsdf* b, float3 wo, co
     ml.d_vcm = lv->d_vcm;
     ml.d_vc = lv->d_vc;
     ml.d_vm = lv->d_vm;
-    float weight = vcm_weight_connection(m, &ml, bsdf_pdf(b, wo, w, LOBE_ALL) * cos_l / dist2n,
-                                         bsdf_pdf_rev(b, wo, w, LOBE_ALL), bsdf_pdf(&bl, wi_l, -w, LOBE_ALL) * cos_c / dist2n,
-                                         bsdf_pdf_rev(&bl, wi_l, -w, LOBE_ALL), vm_factor);
+    float weight = vcm_weight_connection(
+        m, &ml, bsdf_pdf(b, wo, w, LOBE_ALL) * cos_l / dist2n, bsdf_pdf_rev(b, wo, w, LOBE_ALL),
+        bsdf_pdf(&bl, wi_l, -w, LOBE_ALL) * cos_c / dist2n, bsdf_pdf_rev(&bl, wi_l, -w, LOBE_ALL), vm_factor);
     float3 v = f_c * f_l * load3g(lv->throughput) * (weight * cos_c * cos_l / dist2n);
     if (!all(isfinite(v)) || !(max3(v) > 0.0f)) return (float3)(0.0f);
     if (!vcm_visible(SCENE_ARGS, sf->p, sf->ng, y, sl.ng, w)) return (float3)(0.0f);
@@ -252,9 +258,8 @@ __kernel void vcm_camera(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong
                          __constant GridInfo* g, __global const LightVertex* sorted, __global const uint* starts,
                          __global const LightVertex* verts, __global const uint* path_last, uint batch_first,
                          uint batch_count, uint batch_flags, float r2, float light_paths, float vm_factor,
-                         float vc_factor, float area_scale, uint mode, uint max_len, double light_unit,
-                         double vm_norm, __global long* splat, double splat_unit, __global double* pass_sum,
-                         __global double* accum) {
+                         float vc_factor, float area_scale, uint mode, uint max_len, double light_unit, double vm_norm,
+                         __global long* splat, double splat_unit, __global double* pass_sum, __global double* accum) {
     uint p = get_global_id(0);
     if (p >= pixel_end) return; /* the launch covers [offset, pixel_end), padded to the work-group size */
     const bool first = (batch_flags & 1u) != 0u;
@@ -277,7 +282,8 @@ __kernel void vcm_camera(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong
             if (first && HAS_ENV_LIGHT && info->env_light != ENV_UNIFORM) {
                 float3 d = normalize(dir);
                 float3 le = escaped_radiance(SCENE_ARGS, d, t == 1, true, 0.0f);
-                if (max3(le) > 0.0f) L += beta * le * vcm_emission_weight(SCENE_ARGS, 0, d, t, specular, &m, mode, area_scale);
+                if (max3(le) > 0.0f)
+                    L += beta * le * vcm_emission_weight(SCENE_ARGS, 0, d, t, specular, &m, mode, area_scale);
             }
             break;
         }
@@ -287,7 +293,8 @@ __kernel void vcm_camera(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong
         vcm_on_hit(&m, sf.t * sf.t * dot(dir, dir) / area_scale, fabs(dot(sf.ns, wo)) / length(dir), false);
         if (first) {
             float3 le = surface_emission(SCENE_ARGS, &sf);
-            if (max3(le) > 0.0f) L += beta * le * vcm_emission_weight(SCENE_ARGS, &sf, dir, t, specular, &m, mode, area_scale);
+            if (max3(le) > 0.0f)
+                L += beta * le * vcm_emission_weight(SCENE_ARGS, &sf, dir, t, specular, &m, mode, area_scale);
         }
         if (t >= max_len) break;
         wo = normalize(wo);
@@ -315,8 +322,8 @@ __kernel void vcm_camera(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong
                         ml.d_vcm = ph->d_vcm;
                         ml.d_vc = ph->d_vc;
                         ml.d_vm = ph->d_vm;
-                        w = vcm_weight_merge(&m, &ml, bsdf_pdf(&b, wo, wi, LOBE_ALL), bsdf_pdf_rev(&b, wo, wi, LOBE_ALL),
-                                             vc_factor);
+                        w = vcm_weight_merge(&m, &ml, bsdf_pdf(&b, wo, wi, LOBE_ALL),
+                                             bsdf_pdf_rev(&b, wo, wi, LOBE_ALL), vc_factor);
                     }
                     float3 c = beta * f * load3g(ph->throughput) * w;
                     if (!all(isfinite(c))) continue;

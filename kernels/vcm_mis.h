@@ -31,7 +31,8 @@
 #define VCM_MODE_BPT 1u /* connections only: s = 0, s = 1, t = 1, s,t >= 2 */
 #define VCM_MODE_PT 2u  /* camera paths finding emission, weight 1 (no light sampling) */
 #define VCM_MODE_LT 3u  /* light vertices connected to the camera, weight 1 */
-#define VCM_MODE_VM 4u  /* merging at the first non-delta camera vertex, weight 1 (PPM with eta's
+#define VCM_MODE_VM                                                                                                    \
+    4u /* merging at the first non-delta camera vertex, weight 1 (PPM with eta's
                          * radius; emission only through delta chains from the camera) */
 
 typedef struct {
@@ -112,8 +113,8 @@ VCM_FN float vcm_weight_light_sample(const VcmMis* c, float light_pdf_w, float e
 /* t = 1: a light vertex (state l) connected to the camera, whose pixel samples it with area density
  * camera_pdf_a; bsdf_rev_pdf_w: the light vertex's BSDF sampling the direction the light arrived
  * from, given the camera's. Tech. rep. Eq. 46 (SmallVCM ConnectToCamera). */
-VCM_FN float vcm_weight_camera_connection(const VcmMis* l, float camera_pdf_a, float light_paths,
-                                          float bsdf_rev_pdf_w, float vm_factor) {
+VCM_FN float vcm_weight_camera_connection(const VcmMis* l, float camera_pdf_a, float light_paths, float bsdf_rev_pdf_w,
+                                          float vm_factor) {
     float w_light = vcm_mis(camera_pdf_a / light_paths) * (vm_factor + l->d_vcm + l->d_vc * vcm_mis(bsdf_rev_pdf_w));
     return 1.0f / (w_light + 1.0f);
 }

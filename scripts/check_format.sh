@@ -1,10 +1,12 @@
 #!/usr/bin/env bash
-# Checks that every C++ source and header under src/, tests/ and bench/ is formatted as
-# .clang-format says (clang-format 14, Debian 12). Kernels (OpenCL C) are left as written.
+# Checks that every C++ source and header under src/, tests/ and bench/, and every kernel (OpenCL C,
+# kernels/*.cl and *.h), is formatted as .clang-format says (clang-format 14, Debian 12; the
+# kernels keep their include order: kernels/.clang-format).
 # With --fix, reformats them in place instead.
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
-mapfile -t files < <(git ls-files 'src/*.cpp' 'src/*.h' 'tests/*.cpp' 'tests/*.h' 'bench/*.cpp' 'bench/*.h')
+mapfile -t files < <(git ls-files 'src/*.cpp' 'src/*.h' 'tests/*.cpp' 'tests/*.h' 'bench/*.cpp' 'bench/*.h' \
+  'kernels/*.cl' 'kernels/*.h')
 if [[ "${1:-}" == "--fix" ]]; then
   clang-format -i "${files[@]}"
   exit 0
