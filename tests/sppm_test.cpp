@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "integrators/progressive_update.h"
 #include "integrators/sppm_integrator.h"
 #include "scene_builders.h"
 #include "test_util.h"
@@ -79,7 +80,7 @@ TEST(Sppm, PppmRadiusSequence) {
     double r2 = 1.0, alpha = 0.7, prod = 1.0;
     for (uint64_t i = 1; i < 1000; ++i) {
         prod *= (double(i) + alpha) / double(i + 1);
-        r2 = SppmIntegrator::next_pppm_radius2(r2, i, alpha);
+        r2 = next_pppm_radius2(r2, i, alpha);
         ASSERT_NEAR(r2, prod, 1e-12 * prod);
     }
     // Asymptotically r_i^2 ~ i^(alpha - 1).

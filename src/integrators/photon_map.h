@@ -9,6 +9,7 @@
 
 #include "device/cl.h"
 #include "device/device.h"
+#include "integrators/batched_trace.h"
 #include "integrators/hash_grid.h"
 #include "integrators/integrator_stats.h"
 #include "integrators/render_settings.h"
@@ -29,9 +30,6 @@ public:
     // budget allows; CLPPM_PHOTON_BATCH overrides it, for tests).
     PhotonMap(const DeviceContext& dc, const DeviceScene& scene, const RenderSettings& settings,
               const cl::Program& program, IntegratorStats& stats, uint64_t max_batch_photons = 0);
-    // Waits for the device queue: a non-blocking write still reads grid_host_ (an interrupted
-    // pass destroys the map while its commands run).
-    ~PhotonMap();
     PhotonMap(const PhotonMap&) = delete;
     PhotonMap& operator=(const PhotonMap&) = delete;
 
@@ -55,13 +53,12 @@ public:
     static size_t memory_needed(const RenderSettings& settings, const DeviceInfo& device);
 
 private:
-    bool trace(uint64_t pass, uint32_t first, uint32_t count); // false: overflowed the buffer
-    void build_grid(double typical_radius, double max_radius);
+    void trace(uint64_t pass, uint32_t first, uint32_t count);
+    void build_grid(uint32_t stored, double typical_radius, double max_radius);
     void gather(const cl::Buffer& hitpoints, const cl::Buffer& stats, uint32_t n, float global_r2, bool accumulate,
                 const cl::Buffer& out);
     void enqueue_gather(cl::Kernel& kernel, const cl::Buffer& hitpoints, const cl::Buffer& stats, uint32_t n,
                         float global_r2, bool accumulate, const cl::Buffer& out, const std::string& phase);
-    void allocate(uint32_t capacity);
 
     const DeviceContext& dc_;
     const DeviceScene& scene_;
@@ -72,11 +69,7 @@ private:
     cl::Kernel k_second_;
     cl::Buffer second_out_;
     std::string second_phase_;
-    cl::Buffer photons_, sorted_, counter_;
-    uint64_t max_capacity_ = 0; // stored photons the memory budget allows
-    uint32_t capacity_ = 0;
-    uint32_t batch_ = 0; // photons emitted per batch
-    uint32_t stored_ = 0;
+    BatchedTrace trace_; // last: destroyed first, waiting for the queue
     uint32_t batches_ = 0;
 };
 

@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "integrators/device_fan_out.h"
 #include "integrators/photon_map.h"
 #include "integrators/work_balance.h"
 
@@ -43,8 +44,6 @@ public:
 
 private:
     struct Worker;
-    // `photons` in proportion to `rates`, the first taking the rounding.
-    static std::vector<uint32_t> split(uint32_t photons, const std::vector<double>& rates);
     // This process's photons [first_photon, first_photon + M), on its devices.
     void run_local(uint64_t pass, uint32_t first_photon, uint32_t M, const cl::Buffer& hitpoints,
                    const cl::Buffer& stats, uint32_t n, float global_r2, double typical_radius, double max_radius,
@@ -55,7 +54,7 @@ private:
     IntegratorStats& stats_;
     PhotonMap primary_;
     std::vector<std::unique_ptr<Worker>> workers_;
-    std::vector<double> rate_; // photons per second per device, smoothed
+    DeviceFanOut fan_out_;
     std::vector<uint32_t> split_;
     bool hitpoints_fixed_ = false;
     uint32_t hitpoints_sent_ = 0; // hit points the secondaries hold (fixed hit points only)

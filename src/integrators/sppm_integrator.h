@@ -32,11 +32,6 @@ public:
     // The buffers prepare() (and enable_error_estimation()) allocate for `pixels` pixels.
     static IntegratorMemory memory_needed(size_t pixels, bool error_estimation);
 
-    // Knaus and Zwicker 2011, Eq. 20: r_{i+1}^2 = r_i^2 (i + alpha) / (i + 1), i the 1-based pass.
-    static double next_pppm_radius2(double r2, uint64_t i, double alpha) {
-        return r2 * (double(i) + alpha) / double(i + 1);
-    }
-
 private:
     void eye_pass(uint64_t pass);
     double power_per_photon() const { return double(scene_.info.total_power) / double(settings_.photons); }

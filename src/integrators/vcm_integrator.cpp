@@ -4,9 +4,6 @@
 #include <cfloat>
 #include <chrono>
 #include <cmath>
-#include <cstdlib>
-#include <exception>
-#include <thread>
 
 #include "device/cluster.h"
 #include "device/kernel_launch.h"
@@ -15,7 +12,7 @@
 #include "integrators/film.h"
 #include "integrators/initial_radius.h"
 #include "integrators/pixel_share.h"
-#include "integrators/sppm_integrator.h"
+#include "integrators/progressive_update.h"
 #include "util/cancellation.h"
 #include "util/error.h"
 
@@ -32,18 +29,6 @@ constexpr uint64_t kVerticesPerPath = 4;
 // The splat image's fixed point (light tracing, t = 1): exact sums in any order.
 constexpr double kSplatScale = 4294967296.0; // 2^32
 
-// Both vertex buffers (traced and sorted) within a quarter of the device, one within its largest
-// allocation.
-uint64_t vertex_capacity_budget(const DeviceInfo& device) {
-    return std::min<uint64_t>({device.max_alloc / sizeof(dev::LightVertex),
-                               device.global_mem / 4 / (2 * sizeof(dev::LightVertex)), 0x7fffffffu});
-}
-
-uint64_t initial_capacity(uint64_t paths, const DeviceInfo& device) {
-    return std::clamp<uint64_t>(paths * kVerticesPerPath, 1024,
-                                std::max<uint64_t>(1024, vertex_capacity_budget(device)));
-}
-
 uint32_t technique_mode(const RenderSettings& s) {
     if (s.vcm_techniques >= 0) return uint32_t(s.vcm_techniques);
     return s.integrator == "bpt" ? VCM_MODE_BPT : VCM_MODE_VCM;
@@ -56,7 +41,8 @@ IntegratorMemory VcmIntegrator::memory_needed(size_t pixels) {
 }
 
 size_t VcmIntegrator::light_vertex_bytes(size_t pixels, const DeviceInfo& device) {
-    const uint64_t capacity = initial_capacity(pixels, device);
+    const uint64_t capacity =
+        BatchedTrace::initial_capacity(pixels, kVerticesPerPath, sizeof(dev::LightVertex), device);
     return 2 * size_t(capacity) * sizeof(dev::LightVertex) + HashGrid::bytes_for(capacity);
 }
 
@@ -68,8 +54,6 @@ struct VcmIntegrator::Worker {
     cl::Program program;
     std::unique_ptr<VcmIntegrator> integ;
     std::vector<double> result; // its pixels' samples this pass
-    double seconds = 0;
-    std::exception_ptr error;
 
     Worker(const DeviceInfo& info, const DeviceContext& primary, const DeviceScene& primary_scene,
            const RenderSettings& settings, const std::string& file, const std::string& options)
@@ -87,17 +71,15 @@ VcmIntegrator::VcmIntegrator(const DeviceContext& dc, const DeviceScene& scene, 
     k_footprint_ = cl::Kernel(program, "vcm_footprint");
     num_pixels_ = scene.camera.width * scene.camera.height;
     area_scale_ = std::min(double(scene.info.radius) * double(scene.info.radius), double(FLT_MAX));
-    max_capacity_ = vertex_capacity_budget(dc.info);
-    uint64_t batch = num_pixels_;
-    if (const char* e = std::getenv("CLPPM_PHOTON_BATCH"); e && *e)
-        batch = std::min<uint64_t>(batch, std::max<uint64_t>(1, std::strtoull(e, nullptr, 10)));
-    batch_ = uint32_t(std::clamp<uint64_t>(std::min(batch, max_capacity_ / kVerticesPerPath), 1, num_pixels_));
-    for (const DeviceInfo& info : secondaries.devices)
+    trace_ = std::make_unique<BatchedTrace>(dc, sizeof(dev::LightVertex), kVerticesPerPath,
+                                            std::max<uint32_t>(1, num_pixels_), "one light sub-path", "vertices");
+    std::vector<unsigned> compute_units{dc.info.compute_units};
+    for (const DeviceInfo& info : secondaries.devices) {
         workers_.push_back(
             std::make_unique<Worker>(info, dc, scene, settings, secondaries.program_file, secondaries.build_options));
-    // Until measured, share by compute units.
-    rate_.push_back(std::max(1u, dc.info.compute_units));
-    for (const auto& w : workers_) rate_.push_back(std::max(1u, w->dc.info.compute_units));
+        compute_units.push_back(info.compute_units);
+    }
+    fan_out_ = DeviceFanOut(compute_units);
 }
 
 VcmIntegrator::~VcmIntegrator() {
@@ -107,12 +89,6 @@ VcmIntegrator::~VcmIntegrator() {
 }
 
 double VcmIntegrator::radius() const { return std::sqrt(r2_); }
-
-void VcmIntegrator::allocate_vertices(uint32_t capacity) {
-    capacity_ = capacity;
-    verts_ = cl::Buffer(dc_.context, CL_MEM_READ_WRITE, size_t(capacity) * sizeof(dev::LightVertex));
-    sorted_ = cl::Buffer(dc_.context, CL_MEM_READ_WRITE, size_t(capacity) * sizeof(dev::LightVertex));
-}
 
 void VcmIntegrator::prepare() {
     const size_t n = num_pixels_;
@@ -125,9 +101,7 @@ void VcmIntegrator::prepare() {
     pass_sum_ = make(n * 3 * sizeof(cl_double));
     splat_ = make(n * 3 * sizeof(cl_long));
     image_buf_ = make(n * kFilmBytesPerPixel);
-    path_last_ = make(size_t(batch_) * sizeof(cl_uint));
-    counter_ = cl::Buffer(dc_.context, CL_MEM_READ_WRITE, sizeof(cl_uint));
-    allocate_vertices(uint32_t(initial_capacity(batch_, dc_.info)));
+    path_last_ = make(size_t(trace_->batch()) * sizeof(cl_uint));
     stats_.hitpoints = n;
 
     // The initial merging radius: one pixel footprint at the first surfaces, half of SPPM's two.
@@ -147,28 +121,20 @@ void VcmIntegrator::prepare() {
     for (auto& w : workers_) w->integ->prepare(); // their radius is set from this one's every pass
 }
 
-bool VcmIntegrator::trace_light(uint64_t pass, uint32_t first, uint32_t count) {
-    dc_.queue.enqueueFillBuffer(counter_, cl_uint(0), 0, sizeof(cl_uint));
+void VcmIntegrator::trace_light(uint64_t pass, uint32_t first, uint32_t count) {
     dc_.queue.enqueueFillBuffer(splat_, cl_long(0), 0, size_t(num_pixels_) * 3 * sizeof(cl_long));
-    if (mode_ == VCM_MODE_PT) { // camera sub-paths alone
-        stored_ = 0;
-        return true;
-    }
+    if (mode_ == VCM_MODE_PT) return; // camera sub-paths alone
     const double eta = M_PI * r2_ / area_scale_ * double(num_pixels_);
     const bool vm = mode_ == VCM_MODE_VCM || mode_ == VCM_MODE_VM;
     const float vm_factor = vm ? float(std::min(eta * eta, 1e30)) : 0.f;
     const float vc_factor = mode_ == VCM_MODE_VCM ? float(std::min(1.0 / (eta * eta), 1e30)) : 0.f;
     set_args(k_light_, scene_.set_scene_args(k_light_), scene_.camera_buf, cl_ulong(settings_.seed), cl_ulong(pass),
              cl_uint(first), cl_uint(count), cl_float(float(num_pixels_)), cl_float(vm_factor), cl_float(vc_factor),
-             cl_float(float(area_scale_)), cl_uint(mode_), cl_uint(scene_.info.max_bounces + 1), verts_,
-             cl_uint(capacity_), counter_, path_last_, splat_, cl_float(float(kSplatScale)));
+             cl_float(float(area_scale_)), cl_uint(mode_), cl_uint(scene_.info.max_bounces + 1), trace_->records(),
+             cl_uint(trace_->capacity()), trace_->counter(), path_last_, splat_, cl_float(float(kSplatScale)));
     cl::Event ev;
     enqueue_1d(dc_.queue, k_light_, count, &ev);
-    cl_uint stored = 0;
-    dc_.queue.enqueueReadBuffer(counter_, CL_TRUE, 0, sizeof(cl_uint), &stored);
     add_event_time(stats_, "light_paths", ev);
-    stored_ = stored;
-    return stored <= capacity_;
 }
 
 void VcmIntegrator::render(uint64_t pass, uint32_t first_pixel, uint32_t pixels, const cl::Buffer& out) {
@@ -183,37 +149,28 @@ void VcmIntegrator::render(uint64_t pass, uint32_t first_pixel, uint32_t pixels,
     const double cell = std::max(2.0 * std::sqrt(r2_), extent / double(1 << 20));
     const uint32_t max_len = scene_.info.max_bounces + 1;
     uint64_t stored_total = 0;
-    for (uint32_t first = 0; first < num_pixels_;) {
-        throw_if_cancelled(); // Ctrl-C: the running sum still holds the last whole pass
-        const uint32_t count = std::min(batch_, num_pixels_ - first);
-        if (!trace_light(pass, first, count)) {
-            // More light vertices than the buffer holds: grow it within the budget, else trace
-            // fewer sub-paths at a time. Either way the same sub-paths are traced again.
-            const uint64_t want = uint64_t(stored_) * 5 / 4 + 1024;
-            if (want <= max_capacity_) allocate_vertices(uint32_t(want));
-            else if (batch_ > 1) batch_ = std::max<uint32_t>(1, batch_ / 2);
-            else throw Error("vcm pass: one light sub-path stores more vertices than the device memory budget allows");
-            continue;
-        }
-        grid_.build(verts_, sorted_, vm ? stored_ : 0, scene_.bounds_min, cell); // an empty grid without merging
-        const uint32_t flags = (first == 0 ? 1u : 0u) | (first + count == num_pixels_ ? 2u : 0u);
-        set_args(k_camera_, scene_.set_scene_args(k_camera_), scene_.camera_buf, cl_ulong(settings_.seed),
-                 cl_ulong(pass), cl_uint(first_pixel + pixels), grid_.info(), sorted_, grid_.starts(), verts_,
-                 path_last_, cl_uint(first), cl_uint(count), cl_uint(flags), cl_float(float(r2_)),
-                 cl_float(float(num_pixels_)), cl_float(vm_factor), cl_float(vc_factor), cl_float(float(area_scale_)),
-                 cl_uint(mode_), cl_uint(max_len), cl_double(light_unit), cl_double(vm_norm), splat_,
-                 cl_double(light_unit / kSplatScale), pass_sum_, out);
-        if (pixels > 0) {
-            cl::Event ev;
-            enqueue_1d_range(dc_.queue, k_camera_, first_pixel, pixels, &ev);
-            add_event_time(stats_, "camera_paths", ev);
-        }
-        stored_total += stored_;
-        first += count;
-    }
+    trace_->run(
+        0, num_pixels_, [&](uint32_t first, uint32_t count) { trace_light(pass, first, count); },
+        [&](uint32_t first, uint32_t count, uint32_t stored) {
+            grid_.build(trace_->records(), trace_->sorted(), vm ? stored : 0, scene_.bounds_min,
+                        cell); // an empty grid without merging
+            const uint32_t flags = (first == 0 ? 1u : 0u) | (first + count == num_pixels_ ? 2u : 0u);
+            set_args(k_camera_, scene_.set_scene_args(k_camera_), scene_.camera_buf, cl_ulong(settings_.seed),
+                     cl_ulong(pass), cl_uint(first_pixel + pixels), grid_.info(), trace_->sorted(), grid_.starts(),
+                     trace_->records(), path_last_, cl_uint(first), cl_uint(count), cl_uint(flags),
+                     cl_float(float(r2_)), cl_float(float(num_pixels_)), cl_float(vm_factor), cl_float(vc_factor),
+                     cl_float(float(area_scale_)), cl_uint(mode_), cl_uint(max_len), cl_double(light_unit),
+                     cl_double(vm_norm), splat_, cl_double(light_unit / kSplatScale), pass_sum_, out);
+            if (pixels > 0) {
+                cl::Event ev;
+                enqueue_1d_range(dc_.queue, k_camera_, first_pixel, pixels, &ev);
+                add_event_time(stats_, "camera_paths", ev);
+            }
+            stored_total += stored;
+        });
     collect_event_times(stats_); // waits for the pass
     stats_.photons_stored += stored_total;
-    stats_.photon_bytes = 2 * size_t(capacity_) * sizeof(dev::LightVertex) + grid_.device_bytes();
+    stats_.photon_bytes = trace_->device_bytes() + grid_.device_bytes();
 }
 
 void VcmIntegrator::run_pass() {
@@ -232,51 +189,22 @@ void VcmIntegrator::run_pass() {
         render(pass, ranges.first, ranges.count, accum_);
     } else {
         // The rank's range in proportion to each device's pixels per second, the primary first.
-        std::vector<uint32_t> share(rate_.size(), 0);
-        double total = 0;
-        for (double r : rate_) total += r;
-        uint32_t given = 0;
-        for (size_t k = 1; k < share.size(); ++k) given += share[k] = uint32_t(double(ranges.count) * rate_[k] / total);
-        share[0] = ranges.count - given;
-        std::vector<std::thread> threads;
-        uint32_t at = ranges.first + share[0];
-        for (size_t k = 0; k < workers_.size(); ++k) {
-            Worker& w = *workers_[k];
-            const uint32_t first = at, count = share[k + 1];
-            at += count;
-            threads.emplace_back([&, first, count] {
-                try {
-                    const auto start = std::chrono::steady_clock::now();
-                    VcmIntegrator& v = *w.integ;
-                    v.r2_ = r2_;
-                    const size_t bytes = size_t(num_pixels_) * 3 * sizeof(cl_double);
-                    v.dc_.queue.enqueueFillBuffer(v.accum_, cl_double(0), 0, bytes); // this pass alone
-                    v.render(pass, first, count, v.accum_);
-                    w.result.assign(size_t(count) * 3, 0.0);
-                    if (count)
-                        v.dc_.queue.enqueueReadBuffer(v.accum_, CL_TRUE, size_t(first) * 3 * sizeof(cl_double),
-                                                      w.result.size() * sizeof(double), w.result.data());
-                    w.seconds = seconds_since(start);
-                } catch (...) {
-                    w.error = std::current_exception();
-                }
-            });
-        }
-        std::exception_ptr primary_error;
-        double primary_seconds = 0;
-        try {
-            const auto start = std::chrono::steady_clock::now();
-            render(pass, ranges.first, share[0], accum_);
-            primary_seconds = seconds_since(start);
-        } catch (...) {
-            primary_error = std::current_exception(); // after the workers have finished (a cancelled pass)
-        }
-        for (std::thread& t : threads) t.join();
-        if (primary_error) std::rethrow_exception(primary_error);
-        for (const auto& w : workers_)
-            if (w->error) std::rethrow_exception(w->error);
+        const std::vector<uint32_t> share = fan_out_.split(ranges.count);
+        fan_out_.run(ranges.first, share, [&](size_t k, uint32_t first, uint32_t count) {
+            if (k == 0) return render(pass, first, count, accum_);
+            Worker& w = *workers_[k - 1];
+            VcmIntegrator& v = *w.integ;
+            v.r2_ = r2_;
+            const size_t bytes = size_t(num_pixels_) * 3 * sizeof(cl_double);
+            v.dc_.queue.enqueueFillBuffer(v.accum_, cl_double(0), 0, bytes); // this pass alone
+            v.render(pass, first, count, v.accum_);
+            w.result.assign(size_t(count) * 3, 0.0);
+            if (count)
+                v.dc_.queue.enqueueReadBuffer(v.accum_, CL_TRUE, size_t(first) * 3 * sizeof(cl_double),
+                                              w.result.size() * sizeof(double), w.result.data());
+        });
         // Each device's samples join the running sum as its own kernel would have added them.
-        at = ranges.first + share[0];
+        uint32_t at = ranges.first + share[0];
         for (size_t k = 0; k < workers_.size(); ++k) {
             const uint32_t count = share[k + 1];
             if (count) {
@@ -288,12 +216,6 @@ void VcmIntegrator::run_pass() {
             }
             at += count;
         }
-        auto blend = [](double old_rate, uint32_t pixels, double seconds) {
-            return pixels == 0 || !(seconds > 0) ? old_rate : 0.5 * old_rate + 0.5 * double(pixels) / seconds;
-        };
-        rate_[0] = blend(rate_[0], share[0], primary_seconds);
-        for (size_t k = 0; k < workers_.size(); ++k)
-            rate_[k + 1] = blend(rate_[k + 1], share[k + 1], workers_[k]->seconds);
         stats_.device_photons = share;
     }
     if (cluster().distributed()) {
@@ -305,7 +227,7 @@ void VcmIntegrator::run_pass() {
     stats_.passes = pass;
     stats_.photons_emitted += mode_ == VCM_MODE_PT ? 0 : num_pixels_;
     stats_.mean_radius = std::sqrt(r2_);
-    r2_ = SppmIntegrator::next_pppm_radius2(r2_, pass, settings_.alpha);
+    r2_ = next_pppm_radius2(r2_, pass, settings_.alpha);
 }
 
 void VcmIntegrator::save(Checkpoint& ck) {

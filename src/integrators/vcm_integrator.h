@@ -7,6 +7,8 @@
 #include <memory>
 #include <vector>
 
+#include "integrators/batched_trace.h"
+#include "integrators/device_fan_out.h"
 #include "integrators/hash_grid.h"
 #include "integrators/integrator.h"
 #include "integrators/render_settings.h"
@@ -44,8 +46,7 @@ private:
     // Pass `pass` for the camera sub-paths of pixels [first, first + count): the light sub-paths and
     // batches, then `out` (a running sum per pixel) gets each pixel's sample added.
     void render(uint64_t pass, uint32_t first, uint32_t count, const cl::Buffer& out);
-    bool trace_light(uint64_t pass, uint32_t first, uint32_t count); // false: the vertices overflowed
-    void allocate_vertices(uint32_t capacity);
+    void trace_light(uint64_t pass, uint32_t first, uint32_t count);
 
     const DeviceContext& dc_;
     const DeviceScene& scene_;
@@ -53,15 +54,14 @@ private:
     uint32_t mode_;
     cl::Kernel k_light_, k_camera_, k_film_, k_footprint_;
     HashGrid grid_;
-    cl::Buffer accum_, pass_sum_, splat_, path_last_, verts_, sorted_, counter_, image_buf_;
+    cl::Buffer accum_, pass_sum_, splat_, path_last_, image_buf_;
     uint32_t num_pixels_ = 0;
-    uint64_t max_capacity_ = 0; // light vertices the memory budget allows
-    uint32_t capacity_ = 0, batch_ = 0, stored_ = 0;
-    double r2_ = 0;         // this pass's squared merging radius
-    double area_scale_ = 1; // R^2 of the scene's bounding sphere: the kernels' unit of area
-    WorkBalance balance_;   // this rank's seconds against its pixels, for the ranks' split
+    std::unique_ptr<BatchedTrace> trace_; // the light sub-paths' vertices
+    double r2_ = 0;                       // this pass's squared merging radius
+    double area_scale_ = 1;               // R^2 of the scene's bounding sphere: the kernels' unit of area
+    WorkBalance balance_;                 // this rank's seconds against its pixels, for the ranks' split
     std::vector<std::unique_ptr<Worker>> workers_;
-    std::vector<double> rate_; // pixels per second per device, smoothed
+    DeviceFanOut fan_out_{{1}}; // the pixels of this rank's range between its devices
 };
 
 } // namespace clppm

@@ -221,15 +221,20 @@ Image RenderJob::image(bool interrupted) const {
 }
 
 void RenderJob::save_images(const std::string& exr_path, bool png, bool interrupted) const {
-    const Image img = image(interrupted);
+    save_images(exr_path, png, image(interrupted));
+}
+
+void RenderJob::save_images(const std::string& exr_path, bool png, const Image& img) const {
     std::vector<ExrLayer> layers;
     if (estimating_ && error_.relative.size() == img.rgb.size() / 3) layers.push_back({"error", &error_.relative});
     write_exr(exr_path, img, layers);
     if (png) write_png(png_path_for(exr_path), img, options_.tone);
 }
 
-void RenderJob::save_outputs(bool interrupted) const {
-    if (!options_.output.empty()) save_images(options_.output, options_.write_png, interrupted);
+void RenderJob::save_outputs(bool interrupted) const { save_outputs(image(interrupted)); }
+
+void RenderJob::save_outputs(const Image& img) const {
+    if (!options_.output.empty()) save_images(options_.output, options_.write_png, img);
     if (options_.error_output.empty() || error_.relative.empty()) return;
     // The relative bound as a grey EXR (its bias and noise parts as layers) and a false-colour
     // PNG, red at twice the target (0.2 without one).
@@ -253,9 +258,9 @@ void RenderJob::save_checkpoint() const {
     write_checkpoint(options_.checkpoint, ck);
 }
 
-Json RenderJob::stats_json(const RenderEnd& end) const {
+Json RenderJob::stats_json(const RenderEnd& end, const Image* given) const {
     const IntegratorStats& st = integ_->stats();
-    const Image img = image(end.interrupted);
+    const Image img = given ? *given : image(end.interrupted);
     const double render_s = end.render_seconds;
     Json j;
     j["version"] = kVersion;

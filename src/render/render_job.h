@@ -83,12 +83,14 @@ public:
 
     // The image at `exr_path` (with the error layer when estimating) and, with `png`, its PNG.
     void save_images(const std::string& exr_path, bool png, bool interrupted = false) const;
-    // The outputs the options name: the image and PNG, and the error image.
+    void save_images(const std::string& exr_path, bool png, const Image& img) const;
+    // The outputs the options name: the image (`img`, this job's image()) and PNG, and the error image.
     void save_outputs(bool interrupted = false) const;
+    void save_outputs(const Image& img) const;
     // The progressive state to the options' checkpoint file.
     void save_checkpoint() const;
-    // --stats-json's content.
-    Json stats_json(const RenderEnd& end) const;
+    // --stats-json's content; `img`: the image() it describes, if already at hand.
+    Json stats_json(const RenderEnd& end, const Image* img = nullptr) const;
 
 private:
     void load_scene();

@@ -70,20 +70,25 @@ RenderEnd RenderLoop::finish() {
     end_.render_seconds = job_.render_seconds();
     const uint64_t passes = job_.passes();
     if (stopped_by_viewer_) log.note("stopped after pass " + std::to_string(passes) + " from the live view");
-    for (auto& o : observers_) o->finished(job_, end_);
     if (interrupted_ && passes == 0) {
         // Stopped before a single pass (during the kernel build, say): an image of zero passes
         // must not replace whatever the outputs hold.
+        for (auto& o : observers_) o->finished(job_, end_);
         end_.nothing_written = true;
         if (!opt.output.empty())
             log.warn("interrupted before the first pass: nothing written, " + opt.output + " left as it was");
         return end_;
     }
+    // The image first: after an interrupt under mpirun, the job is killed a second later.
+    Image img;
+    if (job_.writer()) {
+        img = job_.image(interrupted_);
+        job_.save_outputs(img);
+    }
+    for (auto& o : observers_) o->finished(job_, end_);
     if (!job_.writer()) return end_;
-    job_.save_outputs(interrupted_);
     // Radiance is finite and never negative: a pixel that is not is a defect, said loudly (the
     // image is kept, so nothing rendered is lost), and the render counts as failed.
-    const Image img = job_.image(interrupted_);
     const size_t nonfinite = count_nonfinite(img), negative = count_negative(img);
     end_.defective_pixels = nonfinite + negative;
     say_result(end_);
@@ -91,7 +96,7 @@ RenderEnd RenderLoop::finish() {
         log.error(std::to_string(nonfinite) + " pixel(s) are NaN or Inf and " + std::to_string(negative) + " negative" +
                   (opt.output.empty() ? std::string() : " in " + opt.output) + " (a renderer defect)");
     if (!opt.stats_json.empty()) {
-        Json j = job_.stats_json(end_);
+        Json j = job_.stats_json(end_, &img);
         for (const auto& o : observers_) o->add_stats(j);
         write_stats_json(opt.stats_json, j);
     }
