@@ -79,7 +79,7 @@ Rendered render_with_errors(Scene scene, const RenderSettings& s, uint64_t passe
     cl::Program program =
         build_program(dc, integrator_row(s.integrator).program_file, integrator_build_options(s, dc.info));
     std::unique_ptr<IntegratorBase> integ = make_integrator(dc, ds, s, program);
-    EXPECT_TRUE(integ->estimates_error());
+    EXPECT_TRUE(integrator_row(s.integrator).estimates_error);
     integ->enable_error_estimation();
     integ->prepare();
     for (uint64_t p = 0; p < passes; ++p) integ->run_pass();

@@ -198,14 +198,9 @@ ErrorEstimator::ErrorEstimator(const DeviceContext& dc, const cl::Program& progr
     bound_ = make(size_t(n_) * sizeof(cl_float8));
 }
 
-void ErrorEstimator::reset(const cl::Buffer& hit_stats) {
-    set_args(k_reset_, 0, hit_stats, layout_.pixel_first, cl_uint(n_), error_stats_);
-    enqueue_1d(dc_.queue, k_reset_, n_);
-    passes_ = 0;
-}
-
-void ErrorEstimator::reset_accum(const cl::Buffer& accum) {
-    set_args(k_reset_, 0, accum, cl_uint(n_), error_stats_);
+void ErrorEstimator::reset(const cl::Buffer& source) {
+    if (layout_.path_traced) set_args(k_reset_, 0, source, cl_uint(n_), error_stats_);
+    else set_args(k_reset_, 0, source, layout_.pixel_first, cl_uint(n_), error_stats_);
     enqueue_1d(dc_.queue, k_reset_, n_);
     passes_ = 0;
 }

@@ -64,11 +64,11 @@ public:
     const cl::Kernel& gather_kernel() const { return k_gather_; }
     const cl::Buffer& laplacian() const { return laplacian_; }
 
-    // Fresh statistics (at the start, or resuming a checkpoint that has none).
-    void reset(const cl::Buffer& hit_stats);
-    // The path tracer: fresh statistics from its running RGB sums, and a pass's growth of them.
-    void reset_accum(const cl::Buffer& accum);
-    // Pixels [first, first + count) only (all: count = the pixel count): a rank's share (cluster.h).
+    // Fresh statistics (at the start, or resuming a checkpoint that has none), from the hit
+    // statistics, or for the path tracer from its running RGB sums.
+    void reset(const cl::Buffer& source);
+    // The path tracer: a pass's growth of its running sums, over pixels [first, first + count)
+    // only (all: count = the pixel count), a rank's share (device/cluster.h).
     void update_accum(const cl::Buffer& accum, uint32_t first, uint32_t count);
     // After a pass's gathers and before ppm_update: hit_stats still hold this pass's radii.
     // global_r2 > 0 is PPPM's radius; power_per_photon = total power / photons per pass.

@@ -7,6 +7,11 @@
 
 namespace clppm {
 
+IntegratorBase::IntegratorBase(const DeviceContext& dc, const DeviceScene& scene, const RenderSettings& settings,
+                               const cl::Program& program)
+    : dc_(dc), scene_(scene), settings_(settings), program_(program),
+      num_pixels_(scene.camera.width * scene.camera.height) {}
+
 void IntegratorBase::save(Checkpoint& ck) {
     Json& h = ck.header;
     h["passes"] = stats_.passes;
@@ -49,8 +54,21 @@ void IntegratorBase::enable_error_estimation() {
     throw Error("the " + name() + " integrator does not estimate its error");
 }
 
-ErrorImage IntegratorBase::error_estimate(double) {
-    throw Error("the " + name() + " integrator does not estimate its error");
+ErrorImage IntegratorBase::error_estimate(double confidence) {
+    if (!errors_) throw Error("the " + name() + " integrator does not estimate its error here");
+    return errors_->estimate(confidence, int(scene_.camera.width), int(scene_.camera.height));
+}
+
+void IntegratorBase::save_error_stats(Checkpoint& ck) const {
+    if (errors_) ck.put("error_stats2", errors_->read());
+}
+
+void IntegratorBase::restore_error_stats(const Checkpoint& ck, const cl::Buffer& source) {
+    if (!errors_) return;
+    auto blob = ck.blobs.find("error_stats2");
+    if (blob != ck.blobs.end() && blob->second.size() == size_t(num_pixels_) * sizeof(dev::ErrorStats))
+        errors_->write(ck.get<dev::ErrorStats>("error_stats2", num_pixels_));
+    else errors_->reset(source); // saved without error estimation: the estimate starts over here
 }
 
 } // namespace clppm

@@ -1,23 +1,35 @@
 // The interface every integrator offers the render loop: a pass is the unit of work
-// (SmallVCM's RunIteration), and the image can be taken at any pass boundary. The interface knows
-// no concrete integrator: integrators/integrator_factory.h makes them.
+// (SmallVCM's RunIteration), and the image can be taken at any pass boundary. It holds what every
+// integrator has (the device, the scene on it, the settings, the program, the statistics and the
+// error estimator); integrators/photon_mapping_integrator.h and pixel_sum_integrator.h add what
+// each family shares. The interface knows no concrete integrator: integrators/integrator_table.h
+// makes them.
 #pragma once
 #include <cstddef>
+#include <memory>
 #include <string>
 #include <vector>
 
+#include "device/cl.h"
 #include "device/device.h"
+#include "integrators/error_estimate.h"
 #include "integrators/error_image.h"
 #include "integrators/integrator_stats.h"
+#include "integrators/render_settings.h"
 #include "io/checkpoint.h"
 #include "io/image_io.h"
+#include "scene/device_scene.h"
 
 namespace clppm {
 
 class IntegratorBase {
 public:
     virtual ~IntegratorBase() = default;
-    virtual std::string name() const = 0;
+    IntegratorBase(const IntegratorBase&) = delete;
+    IntegratorBase& operator=(const IntegratorBase&) = delete;
+
+    // Its row's name in integrators/integrator_table.h.
+    std::string name() const { return settings_.integrator; }
     // Everything before the first refinement pass (PPM: the eye pass).
     virtual void prepare() = 0;
     virtual void run_pass() = 0;
@@ -29,16 +41,28 @@ public:
     virtual void save(Checkpoint& ck);
     virtual void restore(const Checkpoint& ck);
 
-    // Progressive error estimation (integrators/error_estimate.h), for the integrators that offer
-    // it. enable_error_estimation() before prepare() covers the whole render; error_estimate()
-    // gives the per-pixel bounds after the last pass at `confidence` in (0, 1). Both throw Error
-    // where estimates_error() is false.
-    virtual bool estimates_error() const { return false; }
+    // Progressive error estimation (integrators/error_estimate.h), for the integrators whose row
+    // says so. enable_error_estimation() before prepare() covers the whole render;
+    // error_estimate() gives the per-pixel bounds after the last pass at `confidence` in (0, 1).
+    // Both throw Error where the integrator has none.
     virtual void enable_error_estimation();
     virtual ErrorImage error_estimate(double confidence);
 
 protected:
+    IntegratorBase(const DeviceContext& dc, const DeviceScene& scene, const RenderSettings& settings,
+                   const cl::Program& program);
+    // The error statistics into the checkpoint, and back: a checkpoint saved without them starts
+    // the estimate over from `source` (the hit statistics, or the path tracer's running sums).
+    void save_error_stats(Checkpoint& ck) const;
+    void restore_error_stats(const Checkpoint& ck, const cl::Buffer& source);
+
+    const DeviceContext& dc_;
+    const DeviceScene& scene_;
+    const RenderSettings settings_;
+    const cl::Program program_;
+    const uint32_t num_pixels_;
     IntegratorStats stats_;
+    std::unique_ptr<ErrorEstimator> errors_; // when estimating
 };
 
 // Device memory an integrator will allocate for its own buffers (hit points or per-pixel

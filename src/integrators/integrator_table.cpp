@@ -41,20 +41,20 @@ constexpr uint64_t kPhotonPasses = 64, kPixelPasses = 512;
 
 const std::vector<IntegratorRow> kTable = {
     {"ppm", nullptr, "progressive photon mapping (fixed hit points, Hachisuka et al. 2008)", "ppm_program.cl",
-     PPM_EYE_SLOTS, WorkUnit::Photons, kPhotonPasses, true, true, "", PpmIntegrator::memory_needed, photon_memory,
+     PPM_EYE_SLOTS, WorkUnit::Photons, kPhotonPasses, true, true, true, "", PpmIntegrator::memory_needed, photon_memory,
      make<PpmIntegrator>, nullptr},
     {"sppm", nullptr, "stochastic PPM (a new eye sample per pixel every pass)", "sppm_program.cl", SPPM_EYE_SLOTS,
-     WorkUnit::Photons, kPhotonPasses, true, true, "", sppm_memory, photon_memory, make<SppmIntegrator>, nullptr},
+     WorkUnit::Photons, kPhotonPasses, true, true, true, "", sppm_memory, photon_memory, make<SppmIntegrator>, nullptr},
     {"pppm", nullptr, "probabilistic PPM (independent passes, Knaus and Zwicker 2011)", "sppm_program.cl",
-     SPPM_EYE_SLOTS, WorkUnit::Photons, kPhotonPasses, true, true, "", sppm_memory, photon_memory, make<SppmIntegrator>,
-     nullptr},
-    {"pt", nullptr, "path tracing", "path_trace.cl", PPM_EYE_SLOTS, WorkUnit::Pixels, kPixelPasses, false, true, "",
-     pt_memory, no_transport_memory, make<PtIntegrator>, PtIntegrator::warnings},
+     SPPM_EYE_SLOTS, WorkUnit::Photons, kPhotonPasses, true, true, true, "", sppm_memory, photon_memory,
+     make<SppmIntegrator>, nullptr},
+    {"pt", nullptr, "path tracing", "path_trace.cl", PPM_EYE_SLOTS, WorkUnit::Pixels, kPixelPasses, false, true, true,
+     "", pt_memory, no_transport_memory, make<PtIntegrator>, PtIntegrator::warnings},
     {"vcm", nullptr, "vertex connection and merging (bidirectional path tracing and photon merging under MIS)",
-     "vcm_program.cl", PPM_EYE_SLOTS, WorkUnit::Pixels, kPixelPasses, true, false,
+     "vcm_program.cl", PPM_EYE_SLOTS, WorkUnit::Pixels, kPixelPasses, true, false, false,
      " (every process traces all light sub-paths)", vcm_memory, light_vertex_memory, make<VcmIntegrator>, nullptr},
     {"bpt", "bdpt", "bidirectional path tracing", "vcm_program.cl", PPM_EYE_SLOTS, WorkUnit::Pixels, kPixelPasses, true,
-     false, " (every process traces all light sub-paths)", vcm_memory, light_vertex_memory, make<VcmIntegrator>,
+     false, false, " (every process traces all light sub-paths)", vcm_memory, light_vertex_memory, make<VcmIntegrator>,
      nullptr},
 };
 

@@ -31,6 +31,7 @@ struct IntegratorRow {
     uint64_t default_passes; // without --passes or --time
     bool several_devices;    // shares passes between devices (else the first device alone renders)
     bool tent_filter;        // supports --filter tent
+    bool estimates_error;    // progressive error estimation (--target-error, --error-output)
     const char* mpi_note;    // how processes share its passes, beyond the unit ("" when nothing more)
     // Its own device buffers for `pixels` pixels (hit points or per-pixel statistics, film, error
     // estimation), and those of its photons or light vertices (0: none).

@@ -4,8 +4,6 @@
 #include <cmath>
 
 #include "device/kernel_launch.h"
-#include "integrators/checkpoint_checks.h"
-#include "integrators/direct_light.h"
 #include "integrators/film.h"
 #include "integrators/initial_radius.h"
 #include "integrators/progressive_update.h"
@@ -46,15 +44,9 @@ IntegratorMemory PpmIntegrator::memory_needed(const RenderSettings& settings, si
 
 PpmIntegrator::PpmIntegrator(const DeviceContext& dc, const DeviceScene& scene, const RenderSettings& settings,
                              const cl::Program& program, const SecondaryDevices& secondaries)
-    : dc_(dc), scene_(scene), settings_(settings), program_(program) {
-    photons_ = std::make_unique<PhotonPasses>(dc, scene, settings_, program, stats_, secondaries.devices,
-                                              secondaries.program_file, secondaries.build_options);
+    : PhotonMappingIntegrator(dc, scene, settings, program, secondaries) {
     photons_->set_hitpoints_fixed(true);
-    k_eye_ = cl::Kernel(program, "eye_pass");
-    k_direct_ = cl::Kernel(program, "direct_light");
-    k_update_ = cl::Kernel(program, "ppm_update");
     k_film_ = cl::Kernel(program, "ppm_film");
-    num_pixels_ = scene.camera.width * scene.camera.height;
 }
 
 void PpmIntegrator::prepare() {
@@ -141,6 +133,7 @@ void PpmIntegrator::eye_pass() {
     for (uint32_t p = 0; p < num_pixels_; ++p) pixel_first[p + 1] = pixel_first[p] + pixel_count[p];
     num_hitpoints_ = uint32_t(hitpoints.size());
     stats_.hitpoints = num_hitpoints_;
+    hit_slots_ = std::max<uint32_t>(1, num_hitpoints_); // buffers are never empty
 
     std::vector<float> footprints;
     footprints.reserve(hitpoints.size());
@@ -173,56 +166,23 @@ void PpmIntegrator::eye_pass() {
     }
 }
 
-// Explicit direct light, then Eqs. 7-10 with this pass's M(x) and Phi_M(x).
-void PpmIntegrator::update() {
-    if (settings_.direct == DirectLighting::Sample)
-        enqueue_direct_light(dc_, scene_, k_direct_, settings_.seed, stats_.passes + 1, hitpoints_, stats_buf_,
-                             num_hitpoints_, stats_);
-    // Before the update: the statistics still hold the radii this pass gathered with.
-    if (errors_)
-        errors_->update(passflux_, hitpoints_, stats_buf_, 0.0, scene_.info.total_power / double(settings_.photons));
-    auto [mean, mx] = enqueue_ppm_update(dc_, k_update_, passflux_, hitpoints_, stats_buf_, num_hitpoints_,
-                                         settings_.alpha, radius_partials_, stats_);
-    if (num_hitpoints_ > 0) stats_.mean_radius = typical_radius_ = mean, max_radius_ = mx;
-}
-
+// Photons, explicit direct light, then Eqs. 7-10 with this pass's M(x) and Phi_M(x).
 void PpmIntegrator::run_pass() {
-    photons_->run_pass(stats_.passes + 1, hitpoints_, stats_buf_, num_hitpoints_, 0.f, typical_radius_, max_radius_,
-                       passflux_);
-    update();
+    const uint64_t pass = stats_.passes + 1;
+    photons_->run_pass(pass, hitpoints_, stats_buf_, num_hitpoints_, 0.f, typical_radius_, max_radius_, passflux_);
+    direct_light(pass, num_hitpoints_);
+    progressive_update(num_hitpoints_);
     collect_event_times(stats_);
-    stats_.passes += 1;
+    stats_.passes = pass;
     stats_.photons_emitted += settings_.photons;
 }
 
-// Hit points are part of the state too: on resume they must be the ones the statistics belong to.
-void PpmIntegrator::save(Checkpoint& ck) {
-    IntegratorBase::save(ck);
-    const size_t n = std::max<size_t>(1, num_hitpoints_);
-    ck.put("hitpoints", read_buffer<dev::HitPoint>(dc_.queue, hitpoints_, n));
-    ck.put("stats", read_buffer<dev::HitStats>(dc_.queue, stats_buf_, n));
-    ck.header["typical_radius"] = typical_radius_;
-    ck.header["max_radius"] = max_radius_;
-    if (errors_) ck.put("error_stats2", errors_->read());
+void PpmIntegrator::save_state(Checkpoint& ck) const {
+    ck.put("hitpoints", read_buffer<dev::HitPoint>(dc_.queue, hitpoints_, hit_slots_));
 }
 
-void PpmIntegrator::restore(const Checkpoint& ck) {
-    IntegratorBase::restore(ck);
-    check_photon_counters(ck, stats_, settings_.photons, scene_.info.radius);
-    const double r0 = stats_.initial_radius; // the radii only shrink from it
-    const size_t n = std::max<size_t>(1, num_hitpoints_);
-    write_buffer(dc_.queue, hitpoints_, ck.get<dev::HitPoint>("hitpoints", n));
-    std::vector<dev::HitStats> hstats = ck.get<dev::HitStats>("stats", n);
-    if (num_hitpoints_ > 0) check_hit_stats(ck, hstats, r0 * r0 * (1 + 1e-9));
-    write_buffer(dc_.queue, stats_buf_, hstats);
-    typical_radius_ = checkpoint_number(ck, "typical_radius", 0, r0 * (1 + 1e-9));
-    max_radius_ = checkpoint_number(ck, "max_radius", 0, r0 * (1 + 1e-9));
-    if (!errors_) return;
-    // A checkpoint saved without error estimation: the estimate starts over from here.
-    auto blob = ck.blobs.find("error_stats2");
-    if (blob != ck.blobs.end() && blob->second.size() == size_t(num_pixels_) * sizeof(dev::ErrorStats))
-        errors_->write(ck.get<dev::ErrorStats>("error_stats2", num_pixels_));
-    else errors_->reset(stats_buf_);
+void PpmIntegrator::restore_state(const Checkpoint& ck) {
+    write_buffer(dc_.queue, hitpoints_, ck.get<dev::HitPoint>("hitpoints", hit_slots_));
 }
 
 Image PpmIntegrator::image() {

@@ -4,7 +4,6 @@
 
 #include "device/kernel_launch.h"
 #include "integrators/checkpoint_checks.h"
-#include "integrators/direct_light.h"
 #include "integrators/film.h"
 #include "integrators/initial_radius.h"
 #include "integrators/progressive_update.h"
@@ -14,16 +13,11 @@ namespace clppm {
 
 SppmIntegrator::SppmIntegrator(const DeviceContext& dc, const DeviceScene& scene, const RenderSettings& settings,
                                const cl::Program& program, const SecondaryDevices& secondaries)
-    : dc_(dc), scene_(scene), settings_(settings), probabilistic_(settings.integrator == "pppm"), program_(program) {
-    photons_ = std::make_unique<PhotonPasses>(dc, scene, settings_, program, stats_, secondaries.devices,
-                                              secondaries.program_file, secondaries.build_options);
-    k_eye_ = cl::Kernel(program, "eye_pass");
+    : PhotonMappingIntegrator(dc, scene, settings, program, secondaries),
+      probabilistic_(settings.integrator == "pppm") {
     k_emission_ = cl::Kernel(program, "accumulate_emission");
-    k_direct_ = cl::Kernel(program, "direct_light");
-    k_update_ = cl::Kernel(program, "ppm_update");
     k_accumulate_ = cl::Kernel(program, "pppm_accumulate");
     k_film_ = cl::Kernel(program, probabilistic_ ? "pppm_film" : "sppm_film");
-    num_pixels_ = scene.camera.width * scene.camera.height;
 }
 
 IntegratorMemory SppmIntegrator::memory_needed(size_t pixels, bool error_estimation) {
@@ -53,6 +47,7 @@ void SppmIntegrator::prepare() {
     image_buf_ = make(n * kFilmBytesPerPixel);
     radius_partials_ = make(radius_partials_bytes(num_pixels_));
     stats_.hitpoints = n;
+    hit_slots_ = num_pixels_;
 
     // The first pass's visible points decide the initial radius, as PPM's hit points do.
     eye_pass(1);
@@ -75,11 +70,6 @@ void SppmIntegrator::enable_error_estimation() {
     errors_ = std::make_unique<ErrorEstimator>(dc_, program_, num_pixels_, stats_);
     photons_->set_second_gather(errors_->gather_kernel(), errors_->laplacian(), "error_estimate");
     if (stats_buf_()) errors_->reset(stats_buf_); // after prepare(): the estimate starts here
-}
-
-ErrorImage SppmIntegrator::error_estimate(double confidence) {
-    if (!errors_) throw Error("error estimation is not enabled");
-    return errors_->estimate(confidence, int(scene_.camera.width), int(scene_.camera.height));
 }
 
 // New visible points for every pixel; their seen emission joins the per-pixel running sum.
@@ -105,59 +95,33 @@ void SppmIntegrator::run_pass() {
     }
     set_args(k_emission_, 0, sample_emission_, stats_buf_, cl_uint(num_pixels_));
     enqueue_1d(dc_.queue, k_emission_, num_pixels_);
-    if (settings_.direct == DirectLighting::Sample)
-        enqueue_direct_light(dc_, scene_, k_direct_, settings_.seed, pass, hitpoints_, stats_buf_, num_pixels_, stats_);
-
-    if (probabilistic_) {
-        if (errors_) errors_->update(passflux_, hitpoints_, stats_buf_, r2_, power_per_photon());
-        set_args(k_accumulate_, 0, passflux_, hitpoints_, stats_buf_, cl_uint(num_pixels_),
-                 cl_double(1.0 / (M_PI * r2_)));
-        cl::Event ev;
-        enqueue_1d(dc_.queue, k_accumulate_, num_pixels_, &ev);
-        add_event_time(stats_, "update", ev);
-        dc_.queue.finish();
-        r2_ = next_pppm_radius2(r2_, pass, settings_.alpha);
-        stats_.mean_radius = std::sqrt(r2_);
-    } else {
-        // Before the update: the statistics still hold the radius this pass gathered with.
-        if (errors_) errors_->update(passflux_, hitpoints_, stats_buf_, 0.0, power_per_photon());
-        auto [mean, mx] = enqueue_ppm_update(dc_, k_update_, passflux_, hitpoints_, stats_buf_, num_pixels_,
-                                             settings_.alpha, radius_partials_, stats_);
-        stats_.mean_radius = typical_radius_ = mean;
-        max_radius_ = mx;
-    }
+    direct_light(pass, num_pixels_);
+    if (probabilistic_) probabilistic_update();
+    else progressive_update(num_pixels_);
     collect_event_times(stats_);
     stats_.passes = pass;
     stats_.photons_emitted += settings_.photons;
 }
 
-// Visible points are drawn anew every pass from (seed, pass): only the statistics are state.
-void SppmIntegrator::save(Checkpoint& ck) {
-    IntegratorBase::save(ck);
-    ck.put("stats", read_buffer<dev::HitStats>(dc_.queue, stats_buf_, num_pixels_));
-    ck.header["pppm_r2"] = r2_;
-    ck.header["typical_radius"] = typical_radius_;
-    ck.header["max_radius"] = max_radius_;
-    if (errors_) ck.put("error_stats2", errors_->read());
+// Knaus and Zwicker 2011: each pass's estimate with this pass's radius joins a running mean; the
+// radius then shrinks for every pixel alike (Eq. 20).
+void SppmIntegrator::probabilistic_update() {
+    if (errors_) errors_->update(passflux_, hitpoints_, stats_buf_, r2_, power_per_photon());
+    set_args(k_accumulate_, 0, passflux_, hitpoints_, stats_buf_, cl_uint(num_pixels_), cl_double(1.0 / (M_PI * r2_)));
+    cl::Event ev;
+    enqueue_1d(dc_.queue, k_accumulate_, num_pixels_, &ev);
+    add_event_time(stats_, "update", ev);
+    dc_.queue.finish();
+    r2_ = next_pppm_radius2(r2_, stats_.passes + 1, settings_.alpha);
+    stats_.mean_radius = std::sqrt(r2_);
 }
 
-void SppmIntegrator::restore(const Checkpoint& ck) {
-    IntegratorBase::restore(ck);
-    check_photon_counters(ck, stats_, settings_.photons, scene_.info.radius);
-    const double r0 = stats_.initial_radius; // the radii only shrink from it
-    std::vector<dev::HitStats> hstats = ck.get<dev::HitStats>("stats", num_pixels_);
-    check_hit_stats(ck, hstats, r0 * r0 * (1 + 1e-9));
-    write_buffer(dc_.queue, stats_buf_, hstats);
+void SppmIntegrator::save_state(Checkpoint& ck) const { ck.header["pppm_r2"] = r2_; }
+
+void SppmIntegrator::restore_state(const Checkpoint& ck) {
+    const double r0 = stats_.initial_radius;
     r2_ = checkpoint_number(ck, "pppm_r2", 0, r0 * r0 * (1 + 1e-9));
     require_checkpoint_field(ck, r2_ > 0, "pppm_r2");
-    typical_radius_ = checkpoint_number(ck, "typical_radius", 0, r0 * (1 + 1e-9));
-    max_radius_ = checkpoint_number(ck, "max_radius", 0, r0 * (1 + 1e-9));
-    if (!errors_) return;
-    // A checkpoint saved without error estimation: the estimate starts over from here.
-    auto blob = ck.blobs.find("error_stats2");
-    if (blob != ck.blobs.end() && blob->second.size() == size_t(num_pixels_) * sizeof(dev::ErrorStats))
-        errors_->write(ck.get<dev::ErrorStats>("error_stats2", num_pixels_));
-    else errors_->reset(stats_buf_);
 }
 
 Image SppmIntegrator::image() {

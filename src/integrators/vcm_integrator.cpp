@@ -2,16 +2,13 @@
 
 #include <algorithm>
 #include <cfloat>
-#include <chrono>
 #include <cmath>
 
-#include "device/cluster.h"
 #include "device/kernel_launch.h"
 #include "device/kernel_program.h"
 #include "integrators/checkpoint_checks.h"
 #include "integrators/film.h"
 #include "integrators/initial_radius.h"
-#include "integrators/pixel_share.h"
 #include "integrators/progressive_update.h"
 #include "util/cancellation.h"
 #include "util/error.h"
@@ -64,12 +61,10 @@ struct VcmIntegrator::Worker {
 
 VcmIntegrator::VcmIntegrator(const DeviceContext& dc, const DeviceScene& scene, const RenderSettings& settings,
                              const cl::Program& program, const SecondaryDevices& secondaries)
-    : dc_(dc), scene_(scene), settings_(settings), mode_(technique_mode(settings)), grid_(dc, program, stats_) {
+    : PixelSumIntegrator(dc, scene, settings, program), mode_(technique_mode(settings)), grid_(dc, program, stats_) {
     k_light_ = cl::Kernel(program, "vcm_light");
     k_camera_ = cl::Kernel(program, "vcm_camera");
-    k_film_ = cl::Kernel(program, "mean_film");
     k_footprint_ = cl::Kernel(program, "vcm_footprint");
-    num_pixels_ = scene.camera.width * scene.camera.height;
     area_scale_ = std::min(double(scene.info.radius) * double(scene.info.radius), double(FLT_MAX));
     trace_ = std::make_unique<BatchedTrace>(dc, sizeof(dev::LightVertex), kVerticesPerPath,
                                             std::max<uint32_t>(1, num_pixels_), "one light sub-path", "vertices");
@@ -96,13 +91,10 @@ void VcmIntegrator::prepare() {
         stats_.device_bytes += bytes;
         return cl::Buffer(dc_.context, CL_MEM_READ_WRITE, std::max<size_t>(bytes, 8));
     };
-    accum_ = make(n * 3 * sizeof(cl_double));
-    dc_.queue.enqueueFillBuffer(accum_, cl_double(0), 0, n * 3 * sizeof(cl_double));
+    allocate_sum();
     pass_sum_ = make(n * 3 * sizeof(cl_double));
     splat_ = make(n * 3 * sizeof(cl_long));
-    image_buf_ = make(n * kFilmBytesPerPixel);
     path_last_ = make(size_t(trace_->batch()) * sizeof(cl_uint));
-    stats_.hitpoints = n;
 
     // The initial merging radius: one pixel footprint at the first surfaces, half of SPPM's two.
     // Merging takes most of the weight on diffuse surfaces (eta = pi r^2 N_L is large), so its
@@ -173,66 +165,57 @@ void VcmIntegrator::render(uint64_t pass, uint32_t first_pixel, uint32_t pixels,
     stats_.photon_bytes = trace_->device_bytes() + grid_.device_bytes();
 }
 
+// With several processes (device/cluster.h) every rank traces all light sub-paths (the same on
+// each: they depend on (seed, pass, index) alone) and the camera sub-paths of its own pixel range,
+// by the ranks' measured speed; the ranks then share their ranges of the running sum, so each holds
+// what one process would, bit for bit when their batches agree. Several devices in one process
+// share the rank's range the same way.
 void VcmIntegrator::run_pass() {
     const uint64_t pass = stats_.passes + 1;
-    // With several processes (device/cluster.h) every rank traces all light sub-paths (the same on
-    // each: they depend on (seed, pass, index) alone) and the camera sub-paths of its own pixel
-    // range, by the ranks' measured speed; the ranks then share their ranges of the running sum, so
-    // each holds what one process would, bit for bit when their batches agree. Several devices in
-    // one process share the rank's range the same way.
-    const PixelRanges ranges = split_pixels(num_pixels_, balance_);
-    const auto t0 = std::chrono::steady_clock::now();
-    auto seconds_since = [](std::chrono::steady_clock::time_point t) {
-        return std::chrono::duration<double>(std::chrono::steady_clock::now() - t).count();
-    };
-    if (workers_.empty()) {
-        render(pass, ranges.first, ranges.count, accum_);
-    } else {
-        // The rank's range in proportion to each device's pixels per second, the primary first.
-        const std::vector<uint32_t> share = fan_out_.split(ranges.count);
-        fan_out_.run(ranges.first, share, [&](size_t k, uint32_t first, uint32_t count) {
-            if (k == 0) return render(pass, first, count, accum_);
-            Worker& w = *workers_[k - 1];
-            VcmIntegrator& v = *w.integ;
-            v.r2_ = r2_;
-            const size_t bytes = size_t(num_pixels_) * 3 * sizeof(cl_double);
-            v.dc_.queue.enqueueFillBuffer(v.accum_, cl_double(0), 0, bytes); // this pass alone
-            v.render(pass, first, count, v.accum_);
-            w.result.assign(size_t(count) * 3, 0.0);
-            if (count)
-                v.dc_.queue.enqueueReadBuffer(v.accum_, CL_TRUE, size_t(first) * 3 * sizeof(cl_double),
-                                              w.result.size() * sizeof(double), w.result.data());
-        });
-        // Each device's samples join the running sum as its own kernel would have added them.
-        uint32_t at = ranges.first + share[0];
-        for (size_t k = 0; k < workers_.size(); ++k) {
-            const uint32_t count = share[k + 1];
-            if (count) {
-                std::vector<double> sum(size_t(count) * 3);
-                const size_t offset = size_t(at) * 3 * sizeof(cl_double);
-                dc_.queue.enqueueReadBuffer(accum_, CL_TRUE, offset, sum.size() * sizeof(double), sum.data());
-                for (size_t i = 0; i < sum.size(); ++i) sum[i] += workers_[k]->result[i];
-                dc_.queue.enqueueWriteBuffer(accum_, CL_TRUE, offset, sum.size() * sizeof(double), sum.data());
-            }
-            at += count;
-        }
-        stats_.device_photons = share;
-    }
-    if (cluster().distributed()) {
-        balance_.record(ranges.count, seconds_since(t0));
-        share_pixels(dc_.queue, accum_, 3, ranges, num_pixels_);
-        stats_.rank_photons.assign(ranges.counts.begin(), ranges.counts.end());
-    }
-    stats_.local_work += ranges.count;
-    stats_.passes = pass;
+    const PixelRanges ranges = begin_pass();
+    if (workers_.empty()) render(pass, ranges.first, ranges.count, accum_);
+    else render_on_devices(pass, ranges);
+    end_pass(ranges);
     stats_.photons_emitted += mode_ == VCM_MODE_PT ? 0 : num_pixels_;
     stats_.mean_radius = std::sqrt(r2_);
     r2_ = next_pppm_radius2(r2_, pass, settings_.alpha);
 }
 
+// The rank's range in proportion to each device's pixels per second, the primary first; each
+// device's samples join the running sum as its own kernel would have added them.
+void VcmIntegrator::render_on_devices(uint64_t pass, const PixelRanges& ranges) {
+    const std::vector<uint32_t> share = fan_out_.split(ranges.count);
+    fan_out_.run(ranges.first, share, [&](size_t k, uint32_t first, uint32_t count) {
+        if (k == 0) return render(pass, first, count, accum_);
+        Worker& w = *workers_[k - 1];
+        VcmIntegrator& v = *w.integ;
+        v.r2_ = r2_;
+        const size_t bytes = size_t(num_pixels_) * 3 * sizeof(cl_double);
+        v.dc_.queue.enqueueFillBuffer(v.accum_, cl_double(0), 0, bytes); // this pass alone
+        v.render(pass, first, count, v.accum_);
+        w.result.assign(size_t(count) * 3, 0.0);
+        if (count)
+            v.dc_.queue.enqueueReadBuffer(v.accum_, CL_TRUE, size_t(first) * 3 * sizeof(cl_double),
+                                          w.result.size() * sizeof(double), w.result.data());
+    });
+    uint32_t at = ranges.first + share[0];
+    for (size_t k = 0; k < workers_.size(); ++k) {
+        const uint32_t count = share[k + 1];
+        if (count) {
+            std::vector<double> sum(size_t(count) * 3);
+            const size_t offset = size_t(at) * 3 * sizeof(cl_double);
+            dc_.queue.enqueueReadBuffer(accum_, CL_TRUE, offset, sum.size() * sizeof(double), sum.data());
+            for (size_t i = 0; i < sum.size(); ++i) sum[i] += workers_[k]->result[i];
+            dc_.queue.enqueueWriteBuffer(accum_, CL_TRUE, offset, sum.size() * sizeof(double), sum.data());
+        }
+        at += count;
+    }
+    stats_.device_photons = share;
+}
+
 void VcmIntegrator::save(Checkpoint& ck) {
     IntegratorBase::save(ck);
-    ck.put("accum", read_buffer<cl_double>(dc_.queue, accum_, size_t(num_pixels_) * 3));
+    save_sum(ck);
     ck.header["vcm_r2"] = r2_;
 }
 
@@ -245,15 +228,7 @@ void VcmIntegrator::restore(const Checkpoint& ck) {
     require_checkpoint_field(ck, std::isfinite(r0) && r0 > 0 && r0 <= 2.0 * scene_.info.radius, "initial_radius");
     r2_ = checkpoint_number(ck, "vcm_r2", 0, r0 * r0 * (1 + 1e-9));
     require_checkpoint_field(ck, r2_ > 0, "vcm_r2");
-    std::vector<cl_double> accum = ck.get<cl_double>("accum", size_t(num_pixels_) * 3);
-    check_radiance_sums(ck, accum, "accum");
-    write_buffer(dc_.queue, accum_, accum);
-}
-
-Image VcmIntegrator::image() {
-    set_args(k_film_, 0, accum_, cl_uint(num_pixels_), cl_double(double(stats_.passes)), image_buf_);
-    enqueue_1d(dc_.queue, k_film_, num_pixels_);
-    return read_film(dc_, image_buf_, scene_.camera.width, scene_.camera.height);
+    restore_sum(ck);
 }
 
 } // namespace clppm

@@ -10,33 +10,31 @@
 #include "integrators/batched_trace.h"
 #include "integrators/device_fan_out.h"
 #include "integrators/hash_grid.h"
-#include "integrators/integrator.h"
+#include "integrators/pixel_sum_integrator.h"
 #include "integrators/render_settings.h"
-#include "integrators/work_balance.h"
 #include "scene/device_scene.h"
 #include "vcm_mis.h"
 
 namespace clppm {
 
-class VcmIntegrator : public IntegratorBase {
+class VcmIntegrator : public PixelSumIntegrator {
 public:
     // With secondaries, every device traces all light sub-paths and the camera sub-paths of a share
     // of the pixels (by its measured speed); the shares' sums join the primary's.
     VcmIntegrator(const DeviceContext& dc, const DeviceScene& scene, const RenderSettings& settings,
                   const cl::Program& program, const SecondaryDevices& secondaries = {});
     ~VcmIntegrator() override;
-    std::string name() const override { return mode_ == VCM_MODE_BPT ? "bpt" : "vcm"; }
-    void prepare() override;
-    void run_pass() override;
-    Image image() override;
-    void save(Checkpoint& ck) override;
-    void restore(const Checkpoint& ck) override;
-
     // The per-pixel buffers prepare() allocates for `pixels` pixels.
     static IntegratorMemory memory_needed(size_t pixels);
     // The light vertex buffers and grid a pass over `pixels` light sub-paths starts with (they are
     // batched to stay within a quarter of the device's memory).
     static size_t light_vertex_bytes(size_t pixels, const DeviceInfo& device);
+
+    void prepare() override;
+    void run_pass() override;
+    // The sum and the merging radius.
+    void save(Checkpoint& ck) override;
+    void restore(const Checkpoint& ck) override;
 
     // The radius this pass merges with (world units).
     double radius() const;
@@ -47,19 +45,16 @@ private:
     // batches, then `out` (a running sum per pixel) gets each pixel's sample added.
     void render(uint64_t pass, uint32_t first, uint32_t count, const cl::Buffer& out);
     void trace_light(uint64_t pass, uint32_t first, uint32_t count);
+    // Several devices: the rank's pixels between them, their samples joined into the sum.
+    void render_on_devices(uint64_t pass, const PixelRanges& ranges);
 
-    const DeviceContext& dc_;
-    const DeviceScene& scene_;
-    RenderSettings settings_;
     uint32_t mode_;
-    cl::Kernel k_light_, k_camera_, k_film_, k_footprint_;
+    cl::Kernel k_light_, k_camera_, k_footprint_;
     HashGrid grid_;
-    cl::Buffer accum_, pass_sum_, splat_, path_last_, image_buf_;
-    uint32_t num_pixels_ = 0;
+    cl::Buffer pass_sum_, splat_, path_last_;
     std::unique_ptr<BatchedTrace> trace_; // the light sub-paths' vertices
     double r2_ = 0;                       // this pass's squared merging radius
     double area_scale_ = 1;               // R^2 of the scene's bounding sphere: the kernels' unit of area
-    WorkBalance balance_;                 // this rank's seconds against its pixels, for the ranks' split
     std::vector<std::unique_ptr<Worker>> workers_;
     DeviceFanOut fan_out_{{1}}; // the pixels of this rank's range between its devices
 };

@@ -268,37 +268,32 @@ private:
     bool signalled_ = false; // a SIGINT during the last call
 };
 
-py::list device_list() {
-    py::list out;
-    for (const DeviceInfo& d : list_devices()) {
-        py::dict e;
-        e["index"] = d.index;
-        e["name"] = d.name;
-        e["platform"] = d.platform_name;
-        e["type"] = d.type_name();
-        e["driver"] = d.driver_version;
-        e["compute_units"] = d.compute_units;
-        e["global_memory"] = d.global_mem;
-        e["fp64"] = d.fp64;
-        out.append(e);
-    }
-    return out;
+py::object device_list() {
+    Json out = Json::array();
+    for (const DeviceInfo& d : list_devices())
+        out.push_back({{"index", d.index},
+                       {"name", d.name},
+                       {"platform", d.platform_name},
+                       {"type", d.type_name()},
+                       {"driver", d.driver_version},
+                       {"compute_units", d.compute_units},
+                       {"global_memory", d.global_mem},
+                       {"fp64", d.fp64}});
+    return json_to_python(out);
 }
 
-py::list option_list() {
-    py::list out;
-    for (const RenderOptionSpec& s : render_option_table()) {
-        py::dict e;
-        e["name"] = s.name;
-        e["group"] = s.group;
-        e["flag"] = s.metavar == nullptr;
-        e["metavar"] = s.metavar ? py::object(py::str(s.metavar)) : py::none();
-        e["help"] = s.help;
-        e["range"] = s.range ? py::object(py::str(s.range)) : py::none();
-        e["default"] = s.default_text ? py::object(py::str(s.default_text)) : py::none();
-        out.append(e);
-    }
-    return out;
+py::object option_list() {
+    auto text = [](const char* s) { return s ? Json(s) : Json(); };
+    Json out = Json::array();
+    for (const RenderOptionSpec& s : render_option_table())
+        out.push_back({{"name", s.name},
+                       {"group", s.group},
+                       {"flag", s.metavar == nullptr},
+                       {"metavar", text(s.metavar)},
+                       {"help", s.help},
+                       {"range", text(s.range)},
+                       {"default", text(s.default_text)}});
+    return json_to_python(out);
 }
 
 std::unique_ptr<ClusterSession> g_mpi;

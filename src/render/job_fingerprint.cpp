@@ -20,24 +20,14 @@ std::string hex(uint64_t v) {
 Json job_fingerprint(const RenderOptions& o, const DeviceScene& ds, uint64_t scene_hash,
                      const std::string& kernel_source) {
     const RenderSettings& s = o.settings;
-    Json j;
-    j["scene"] = hex(scene_hash);
-    j["kernels"] = hex(fnv1a64(kernel_source));
-    j["--integrator"] = s.integrator;
-    j["--direct"] = to_string(s.direct);
-    j["--width"] = ds.camera.width;
-    j["--height"] = ds.camera.height;
-    j["--camera"] = s.camera;
-    j["--spp"] = s.spp;
-    j["--photons"] = s.photons;
-    j["--alpha"] = s.alpha;
-    j["--radius"] = s.radius;
-    j["--seed"] = s.seed;
-    j["--max-bounces"] = s.max_bounces;
-    j["--filter"] = to_string(s.filter);
-    j["--aperture"] = s.aperture;
-    j["--focus-distance"] = s.focus_distance;
-    return j;
+    return {{"scene", hex(scene_hash)},       {"kernels", hex(fnv1a64(kernel_source))},
+            {"--integrator", s.integrator},   {"--direct", to_string(s.direct)},
+            {"--width", ds.camera.width},     {"--height", ds.camera.height},
+            {"--camera", s.camera},           {"--spp", s.spp},
+            {"--photons", s.photons},         {"--alpha", s.alpha},
+            {"--radius", s.radius},           {"--seed", s.seed},
+            {"--max-bounces", s.max_bounces}, {"--filter", to_string(s.filter)},
+            {"--aperture", s.aperture},       {"--focus-distance", s.focus_distance}};
 }
 
 Checkpoint open_resume(const std::string& path, const Json& fingerprint) {

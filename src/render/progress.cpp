@@ -144,20 +144,8 @@ Progress::~Progress() {
 }
 
 ProgressInfo Progress::info(uint64_t pass, uint64_t photons, double radius, double elapsed_s) const {
-    ProgressInfo p;
-    p.pass = pass;
-    p.pass_limit = pass_limit_;
-    p.time_limit = time_limit_;
-    p.photons = photons;
-    p.radius = radius;
-    p.elapsed_s = elapsed_s;
-    p.error = error_;
-    p.target_error = target_error_;
-    p.error_eta_s = error_eta_s_;
-    p.resumed_at = resumed_at_;
-    p.steady_pass0 = steady_pass0_;
-    p.steady_t0 = steady_t0_;
-    return p;
+    return ProgressInfo{pass,   pass_limit_,   time_limit_,  photons,     radius,        elapsed_s, false,
+                        error_, target_error_, error_eta_s_, resumed_at_, steady_pass0_, steady_t0_};
 }
 
 void Progress::update(uint64_t pass, uint64_t photons, double radius, double elapsed_s) {

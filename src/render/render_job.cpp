@@ -160,7 +160,7 @@ void RenderJob::build_kernels(const std::vector<DeviceInfo>& chosen) {
         const char* asked = options_.target_error > 0 ? "--target-error" : "--error-output";
         if (!secondaries.devices.empty())
             throw Error(std::string(asked) + ": error estimation runs on one device; give a single --device");
-        if (!integ_->estimates_error())
+        if (!row_->estimates_error)
             throw Error(std::string(asked) + ": the " + integ_->name() + " integrator does not estimate its error");
         integ_->enable_error_estimation();
         estimating_ = true;

@@ -1,0 +1,69 @@
+#include "integrators/pixel_sum_integrator.h"
+
+#include <algorithm>
+#include <chrono>
+
+#include "device/cluster.h"
+#include "device/kernel_launch.h"
+#include "integrators/checkpoint_checks.h"
+#include "integrators/film.h"
+
+namespace clppm {
+
+namespace {
+
+double now_seconds() {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+} // namespace
+
+PixelSumIntegrator::PixelSumIntegrator(const DeviceContext& dc, const DeviceScene& scene,
+                                       const RenderSettings& settings, const cl::Program& program)
+    : IntegratorBase(dc, scene, settings, program) {
+    k_film_ = cl::Kernel(program, "mean_film");
+}
+
+void PixelSumIntegrator::allocate_sum() {
+    const size_t sum = std::max<size_t>(size_t(num_pixels_) * kSumBytesPerPixel, 8);
+    accum_ = cl::Buffer(dc_.context, CL_MEM_READ_WRITE, sum);
+    dc_.queue.enqueueFillBuffer(accum_, cl_double(0), 0, sum);
+    const size_t film = std::max<size_t>(size_t(num_pixels_) * kFilmBytesPerPixel, 8);
+    image_buf_ = cl::Buffer(dc_.context, CL_MEM_READ_WRITE, film);
+    stats_.device_bytes += sum + film;
+    stats_.hitpoints = num_pixels_;
+}
+
+PixelRanges PixelSumIntegrator::begin_pass() {
+    pass_start_s_ = now_seconds();
+    return split_pixels(num_pixels_, balance_);
+}
+
+void PixelSumIntegrator::end_pass(const PixelRanges& ranges, const cl::Buffer* also, size_t also_doubles) {
+    if (cluster().distributed()) {
+        balance_.record(ranges.count, now_seconds() - pass_start_s_);
+        share_pixels(dc_.queue, accum_, 3, ranges, num_pixels_);
+        if (also) share_pixels(dc_.queue, *also, also_doubles, ranges, num_pixels_);
+        stats_.rank_photons.assign(ranges.counts.begin(), ranges.counts.end());
+    }
+    stats_.local_work += ranges.count;
+    stats_.passes += 1;
+}
+
+void PixelSumIntegrator::save_sum(Checkpoint& ck) const {
+    ck.put("accum", read_buffer<cl_double>(dc_.queue, accum_, size_t(num_pixels_) * 3));
+}
+
+void PixelSumIntegrator::restore_sum(const Checkpoint& ck) {
+    std::vector<cl_double> accum = ck.get<cl_double>("accum", size_t(num_pixels_) * 3);
+    check_radiance_sums(ck, accum, "accum");
+    write_buffer(dc_.queue, accum_, accum);
+}
+
+Image PixelSumIntegrator::image() {
+    set_args(k_film_, 0, accum_, cl_uint(num_pixels_), cl_double(double(stats_.passes)), image_buf_);
+    enqueue_1d(dc_.queue, k_film_, num_pixels_);
+    return read_film(dc_, image_buf_, scene_.camera.width, scene_.camera.height);
+}
+
+} // namespace clppm
