@@ -19,4 +19,7 @@ struct IntegratorChoice {
 // `scene` after apply_environment.
 IntegratorChoice default_integrator(const Scene& scene);
 
+// The rule above in a line, for --help.
+extern const char* const kDefaultIntegratorRule;
+
 } // namespace clppm

@@ -3,6 +3,7 @@
 #include <climits>
 #include <cstdint>
 
+#include "integrators/default_integrator.h"
 #include "integrators/integrator_table.h"
 #include "render/live_view.h"
 #include "util/error.h"
@@ -24,8 +25,7 @@ const std::string& integrator_range() {
 
 const std::string& integrator_help() {
     static const std::string s = [] {
-        std::string h = "Integrator: auto = the fastest for the scene (sppm for a scene with lights of its own, pt for "
-                        "one lit only by an environment; measured: bench/RESULTS.md)";
+        std::string h = std::string("Integrator: auto = the fastest for the scene (") + kDefaultIntegratorRule + ")";
         for (const IntegratorRow& row : integrator_table()) h += std::string("; ") + row.name + " = " + row.summary;
         return h;
     }();
