@@ -12,6 +12,7 @@
 #include <sys/socket.h>
 #include <thread>
 #include <unistd.h>
+#include <utility>
 
 #include "io/image_io.h"
 #include "render/tev_client.h"
@@ -27,6 +28,23 @@ std::string bytes(std::initializer_list<int> v) {
     std::string s;
     for (int b : v) s.push_back(char(b));
     return s;
+}
+
+// A socket listening on a free loopback port, standing in for tev: (fd, port), fd < 0 on failure.
+// `receive_buffer` > 0 sets SO_RCVBUF, which accepted connections inherit.
+std::pair<int, int> listen_on_loopback(int receive_buffer = 0) {
+    const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
+    if (receive_buffer > 0) ::setsockopt(fd, SOL_SOCKET, SO_RCVBUF, &receive_buffer, sizeof receive_buffer);
+    sockaddr_in a{};
+    a.sin_family = AF_INET;
+    a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    socklen_t len = sizeof a;
+    if (::bind(fd, reinterpret_cast<sockaddr*>(&a), sizeof a) != 0 || ::listen(fd, 1) != 0 ||
+        ::getsockname(fd, reinterpret_cast<sockaddr*>(&a), &len) != 0) {
+        ::close(fd);
+        return {-1, 0};
+    }
+    return {fd, ntohs(a.sin_port)};
 }
 
 uint32_t u32(const std::string& s, size_t at) {
@@ -104,14 +122,8 @@ TEST(Tev, BadAddressesAreOneLineErrors) {
 // A render sends to a socket standing in for tev: the stream is CreateImage (40 x 24, R G B) and
 // then UpdateImage tiles; the last update of each pixel is the final EXR's value, bit for bit.
 TEST(Tev, ARenderSendsItsImage) {
-    const int server = ::socket(AF_INET, SOCK_STREAM, 0);
-    sockaddr_in a{};
-    a.sin_family = AF_INET;
-    a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-    ASSERT_EQ(::bind(server, reinterpret_cast<sockaddr*>(&a), sizeof a), 0);
-    ASSERT_EQ(::listen(server, 1), 0);
-    socklen_t len = sizeof a;
-    ::getsockname(server, reinterpret_cast<sockaddr*>(&a), &len);
+    const auto [server, port] = listen_on_loopback();
+    ASSERT_GE(server, 0);
     std::string stream;
     std::thread reader([&] {
         const int c = ::accept(server, nullptr, nullptr);
@@ -122,7 +134,7 @@ TEST(Tev, ARenderSendsItsImage) {
     const std::string dir = make_temp_dir("tev");
     std::string out;
     EXPECT_EQ(run_clppm("--width 40 --height 24 --passes 3 --quiet --no-png -o " + dir +
-                            "/t.exr --display-server 127.0.0.1:" + std::to_string(ntohs(a.sin_port)),
+                            "/t.exr --display-server 127.0.0.1:" + std::to_string(port),
                         &out),
               0)
         << out;
@@ -166,16 +178,9 @@ TEST(Tev, ARenderSendsItsImage) {
 // warning naming the viewer. The command runs under a timeout, so that a regression fails here
 // instead of hanging the suite.
 TEST(Tev, AViewerThatNeverReadsDoesNotHoldTheRenderBack) {
-    const int server = ::socket(AF_INET, SOCK_STREAM, 0);
-    const int small = 4096; // a receive window of a few kilobytes: the sender's buffer fills fast
-    ::setsockopt(server, SOL_SOCKET, SO_RCVBUF, &small, sizeof small);
-    sockaddr_in a{};
-    a.sin_family = AF_INET;
-    a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-    ASSERT_EQ(::bind(server, reinterpret_cast<sockaddr*>(&a), sizeof a), 0);
-    ASSERT_EQ(::listen(server, 1), 0);
-    socklen_t len = sizeof a;
-    ::getsockname(server, reinterpret_cast<sockaddr*>(&a), &len);
+    // A receive window of a few kilobytes: the sender's buffer fills fast.
+    const auto [server, port] = listen_on_loopback(4096);
+    ASSERT_GE(server, 0);
     int client = -1;
     std::thread acceptor([&] { client = ::accept(server, nullptr, nullptr); }); // and never read
     const std::string dir = make_temp_dir("tev_stall");
@@ -184,7 +189,7 @@ TEST(Tev, AViewerThatNeverReadsDoesNotHoldTheRenderBack) {
     std::string out;
     const auto t0 = std::chrono::steady_clock::now();
     ASSERT_EQ(run_command("timeout 120 " + clppm_binary() + " " + args +
-                              " --display-server 127.0.0.1:" + std::to_string(ntohs(a.sin_port)),
+                              " --display-server 127.0.0.1:" + std::to_string(port),
                           &out),
               0)
         << out;
