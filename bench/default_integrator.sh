@@ -9,8 +9,8 @@
 #   INTEGRATORS="ppm sppm pppm pt vcm bpt", REFS=sppm|pt)
 # SCENES may name cornell_box (the built-in default), cornell_diffuse (the same box without its two
 # spheres: diffuse only) or glTF files. References: SPPM, and the path tracer for env_outdoor
-# (issue 16); REFS=pt also for cornell_diffuse, where the path tracer misses no light and has no
-# bias. Scenes with glass need a photon reference: a caustic seen through glass or in a mirror is a
+# (issue 16); REFS=pt also for cornell_diffuse, doorway and bunny_100k (scenes/), diffuse only,
+# where the path tracer misses no light and has no bias. Scenes with glass need a photon reference: a caustic seen through glass or in a mirror is a
 # specular-diffuse-specular path that neither the path tracer nor BPT samples (BPT's reference
 # for the caustic scene measured 0.66% darker than SPPM's and VCM's, which agree).
 set -euo pipefail
@@ -41,7 +41,7 @@ for scene in $scenes; do
   [ "$scene" = cornell_diffuse ] && arg="$out/cornell_diffuse.gltf"
   ref_integ=sppm
   [ "$name" = env_outdoor ] && ref_integ=pt
-  [ "$refs" = pt ] && [ "$name" = cornell_diffuse ] && ref_integ=pt
+  [ "$refs" = pt ] && case "$name" in cornell_diffuse | doorway | bunny_100k) ref_integ=pt ;; esac
   echo "reference for $name: $ref_integ" >&2
   "$bin" $arg $common --integrator $ref_integ --time "$ref_seconds" --seed 1000 -o "$out/$name-ref.exr"
   for integ in $integrators; do

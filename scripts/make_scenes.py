@@ -475,6 +475,56 @@ def bunny_100k(out_dir, segments=320, name="bunny_100k"):
     return 12 + len(idx) // 3
 
 
+def box_room(b, lo, hi, skip_x=None):
+    """The inward faces of the box [lo, hi] as (quad, ...) tuples; skip_x leaves out the wall at
+    that x (a partition built separately)."""
+    c = scale(add(lo, hi), 0.5)
+    h = scale(sub(hi, lo), 0.5)
+    faces = [
+        quad((c[0], lo[1], c[2]), (0, 0, h[2]), (h[0], 0, 0)),    # floor, +y
+        quad((c[0], hi[1], c[2]), (h[0], 0, 0), (0, 0, h[2])),    # ceiling, -y
+        quad((c[0], c[1], lo[2]), (h[0], 0, 0), (0, h[1], 0)),    # back, +z
+        quad((c[0], c[1], hi[2]), (0, h[1], 0), (h[0], 0, 0)),    # front, -z
+        quad((lo[0], c[1], c[2]), (0, h[1], 0), (0, 0, h[2])),    # low x, +x
+        quad((hi[0], c[1], c[2]), (0, 0, h[2]), (0, h[1], 0)),    # high x, -x
+    ]
+    x_of = [None, None, None, None, lo[0], hi[0]]
+    return [f for f, x in zip(faces, x_of) if x is None or x != skip_x]
+
+
+def doorway(out_dir):
+    """Two rooms side by side, the light in the one the camera cannot see: everything the camera
+    sees is lit through a doorway, by light that has bounced at least once (issue 36's 'light
+    through a gap'). Diffuse only, one ceiling light."""
+    b = GltfBuilder()
+    white = b.material("white", WHITE, specular=0.0)
+    light = b.material("light", (0.78, 0.78, 0.78), specular=0.0, emissive=(1.0, 1.0, 1.0),
+                       emissive_strength=4 * LIGHT_RADIANCE)
+    faces = box_room(b, (-2.0, 0.0, -1.0), (0.0, 2.0, 1.0), skip_x=0.0) + box_room(b, (0.0, 0.0, -1.0),
+                                                                                  (2.0, 2.0, 1.0), skip_x=0.0)
+    # The partition at x = 0 with a door z in [-0.3, 0.3], y in [0, 1.4]; both sides face their room.
+    for zc, zh, yc, yh in ((-0.65, 0.35, 1.0, 1.0), (0.65, 0.35, 1.0, 1.0), (0.0, 0.3, 1.7, 0.3)):
+        faces.append(quad((0.0, yc, zc), (0, 0, zh), (0, yh, 0)))   # facing -x (room A)
+        faces.append(quad((0.0, yc, zc), (0, yh, 0), (0, 0, zh)))   # facing +x (room B)
+    prims = []
+    for pos, nrm, idx in faces:
+        check_front_faces(pos, nrm, idx)
+        prims.append(b.primitive(pos, idx, nrm, material=white, index_type=UBYTE))
+    rooms = b.mesh(prims, "rooms")
+    lpos, lnrm, lidx = quad((1.2, 1.995, 0.0), (0.2, 0, 0), (0, 0, 0.2))
+    assert lnrm[0] == (0.0, -1.0, 0.0)
+    lamp = b.mesh([b.primitive(lpos, lidx, lnrm, material=light, index_type=UBYTE)], "lamp")
+    cam_pos, target = (-1.9, 1.1, 0.9), (-0.2, 0.7, -0.3)
+    cam = b.camera(1.0, 1.0, "room_a")
+    b.scene([
+        b.node(name="rooms", mesh=rooms),
+        b.node(name="lamp", mesh=lamp),
+        b.node(name="camera", camera=cam, translation=list(cam_pos), rotation=look_rotation(sub(target, cam_pos))),
+    ])
+    b.write_embedded(os.path.join(out_dir, "doorway.gltf"))
+    return 2 * len(faces) + 2
+
+
 def bunny_1m(out_dir):
     """The same blob with 10x the triangles (1.0M), for bench/scaling_10x.sh: not shipped."""
     return bunny_100k(out_dir, 1012, "bunny_1m")
@@ -488,7 +538,7 @@ def main():
         return
     out_dir = sys.argv[1] if len(sys.argv) > 1 else os.path.join(here, "..", "scenes")
     os.makedirs(out_dir, exist_ok=True)
-    for make in (cornell_box, caustic, furnace, plane_point_light, bunny_100k):
+    for make in (cornell_box, caustic, furnace, plane_point_light, bunny_100k, doorway):
         print("%-20s %7d triangles" % (make.__name__, make(out_dir)))
 
 

@@ -17,6 +17,7 @@ using namespace clppm::test;
 namespace {
 
 std::string data(const std::string& name) { return std::string(CLPPM_TEST_DATA) + "/" + name; }
+std::string scene(const std::string& name) { return std::string(CLPPM_SCENES_DIR) + "/" + name; }
 
 bool exists(const std::string& path) {
     struct stat st;
@@ -61,9 +62,17 @@ TEST(Cli, DefaultIntegratorDependsOnTheLights) {
                   &out),
         0)
         << out;
-    EXPECT_NE(out.find("integrator sppm: the scene has lights of its own"), std::string::npos) << out;
+    EXPECT_NE(out.find("integrator sppm: material glass (glass or smooth metal) casts caustics"), std::string::npos)
+        << out;
     std::ifstream a(dir + "/a.json");
     EXPECT_EQ(nlohmann::json::parse(a)["integrator"], "sppm");
+    // A diffuse plane under a point light: nothing casts a caustic.
+    ASSERT_EQ(run_clppm(scene("plane_point_light.gltf") + " --width 8 --height 8 --no-png -o " + dir +
+                            "/c.exr --stats-json " + dir + "/c.json",
+                        &out),
+              0)
+        << out;
+    EXPECT_NE(out.find("integrator pt: no glass or smooth metal casts caustics"), std::string::npos) << out;
     ASSERT_EQ(run_clppm(data("embedded.gltf") + " --width 8 --height 8 --no-png -o " + dir + "/b.exr --stats-json " +
                             dir + "/b.json",
                         &out),

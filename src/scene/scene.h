@@ -49,6 +49,7 @@ struct Scene {
     // of primitives without it).
     std::vector<std::array<float, 2>> uv1;
     std::vector<dev::Material> materials;
+    std::vector<std::string> material_names; // the file's names, for messages (may be shorter: unnamed)
     std::vector<dev::Texture> textures;
     std::vector<std::array<float, 4>> texels; // linear RGBA, all textures back to back
     // Punctual lights (KHR_lights_punctual); emissive triangles are found from materials by the

@@ -56,7 +56,10 @@ dev::Material default_material() {
 } // namespace
 
 void MaterialConverter::convert_materials() {
-    for (size_t i = 0; i < m_.materials.size(); ++i) s_.materials.push_back(convert_material(int(i)));
+    for (size_t i = 0; i < m_.materials.size(); ++i) {
+        s_.materials.push_back(convert_material(int(i)));
+        s_.material_names.push_back(m_.materials[i].name);
+    }
 }
 
 void MaterialConverter::copy_finite(float* dst, const std::vector<double>& src, size_t n, const std::string& what,
