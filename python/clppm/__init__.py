@@ -151,6 +151,11 @@ class Renderer:
             raise Interrupted(self._native.image(), self._native.passes)
         return self._native.image()
 
+    def cancel(self):
+        """From another thread (a GUI's Cancel): the pass in flight stops at its next photon batch
+        and the call running it raises Interrupted, as on Ctrl-C."""
+        self._native.cancel()
+
     def image(self):
         """The image after the last pass: float32 (height, width, 3), linear RGB, top row first."""
         return self._native.image()

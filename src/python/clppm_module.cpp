@@ -8,6 +8,7 @@
 // to stop at its next photon batch, as on the command line (util/cancellation.h), and the call
 // returns False; the Python side raises KeyboardInterrupt (clppm.Interrupted) with the last
 // complete pass kept.
+#include <atomic>
 #include <csignal>
 #include <cstdlib>
 #include <memory>
@@ -163,10 +164,16 @@ public:
         job_.reset();
     }
 
-    bool interrupted() const { return signalled_ || (loop_ && loop_->interrupted()); }
+    // From another thread (a GUI's Cancel button): the pass in flight stops at its next batch and
+    // its call returns False, as after Ctrl-C.
+    void cancel() {
+        cancelled_ = true;
+        request_cancel();
+    }
+    bool interrupted() const { return signalled_ || cancelled_ || (loop_ && loop_->interrupted()); }
     void clear_interrupt() {
         clear_cancel();
-        signalled_ = false;
+        signalled_ = cancelled_ = false;
         if (loop_) loop_->clear_interrupt();
     }
 
@@ -265,7 +272,8 @@ private:
     std::unique_ptr<RenderJob> job_;
     std::unique_ptr<RenderLoop> loop_;
     bool finished_ = false;
-    bool signalled_ = false; // a SIGINT during the last call
+    bool signalled_ = false;           // a SIGINT during the last call
+    std::atomic<bool> cancelled_{false}; // cancel() was called
 };
 
 py::object device_list() {
@@ -348,6 +356,7 @@ PYBIND11_MODULE(_clppm, m) {
         .def("render", &Renderer::render)
         .def("finish", &Renderer::finish)
         .def("close", &Renderer::close)
+        .def("cancel", &Renderer::cancel)
         .def("interrupted", &Renderer::interrupted)
         .def("clear_interrupt", &Renderer::clear_interrupt)
         .def("image", &Renderer::image)

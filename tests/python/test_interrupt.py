@@ -70,3 +70,27 @@ def test_interrupting_render_writes_the_last_pass(tmp_path):
     assert os.path.exists(out)
     assert "interrupted after pass" in stderr
     assert clppm.read_exr(out).shape == (30, 40, 3)
+
+
+def test_cancel_from_another_thread_stops_the_pass_and_keeps_the_last_one(monkeypatch):
+    """What a GUI's Cancel button does: the Renderer iterates in one thread, cancel() comes from another."""
+    import threading
+    monkeypatch.setenv("CLPPM_PHOTON_BATCH", "1000")
+    r = clppm.Renderer(width=40, height=30, photons=200000, passes=100000, quiet=True)
+    timer = threading.Timer(1.5, r.cancel)
+    timer.start()
+    passes, raised = 0, None
+    try:
+        for passes in r:
+            sent = time.monotonic()
+    except clppm.Interrupted as e:
+        raised, seconds = e, time.monotonic() - sent
+    timer.join()
+    assert raised is not None, "iteration went on although cancel() was called"
+    assert seconds < 5, seconds  # within a batch of the pass in flight
+    assert raised.passes == passes >= 1 and raised.image.shape == (30, 40, 3)
+    assert raised.image.mean() > 0
+    # The request is spent: the Renderer renders on.
+    r.run_pass()
+    assert r.passes == passes + 1
+    r.close()
