@@ -10,6 +10,7 @@ required=(
   libgtest-dev googletest libcli11-dev libcpp-httplib-dev cmake g++ make pkg-config python3
   clang-format clang-15 cppcheck openmpi-bin libopenmpi-dev
   pybind11-dev python3-dev python3-venv python3-numpy python3-pytest # the Python module and its tests
+  libx11-6 libxrender1 libxfixes3 libxi6 libxext6 libxkbcommon0 libsm6 libgl1 # what PyPI's bpy links (the Blender add-on's tests)
 )
 # Optional, for the benchmarks only: Embree (the CPU traversal yardstick) and gnuplot (plots).
 optional=(libembree-dev gnuplot-nox chromium python3-matplotlib) # chromium: the live view's browser test;

@@ -272,7 +272,7 @@ private:
     std::unique_ptr<RenderJob> job_;
     std::unique_ptr<RenderLoop> loop_;
     bool finished_ = false;
-    bool signalled_ = false;           // a SIGINT during the last call
+    bool signalled_ = false;             // a SIGINT during the last call
     std::atomic<bool> cancelled_{false}; // cancel() was called
 };
 

@@ -1,0 +1,59 @@
+"""scene.clppm: the render settings of the CLPPM engine, with the library's defaults (the command
+line's option table: 0 stands for "the integrator's default" or "none" where the option has no
+value of its own)."""
+import bpy
+
+INTEGRATORS = [
+    ("auto", "Auto", "The fastest for the scene: stochastic PPM where glass or smooth metal casts caustics, the "
+                     "path tracer otherwise"),
+    ("sppm", "SPPM", "Stochastic progressive photon mapping"),
+    ("pppm", "PPPM", "Probabilistic progressive photon mapping"),
+    ("ppm", "PPM", "Progressive photon mapping (fixed hit points)"),
+    ("pt", "Path tracing", "Path tracing with next-event estimation"),
+    ("vcm", "VCM", "Vertex connection and merging"),
+    ("bpt", "BPT", "Bidirectional path tracing"),
+]
+
+
+class ClppmSceneSettings(bpy.types.PropertyGroup):
+    integrator: bpy.props.EnumProperty(name="Integrator", items=INTEGRATORS, default="auto")
+    passes: bpy.props.IntProperty(name="Passes", min=0, default=0,
+                                  description="Stop after this many passes (0: the integrator's default, or none "
+                                              "with a time limit)")
+    time: bpy.props.FloatProperty(name="Time", min=0.0, default=0.0, unit="TIME_ABSOLUTE",
+                                  description="Stop after this many seconds of rendering (0: none)")
+    target_error: bpy.props.FloatProperty(name="Target error", min=0.0, max=1.0, default=0.0, precision=3,
+                                          description="Stop once the estimated error (90th percentile of the "
+                                                      "per-pixel relative error) is at most this (0: off)")
+    photons: bpy.props.IntProperty(name="Photons per pass", min=1, max=2147483647, default=200000)
+    alpha: bpy.props.FloatProperty(name="Alpha", min=0.01, max=1.0, default=0.7,
+                                   description="Fraction of new photons kept per pass (radius reduction)")
+    device: bpy.props.StringProperty(name="Device", default="",
+                                     description="OpenCL device: an index, cpu, gpu or part of a name (empty: "
+                                                 "the first GPU, else the first device)")
+    seed: bpy.props.IntProperty(name="Seed", min=0, default=1)
+    update_every: bpy.props.FloatProperty(name="Display every", min=0.1, default=0.5, unit="TIME_ABSOLUTE",
+                                          description="Seconds between updates of the image while it renders")
+
+    def options(self):
+        """The settings as clppm options (keyword arguments of clppm.Renderer)."""
+        o = {"integrator": self.integrator, "photons": self.photons, "alpha": self.alpha, "seed": self.seed}
+        if self.passes > 0:
+            o["passes"] = self.passes
+        if self.time > 0:
+            o["time"] = self.time
+        if self.target_error > 0:
+            o["target_error"] = self.target_error
+        if self.device:
+            o["device"] = self.device
+        return o
+
+
+def register():
+    bpy.utils.register_class(ClppmSceneSettings)
+    bpy.types.Scene.clppm = bpy.props.PointerProperty(type=ClppmSceneSettings)
+
+
+def unregister():
+    del bpy.types.Scene.clppm
+    bpy.utils.unregister_class(ClppmSceneSettings)
