@@ -1,0 +1,244 @@
+"""The CLPPM render engine against Cycles (the Blender it runs in), headless: scenes built by script
+render within 5% in mean and a box-4 relative MSE of 0.02 of Cycles at 96x96; the engine can be
+cancelled; a missing clppm is reported in one line; the command-line route gives the module's
+image."""
+import math
+import os
+import subprocess
+import sys
+import textwrap
+import time
+
+import bpy
+import numpy as np
+import pytest
+
+import scenes
+from clppm_blender import engine, export, properties, runner
+
+
+def compare(name, tmp_path, clppm_seconds=10.0, samples=2048):
+    cycles = scenes.render("CYCLES", str(tmp_path / (name + "_cycles.exr")), samples=samples)
+    clppm = scenes.render("CLPPM", str(tmp_path / (name + "_clppm.exr")), time=clppm_seconds)
+    ratio = float(clppm.mean() / cycles.mean())
+    box = scenes.box_rel_mse(clppm, cycles)
+    print("%s: mean ratio %.4f, box-4 relative MSE %.5f" % (name, ratio, box))
+    return clppm, cycles, ratio, box
+
+
+def test_diffuse_objects_an_area_light_and_a_grey_world_match_cycles(tmp_path):
+    scenes.diffuse_room()
+    _, _, ratio, box = compare("diffuse_room", tmp_path)
+    assert abs(ratio - 1) < 0.05
+    assert box < 0.02
+
+
+def test_point_spot_and_sun_lights_match_cycles(tmp_path):
+    scenes.punctual_lights()
+    _, _, ratio, box = compare("punctual_lights", tmp_path, clppm_seconds=6.0, samples=1024)
+    assert abs(ratio - 1) < 0.03
+    assert box < 0.01
+
+
+def test_a_spots_soft_edge_keeps_its_power():
+    # Cycles' smoothstep over w = (1 - c0) blend in cos has the integral w/2; glTF's squared ramp
+    # from c0 to c1 has (c1 - c0)/3: equal for c1 = c0 + 3w/4.
+    size, blend = math.radians(70), 0.3
+    c0 = math.cos(size / 2)
+    c1 = math.cos(export.spot_inner_cone(size, blend))
+    w = (1 - c0) * blend
+    s = np.linspace(0, 1, 200001)
+    cycles = np.trapz(s * s * (3 - 2 * s), dx=1 / 200000) * w + (1 - c0 - w)
+    gltf = (c1 - c0) / 3 + (1 - c1)
+    assert gltf == pytest.approx(cycles, rel=1e-6)
+    assert export.spot_inner_cone(size, 0.0) == pytest.approx(size / 2)
+    assert export.spot_inner_cone(size, 1.0) < size / 2
+
+
+def test_a_glass_spheres_caustic_under_an_area_light_matches_cycles(tmp_path):
+    scenes.glass_on_floor()
+    clppm, cycles, ratio, box = compare("glass_on_floor", tmp_path, clppm_seconds=15.0, samples=4096)
+    # Away from the caustic (which Cycles resolves with noise): the floor but for the sphere's
+    # shadow, where the caustic is (rows 44-66, columns 28-68 of 96, top row first).
+    away = np.zeros(clppm.shape[:2], bool)
+    away[30:] = True
+    away[44:66, 28:68] = False
+    r = clppm[away].mean() / cycles[away].mean()
+    assert abs(r - 1) < 0.05, r
+    # The shadow with its caustic: the caustic is there in both, to Cycles' noise.
+    shadow = (slice(48, 62), slice(32, 64))
+    r = clppm[shadow].mean() / cycles[shadow].mean()
+    assert abs(r - 1) < 0.15, r
+    assert abs(ratio - 1) < 0.05
+    assert box < 0.02
+
+
+@pytest.mark.parametrize("degrees", [0, 60])
+def test_the_worlds_environment_texture_and_its_rotation_match_cycles(tmp_path, degrees):
+    sky = scenes.sky_map(str(tmp_path / "sky.hdr"))
+    scenes.under_the_sky(sky, math.radians(degrees))
+    _, _, ratio, box = compare("sky_%d" % degrees, tmp_path)
+    assert abs(ratio - 1) < 0.05
+    assert box < 0.02
+
+
+def test_the_export_carries_area_lights_world_depth_of_field_and_resolution(tmp_path):
+    scene = scenes.diffuse_room()
+    scene.render.resolution_x, scene.render.resolution_y, scene.render.resolution_percentage = 200, 100, 50
+    cam = scene.camera.data
+    cam.dof.use_dof, cam.dof.aperture_fstop, cam.dof.focus_distance, cam.lens = True, 2.0, 5.0, 50.0
+    said = []
+    path, options = export.export(bpy.context.evaluated_depsgraph_get(), str(tmp_path), said.append)
+    assert options["width"] == 100 and options["height"] == 50
+    assert options["aperture"] == pytest.approx(0.05 / 4.0)
+    assert options["focus_distance"] == pytest.approx(5.0)
+    assert options["env_color"] == pytest.approx((0.2, 0.2, 0.2)) and options["env_strength"] == 1.0
+    import json
+    gltf = json.load(open(path))
+    lamp = [m for m in gltf["materials"] if m["name"].endswith("(area light)")]
+    assert len(lamp) == 1
+    # 300 W from a 1 x 0.5 m rectangle: L = P / (pi A).
+    assert lamp[0]["extensions"]["KHR_materials_emissive_strength"]["emissiveStrength"] == pytest.approx(
+        300.0 / (math.pi * 0.5))
+    assert said == []
+
+
+def test_an_unsupported_spread_is_said(tmp_path):
+    scenes.diffuse_room()
+    bpy.data.lights[0].spread = math.radians(60)
+    said = []
+    export.export(bpy.context.evaluated_depsgraph_get(), str(tmp_path), said.append)
+    assert any("spread of 60 degrees is not supported" in s for s in said), said
+
+
+def test_esc_stops_the_render_within_a_second_and_keeps_the_image(tmp_path, monkeypatch):
+    # Esc pressed two seconds into the render: the engine asks cancelled(), which asks Blender's
+    # test_break() (never true headless).
+    pressed = []
+
+    def cancelled(self):
+        if not pressed and time.monotonic() - started > 2.0:
+            pressed.append(time.monotonic())
+        return bool(pressed)
+
+    monkeypatch.setattr(engine.ClppmRenderEngine, "cancelled", cancelled)
+    scenes.diffuse_room()
+    scene = bpy.context.scene
+    scene.render.engine = "CLPPM"
+    scene.clppm.integrator, scene.clppm.passes, scene.clppm.time = "sppm", 100000, 0.0
+    scene.render.image_settings.file_format = "OPEN_EXR"
+    scene.render.filepath = str(tmp_path / "cancelled.exr")
+    started = time.monotonic()
+    bpy.ops.render.render(write_still=True)
+    assert pressed, "the render ended before Esc"
+    seconds = time.monotonic() - pressed[0]
+    assert seconds < 1.0, seconds  # stopped within a second, the image shown and written
+    image = bpy.data.images.load(str(tmp_path / "cancelled.exr"))
+    px = np.empty(image.size[0] * image.size[1] * 4, dtype=np.float32)
+    image.pixels.foreach_get(px)
+    assert px.reshape(-1, 4)[:, :3].mean() > 0.05  # the last complete pass, not black
+
+
+def run_blender(script, env):
+    """Runs a script in a fresh Python with bpy and the add-on (for what needs another environment)."""
+    code = textwrap.dedent("""
+        import sys
+        sys.path[:0] = [%r, %r]
+        import bpy, clppm_blender, scenes
+        clppm_blender.register()
+    """ % (os.path.dirname(__file__), os.path.join(os.path.dirname(__file__), "..", "..", "blender"))) + script
+    return subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=600, env=env)
+
+
+def test_a_missing_clppm_is_reported_in_one_line(tmp_path):
+    env = dict(os.environ, PATH="/usr/bin:/bin", CLPPM="")
+    env["PYTHONPATH"] = ":".join(p for p in env.get("PYTHONPATH", "").split(":") if "python" not in p)
+    p = run_blender(textwrap.dedent("""
+        scenes.diffuse_room()
+        bpy.context.scene.render.engine = "CLPPM"
+        try:
+            bpy.ops.render.render()
+        except RuntimeError as e:
+            print("RuntimeError:", e)
+    """), env)
+    out = p.stdout + p.stderr
+    assert "clppm not found" in out, out
+    assert "no clppm Python module" in out and "no clppm on PATH" in out, out
+
+
+def test_the_command_line_route_gives_the_modules_image(tmp_path):
+    binary = os.environ.get("CLPPM_BINARY")
+    if not binary:
+        pytest.skip("CLPPM_BINARY is not set")
+    scenes.diffuse_room()
+    module_image = scenes.render("CLPPM", str(tmp_path / "module.exr"), passes=4, time=0.0, integrator="sppm",
+                                 photons=20000)
+    os.environ["CLPPM"] = binary  # the command before the module
+    try:
+        command_image = scenes.render("CLPPM", str(tmp_path / "command.exr"), passes=4, time=0.0,
+                                      integrator="sppm", photons=20000)
+    finally:
+        del os.environ["CLPPM"]
+    assert np.array_equal(module_image, command_image)
+
+
+def test_the_header_line_reads_a_commands_progress(tmp_path):
+    binary = os.environ.get("CLPPM_BINARY")
+    if not binary:
+        pytest.skip("CLPPM_BINARY is not set")
+    p = subprocess.run([binary, "--width", "32", "--height", "24", "--passes", "3", "--target-error", "0.9",
+                        "-o", str(tmp_path / "p.exr"), "--no-png"], capture_output=True, text=True, timeout=300)
+    assert p.returncode == 0, p.stderr
+    status = runner.parse_progress(p.stdout + p.stderr)
+    assert status["integrator"] == "sppm" and status["pass"] >= 1 and status["photons"].endswith("k"), status
+    assert status["error"] is not None and 0 < status["error"] < 10, status
+    text = runner.status_text(status)
+    assert text.startswith("clppm sppm | pass ") and " photons | error " in text, text
+    assert runner.status_text({"pass": None}) == "clppm: preparing"
+
+
+@pytest.mark.parametrize("kind", ["extension", "legacy"])
+def test_the_packages_install_and_register_the_engine(tmp_path, kind):
+    root = os.path.join(os.path.dirname(__file__), "..", "..")
+    subprocess.run([sys.executable, os.path.join(root, "scripts", "package_blender.py"), str(tmp_path)], check=True)
+    version = [l.split('"')[1] for l in open(os.path.join(root, "blender", "clppm_blender", "blender_manifest.toml"))
+               if l.startswith("version")][0]
+    package = tmp_path / ("clppm_blender-%s%s.zip" % (version, "" if kind == "extension" else "-legacy"))
+    script = textwrap.dedent("""
+        import bpy, sys
+        kind, path = sys.argv[1], sys.argv[2]
+        if kind == "extension":
+            bpy.ops.extensions.package_install_files(filepath=path, repo="user_default", enable_on_install=True)
+            name = "bl_ext.user_default.clppm_blender"
+        else:
+            bpy.ops.preferences.addon_install(filepath=path)
+            bpy.ops.preferences.addon_enable(module="clppm_blender")
+            name = "clppm_blender"
+        engines = [getattr(e, "bl_idname", "") for e in bpy.types.RenderEngine.__subclasses__()]
+        print("enabled", name in bpy.context.preferences.addons, "CLPPM" in engines,
+              bpy.context.preferences.addons[name].preferences.clppm_path == "")
+        bpy.context.scene.render.engine = "CLPPM"
+        print("engine", bpy.context.scene.render.engine, bpy.context.scene.clppm.integrator)
+    """)
+    # Installed into a user folder of the test's own, never the user's.
+    env = dict(os.environ, BLENDER_USER_RESOURCES=str(tmp_path / "blender"))
+    p = subprocess.run([sys.executable, "-c", script, kind, str(package)], capture_output=True, text=True,
+                       timeout=300, env=env)
+    assert "enabled True True True" in p.stdout, p.stdout + p.stderr
+    assert "engine CLPPM auto" in p.stdout, p.stdout + p.stderr
+
+
+def test_the_settings_have_the_librarys_defaults_and_integrators():
+    import clppm
+    table = clppm.options()
+    settings = bpy.context.scene.clppm
+    for name in ("photons", "alpha", "seed", "integrator"):
+        value = settings.bl_rna.properties[name].default  # the panel's default (earlier tests changed the values)
+        assert str(value) == table[name]["default"] or value == pytest.approx(float(table[name]["default"])), name
+    names = {i[0] for i in properties.INTEGRATORS}
+    assert table["integrator"]["range"] == "auto, ppm, sppm, pppm, pt, vcm or bpt"
+    assert names == {"auto", "ppm", "sppm", "pppm", "pt", "vcm", "bpt"}
+    # Where the library has no value (0 in the panel), the option is not passed.
+    for name in ("passes", "time", "target_error", "device"):
+        settings.property_unset(name)
+    assert set(settings.options()) == {"integrator", "photons", "alpha", "seed"}
