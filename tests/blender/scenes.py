@@ -82,9 +82,8 @@ def world(color=None, strength=1.0, image=None, rotation=0.0):
     return w
 
 
-def diffuse_room():
-    """Diffuse objects on a floor, an area light, a grey world (issue 34's first comparison)."""
-    scene = clear()
+def room_objects():
+    """A grey floor, a red cube and a grey sphere."""
     grey = material("grey", (0.6, 0.6, 0.6))
     red = material("red", (0.7, 0.15, 0.1))
     bpy.ops.mesh.primitive_plane_add(size=8)
@@ -94,6 +93,12 @@ def diffuse_room():
     bpy.ops.mesh.primitive_uv_sphere_add(radius=0.6, location=(0.8, -0.2, 0.6), segments=48, ring_count=24)
     bpy.ops.object.shade_smooth()
     add(bpy.context.object, grey)
+
+
+def diffuse_room():
+    """Diffuse objects on a floor, an area light, a grey world (issue 34's first comparison)."""
+    scene = clear()
+    room_objects()
     area_light((0.0, -1.0, 3.0), (0.0, 0.0, 0.0), 300.0)
     camera((0.0, -6.0, 3.5), (0.0, 0.0, 0.4))
     world((0.2, 0.2, 0.2))
@@ -104,15 +109,7 @@ def punctual_lights():
     """The diffuse room's objects under a point light, a spot light with a soft edge and a sun,
     against black: the exporter's light units and clppm's spot falloff against Cycles'."""
     scene = clear()
-    grey = material("grey", (0.6, 0.6, 0.6))
-    red = material("red", (0.7, 0.15, 0.1))
-    bpy.ops.mesh.primitive_plane_add(size=8)
-    add(bpy.context.object, grey)
-    bpy.ops.mesh.primitive_cube_add(size=1.0, location=(-0.8, 0.2, 0.5))
-    add(bpy.context.object, red)
-    bpy.ops.mesh.primitive_uv_sphere_add(radius=0.6, location=(0.8, -0.2, 0.6), segments=48, ring_count=24)
-    bpy.ops.object.shade_smooth()
-    add(bpy.context.object, grey)
+    room_objects()
     for kind, location, energy in (("POINT", (-2.0, -1.0, 2.0), 150.0), ("SPOT", (1.0, -1.5, 3.0), 500.0),
                                    ("SUN", (0.0, 0.0, 5.0), 1.0)):
         bpy.ops.object.light_add(type=kind, location=location)
