@@ -12,9 +12,11 @@ required=(
   pybind11-dev python3-dev python3-venv python3-numpy python3-pytest # the Python module and its tests
   libx11-6 libxrender1 libxfixes3 libxi6 libxext6 libxkbcommon0 libsm6 libgl1 # what PyPI's bpy links (the Blender add-on's tests)
 )
-# Optional, for the benchmarks only: Embree (the CPU traversal yardstick) and gnuplot (plots).
-optional=(libembree-dev gnuplot-nox chromium python3-matplotlib) # chromium: the live view's browser test;
-# matplotlib: examples/alpha_sweep.py
+# Optional: Embree (the CPU traversal yardstick) and gnuplot (plots) for the benchmarks; tests that
+# need the others skip, saying so, without them.
+optional=(libembree-dev gnuplot-nox chromium python3-matplotlib blender xvfb xauth) # chromium: the live
+# view's browser test; matplotlib: examples/alpha_sweep.py; blender, xvfb: the add-on's check in
+# Blender's own window (scripts/check_blender_ui.sh)
 
 # Prints the packages of "$@" that are not fully installed (one dpkg-query for all of them).
 missing_of() {

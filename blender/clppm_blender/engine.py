@@ -6,7 +6,7 @@ import tempfile
 import bpy
 import numpy as np
 
-from . import export, runner
+from . import export, main_thread, runner
 
 ADDON = __package__
 
@@ -26,6 +26,13 @@ def load_exr(path):
         return pixels.reshape(h, w, 4)[::-1, :, :3].copy()
     finally:
         bpy.data.images.remove(image)
+
+
+def one_line(error):
+    """An error as one line for Blender's report: an operator's error carries a traceback, whose
+    last line says what went wrong."""
+    lines = [l.strip() for l in str(error).splitlines() if l.strip() and not l.strip().startswith("Location:")]
+    return lines[-1] if lines else type(error).__name__
 
 
 def write_result(result, image):
@@ -62,7 +69,7 @@ class ClppmRenderEngine(bpy.types.RenderEngine):
             return
         with tempfile.TemporaryDirectory(prefix="clppm-blender-") as directory:
             try:
-                scene_file, options = export.export(depsgraph, directory, warn)
+                scene_file, options = export.export(depsgraph, directory, warn, self.cancelled)
                 options.update(scene.clppm.options())
                 if kind == "module":
                     render = runner.ModuleRender(found, scene_file, options)
@@ -70,8 +77,10 @@ class ClppmRenderEngine(bpy.types.RenderEngine):
                         warn(w)
                 else:
                     render = runner.CommandRender(found, scene_file, options, directory, load_exr)
+            except main_thread.Cancelled:
+                return
             except Exception as e:  # clppm.Error and the exporter's: one line, in Blender's report
-                self.report({"ERROR"}, "clppm: " + str(e))
+                self.report({"ERROR"}, "clppm: " + one_line(e))
                 return
             width, height = options["width"], options["height"]
             result = self.begin_result(0, 0, width, height)
@@ -103,4 +112,4 @@ class ClppmRenderEngine(bpy.types.RenderEngine):
                 self.end_result(result)
             for e in (render.error, failure):
                 if e is not None:
-                    self.report({"ERROR"}, "clppm: " + str(e))
+                    self.report({"ERROR"}, "clppm: " + one_line(e))

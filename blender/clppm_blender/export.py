@@ -13,7 +13,7 @@ import os
 
 import bpy
 
-from . import area_lights
+from . import area_lights, main_thread
 from .world import environment_options
 
 
@@ -110,16 +110,27 @@ def _depth_of_field(scene, camera):
     return options
 
 
-def export(depsgraph, directory, warn):
-    """Writes directory/scene.gltf for `depsgraph`'s scene and returns (path, options)."""
+GLTF_OPTIONS = {"check_existing": False, "export_format": "GLTF_SEPARATE", "export_cameras": True,
+                "export_lights": True, "export_yup": True, "export_apply": True,
+                "export_import_convert_lighting_mode": "COMPAT", "export_extras": False, "use_renderable": True}
+
+
+def _write_gltf(path, warn):
+    known = bpy.ops.export_scene.gltf.get_rna_type().properties.keys()
+    if "export_import_convert_lighting_mode" not in known:  # Blender before 3.6
+        warn("this Blender's glTF exporter has no lighting mode: point, spot and sun lights are as it writes them")
+    bpy.ops.export_scene.gltf(filepath=path, **{k: v for k, v in GLTF_OPTIONS.items() if k in known})
+
+
+def export(depsgraph, directory, warn, cancelled=lambda: False):
+    """Writes directory/scene.gltf for `depsgraph`'s scene and returns (path, options). The glTF
+    exporter is an operator, which runs only on Blender's main thread (main_thread.py); the rest
+    reads the depsgraph, on any thread."""
     scene = depsgraph.scene
     if scene.camera is None:
         raise RuntimeError("the scene has no camera")
     path = os.path.join(directory, "scene.gltf")
-    bpy.ops.export_scene.gltf(filepath=path, check_existing=False, export_format="GLTF_SEPARATE",
-                              export_cameras=True, export_lights=True, export_yup=True, export_apply=True,
-                              export_import_convert_lighting_mode="COMPAT", export_extras=False,
-                              use_renderable=True)
+    main_thread.call(lambda: _write_gltf(path, warn), cancelled)
     with open(path) as f:
         gltf = json.load(f)
     lights = []

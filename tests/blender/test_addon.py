@@ -242,3 +242,40 @@ def test_the_settings_have_the_librarys_defaults_and_integrators():
     for name in ("passes", "time", "target_error", "device"):
         settings.property_unset(name)
     assert set(settings.options()) == {"integrator", "photons", "alpha", "seed"}
+
+
+def test_the_export_is_handed_to_the_main_thread_from_the_render_thread():
+    """F12 in Blender's window renders in a thread where operators fail; the exporter runs on the
+    main thread (a timer there), the render thread waiting. A queue stands for the timers here."""
+    import queue
+    import threading
+    from clppm_blender import main_thread
+    timers = queue.Queue()
+    seen = {}
+
+    def render_thread():
+        try:
+            seen["value"] = main_thread.call(lambda: threading.current_thread() is threading.main_thread(),
+                                             schedule=timers.put)
+            main_thread.call(lambda: 1 / 0, schedule=timers.put)
+        except ZeroDivisionError:
+            seen["error"] = True
+        try:
+            main_thread.call(lambda: None, cancelled=lambda: True, schedule=lambda fn: None)
+        except main_thread.Cancelled:
+            seen["cancelled"] = True
+
+    t = threading.Thread(target=render_thread)
+    t.start()
+    for _ in range(2):
+        timers.get(timeout=10)()  # the main thread's timers
+    t.join(10)
+    assert seen == {"value": True, "error": True, "cancelled": True}
+    assert main_thread.call(lambda: 7) == 7  # on the main thread: directly
+
+
+def test_an_operators_error_is_one_line():
+    e = RuntimeError("Error: Python: Traceback (most recent call last):\n  File \"x.py\", line 1\n"
+                     "AttributeError: 'Context' object has no attribute 'active_object'\n"
+                     "Location: /usr/share/blender/scripts/modules/bpy/ops.py:113\n")
+    assert engine.one_line(e) == "AttributeError: 'Context' object has no attribute 'active_object'"
