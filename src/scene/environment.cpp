@@ -20,18 +20,25 @@ bool ends_with(const std::string& s, const std::string& tail) {
     return end == tail;
 }
 
-// The map as linear RGB rows, top first.
-Image read_map(const std::string& path) {
-    if (const std::string why = not_a_regular_file(path); !why.empty()) throw Error("--env " + path + ": " + why);
+// The map as linear RGB rows, top first; `label` names it in messages ("--env FILE" or the
+// scene's extras).
+Image read_map(const std::string& path, const std::string& label) {
+    if (const std::string why = not_a_regular_file(path); !why.empty()) throw Error(label + ": " + why);
     if (ends_with(path, ".exr")) return read_exr(path);
     if (ends_with(path, ".hdr")) {
         try {
             return read_radiance_hdr(path);
         } catch (const Error& e) {
-            throw Error("--env " + path + ": " + e.what());
+            throw Error(label + ": " + e.what());
         }
     }
-    throw Error("--env " + path + ": not an equirectangular .exr or .hdr file");
+    throw Error(label + ": not an equirectangular .exr or .hdr file");
+}
+
+std::string number_text(double x) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%g", x);
+    return text;
 }
 
 } // namespace
@@ -50,13 +57,61 @@ bool scene_has_lights(const Scene& scene) {
 }
 
 void apply_environment(Scene& scene, const EnvironmentSettings& s, std::string* note) {
-    Environment env;
-    env.rotation = float(s.rotate_degrees * M_PI / 180.0);
-    env.hidden = s.hidden;
-    const float k = float(s.strength);
+    // Which world: the command line's, else the file's own (extras.clppm_environment), else the
+    // default one where the scene has no lights. --env-strength and --env-rotate scale and turn
+    // whichever it is.
+    const FileWorld& fw = scene.file_world;
+    const bool from_file = s.file.empty() && !s.has_color && s.default_light && fw.kind != FileWorld::Kind::None;
+    const std::string file_label = scene.source + ": extras.clppm_environment";
+    std::string map = s.file, label = "--env " + s.file, source = s.file;
+    std::array<float, 3> color{1.f, 1.f, 1.f};
+    bool uniform = s.has_color;
+    double strength = s.strength, rotation = s.rotate_degrees;
+    std::string said;
     if (!s.file.empty()) {
-        const Image img = read_map(s.file);
-        if (img.width <= 0 || img.height <= 0) throw Error("--env " + s.file + ": the image is empty");
+        said = "world: --env " + s.file;
+    } else if (s.has_color) {
+        color = s.color;
+        source = "--env-color";
+        said = "world: --env-color";
+    } else if (from_file) {
+        strength *= fw.strength;
+        rotation += fw.rotation_degrees;
+        if (fw.kind == FileWorld::Kind::Image) {
+            map = fw.image;
+            label = file_label + ".image " + fw.image;
+            source = fw.image;
+            said = "world: " + file_label + ": the map " + fw.image + ", strength " + number_text(strength) +
+                   ", rotation " + number_text(rotation) + " degrees";
+        } else {
+            color = fw.color;
+            uniform = true;
+            source = "the file's extras.clppm_environment";
+            said = "world: " + file_label + ": colour " + number_text(color[0]) + "," + number_text(color[1]) + "," +
+                   number_text(color[2]) + (strength != 1.0 ? " x " + number_text(strength) : std::string());
+        }
+    } else if (s.default_light && !scene_has_lights(scene)) {
+        uniform = true;
+        source = "the default environment";
+        said = scene.source + ": no lights in the scene: lit by a uniform white environment of radiance " +
+               number_text(strength) + " (as a Blender world of strength " + number_text(strength) +
+               "); --no-default-light refuses such scenes";
+    } else {
+        if (note)
+            *note = s.default_light ? "world: none: the scene's own lights (the file sets no world; --env or "
+                                      "--env-color give one)"
+                                    : "world: none (--no-default-light)";
+        return;
+    }
+    if (note) *note = said;
+    Environment env;
+    env.rotation = float(rotation * M_PI / 180.0);
+    env.hidden = s.hidden;
+    env.source = source;
+    const float k = float(strength);
+    if (!uniform) {
+        const Image img = read_map(map, label);
+        if (img.width <= 0 || img.height <= 0) throw Error(label + ": the image is empty");
         dev::Texture t{};
         t.offset = uint32_t(scene.texels.size());
         t.width = uint32_t(img.width), t.height = uint32_t(img.height);
@@ -65,32 +120,21 @@ void apply_environment(Scene& scene, const EnvironmentSettings& s, std::string* 
             std::array<float, 4> px{img.rgb[3 * i], img.rgb[3 * i + 1], img.rgb[3 * i + 2], 1.f};
             for (int c = 0; c < 3; ++c)
                 if (!std::isfinite(px[size_t(c)]) || px[size_t(c)] < 0.f)
-                    throw Error("--env " + s.file + ": texel " + std::to_string(i) +
+                    throw Error(label + ": texel " + std::to_string(i) +
                                 " is negative or not finite; an environment map holds radiance >= 0");
             scene.texels.push_back(px);
         }
         env.texture = int32_t(scene.textures.size());
         scene.textures.push_back(t);
         env.radiance = {k, k, k};
-        env.source = s.file;
-    } else if (s.has_color) {
-        env.radiance = {s.color[0] * k, s.color[1] * k, s.color[2] * k};
-        env.source = "--env-color";
-    } else if (s.default_light && !scene_has_lights(scene)) {
-        env.radiance = {k, k, k};
-        env.source = "the default environment";
-        if (note) {
-            char k_text[32];
-            std::snprintf(k_text, sizeof k_text, "%g", double(k));
-            *note = scene.source + ": no lights in the scene: lit by a uniform white environment of radiance " +
-                    k_text + " (as a Blender world of strength " + k_text + "); --no-default-light refuses such scenes";
-        }
     } else {
-        return;
+        env.radiance = {color[0] * k, color[1] * k, color[2] * k};
+        if (from_file && env.radiance == std::array<float, 3>{0.f, 0.f, 0.f}) return; // a black world: none
     }
     for (float c : env.radiance)
         if (!std::isfinite(c) || c < 0.f)
-            throw Error("--env-strength/--env-color: the radiance must be finite and >= 0");
+            throw Error((from_file ? file_label : std::string("--env-strength/--env-color")) +
+                        ": the radiance must be finite and >= 0");
     env.present = true;
     scene.environment = env;
 }

@@ -21,10 +21,12 @@ struct EnvironmentSettings {
     bool default_light = true;    // false with --no-default-light
 };
 
-// Sets scene.environment from the settings: a map (read into scene.textures and texels, linear
-// RGB), a uniform colour, or, when the scene has no light of its own and default_light is on,
-// the default white environment of radiance 1 (times strength); *note then says so. Throws
-// clppm::Error naming the file or option for an unreadable, empty or non-finite map.
+// Sets scene.environment, the world: the command line's (--env, --env-color; --no-default-light
+// for none), else the file's own (scene.file_world, from extras.clppm_environment; black: none),
+// else, when the scene has no light of its own, the default white environment of radiance 1.
+// --env-strength and --env-rotate scale and turn whichever it is. *note says which world and
+// where it came from. Throws clppm::Error naming the file or option for an unreadable, empty or
+// non-finite map.
 void apply_environment(Scene& scene, const EnvironmentSettings& settings, std::string* note);
 
 // Whether the scene has an emitter of its own: a material with emission some triangle uses, or

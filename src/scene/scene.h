@@ -34,6 +34,17 @@ struct Environment {
     std::string source;                           // the file, "--env-color" or "the default environment"
 };
 
+// The world a file sets for itself: a scene-level extras.clppm_environment (README,
+// "Environment"). apply_environment uses it unless the command line sets the world.
+struct FileWorld {
+    enum class Kind { None, Color, Image };
+    Kind kind = Kind::None;
+    std::array<float, 3> color{};  // Kind::Color: uniform radiance (black allowed: no environment)
+    std::string image;             // Kind::Image: the map's path, resolved against the file's folder
+    double strength = 1.0;         // scales either
+    double rotation_degrees = 0.0; // about +Y, as --env-rotate
+};
+
 struct Scene {
     // Triangles: three world-space positions each (p[3*i+k]), and shading attributes.
     std::vector<Vec3> positions;          // 3 per triangle
@@ -57,6 +68,7 @@ struct Scene {
     std::vector<dev::Light> punctual_lights;
     std::vector<CameraDesc> cameras; // empty: no camera in the file
     Environment environment;
+    FileWorld file_world;
     // Diagnostics from loading, reported by the CLI.
     size_t degenerate_triangles_skipped = 0;
     size_t meshes_without_normals = 0;

@@ -11,6 +11,7 @@
 #include "scene/gltf/gltf_files.h"
 #include "scene/gltf/gltf_parse.h"
 #include "scene/gltf/gltf_scene_builder.h"
+#include "scene/gltf/gltf_world.h"
 #include "util/embedded_files.h"
 #include "util/error.h"
 
@@ -28,6 +29,7 @@ Scene load_bytes(const std::vector<unsigned char>& bytes, const std::string& bas
     tinygltf::Model model = parse_model(bytes, base, ctx);
     decode_draco_primitives(model, ctx);
     SceneBuilder(model, ctx, scene).build();
+    read_file_world(model, base, ctx, scene);
     return scene;
 }
 
