@@ -68,9 +68,7 @@ void RenderJob::load_scene() {
     if (scene_.meshes_without_normals)
         log_.note(scene_.source + ": computed normals for " + std::to_string(scene_.meshes_without_normals) +
                   " primitive(s) without normals");
-    std::string env_note;
-    apply_environment(scene_, options_.env, &env_note);
-    if (!env_note.empty()) log_.note(env_note);
+    apply_environment(scene_, options_.env, &world_note_); // said once the render is set up
     scene_hash_ = scene_fingerprint(scene_);
     char hash[17];
     std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(scene_hash_));
@@ -137,6 +135,7 @@ void RenderJob::build_kernels(const std::vector<DeviceInfo>& chosen) {
               (options_.generic_kernels ? std::string("generic") : "for " + describe_features(features)) + " " +
               (build_.from_cache ? "cached" : "built") + " in " + number("%.3f", build_.seconds) + " s" +
               (build_.driver_cache ? " (the driver's cache)" : ""));
+    if (!world_note_.empty()) log_.note(world_note_);
     if (!integrator_note_.empty()) log_.note(integrator_note_);
     const char* unit = row_->unit == WorkUnit::Photons ? "photons" : "pixels";
     if (cluster().distributed())
