@@ -170,6 +170,20 @@ class GltfBuilder:
     def scene(self, roots):
         self.doc["scene"] = self._append("scenes", {"nodes": roots})
 
+    def world(self, **world):
+        """The default scene's own world (extras.clppm_environment): color=(r, g, b), or
+        image=URI with strength and rotation (README, "A file's own world")."""
+        scenes = self._list("scenes")
+        if not scenes:
+            self.scene([])
+        world = {k: list(v) if isinstance(v, tuple) else v for k, v in world.items()}
+        scenes[self.doc.get("scene", 0)].setdefault("extras", {})["clppm_environment"] = world
+
+    def has_lights(self):
+        """Emissive materials or punctual lights: a scene lit by lights of its own."""
+        return any(max(m.get("emissiveFactor", [0.0])) > 0 for m in self.doc.get("materials", [])) or bool(
+            self.doc.get("extensions", {}).get("KHR_lights_punctual", {}).get("lights"))
+
     # -- output --
 
     def _pad(self):
@@ -177,6 +191,12 @@ class GltfBuilder:
             self.bin.append(0)
 
     def document(self, uri):
+        # A scene with lights of its own, written here, is meant to be seen by them alone: a black
+        # world, unless it says otherwise (every scene without a world of its own is lit by the
+        # default environment; README, "Environment").
+        scenes = self.doc.get("scenes", [])
+        if self.has_lights() and scenes and "clppm_environment" not in scenes[self.doc.get("scene", 0)].get("extras", {}):
+            self.world(color=(0.0, 0.0, 0.0))
         doc = dict(self.doc)
         self._pad()
         if self.bin:

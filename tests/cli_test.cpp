@@ -273,11 +273,47 @@ TEST(Cli, SceneWithoutLightsGetsTheDefaultEnvironmentOrIsRefused) {
     EXPECT_EQ(run_clppm(data("embedded.gltf") + " --width 8 --height 8 --passes 1 --no-png -o " + dir + "/x.exr", &out),
               0)
         << out;
-    EXPECT_NE(out.find("no lights in the scene: lit by a uniform white environment of radiance 1 (as a Blender world "
-                       "of strength 1); --no-default-light refuses such scenes"),
+    EXPECT_NE(out.find("world: the default environment, uniform white of radiance 1 (as a Blender world of strength "
+                       "1): " +
+                       data("embedded.gltf") +
+                       " sets no world of its own and has no lights (--no-default-light "
+                       "refuses it)"),
               std::string::npos)
         << out;
     EXPECT_TRUE(exists(dir + "/x.exr"));
+}
+
+// A scene with lights of its own and no world is lit by the default environment besides them,
+// as a glTF viewer shows it; --no-default-light leaves its own lights alone; a black world in
+// the file does the same.
+TEST(Cli, ASceneWithLightsGetsTheDefaultEnvironmentToo) {
+    const std::string dir = make_temp_dir("cli_world");
+    nlohmann::json g = nlohmann::json::parse(slurp(data("lights.gltf")));
+    g["scenes"][0].erase("extras"); // the test scene's black world
+    std::ofstream(dir + "/lit.gltf") << g.dump();
+    auto mean = [&](const std::string& scene, const std::string& args, std::string* out) {
+        EXPECT_EQ(run_clppm(scene + " --width 16 --height 16 --passes 4 --integrator pt --no-png " + args + " -o " +
+                                dir + "/x.exr",
+                            out),
+                  0)
+            << *out;
+        const Image img = read_exr(dir + "/x.exr");
+        double sum = 0;
+        for (float v : img.rgb) sum += v;
+        return sum / double(img.rgb.size());
+    };
+    std::string out;
+    const double with_world = mean(dir + "/lit.gltf", "", &out);
+    EXPECT_NE(out.find("world: the default environment"), std::string::npos) << out;
+    EXPECT_NE(out.find("sets no world of its own (extras.clppm_environment; --no-default-light: its own lights "
+                       "alone)"),
+              std::string::npos)
+        << out;
+    const double own_lights = mean(dir + "/lit.gltf", "--no-default-light", &out);
+    EXPECT_NE(out.find("world: none (--no-default-light): the scene's own lights alone"), std::string::npos) << out;
+    EXPECT_GT(with_world, own_lights + 0.1);
+    EXPECT_EQ(mean(data("lights.gltf"), "", &out), own_lights) << "the black world in the file: the same image";
+    EXPECT_NE(out.find("extras.clppm_environment: colour 0,0,0"), std::string::npos) << out;
 }
 
 TEST(Cli, UnknownDeviceListsWhatExists) {

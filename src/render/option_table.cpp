@@ -211,8 +211,9 @@ const std::vector<RenderOptionSpec>& render_option_table() {
          "Camera rays that leave the scene see black; the environment still lights it", nullptr, nullptr,
          [](RenderOptions& o, const OptionArg&) { o.env.hidden = true; }},
         {"Lighting", "--no-default-light", nullptr, nullptr,
-         "Refuse a scene without lights instead of lighting it with a uniform white environment of radiance 1", nullptr,
-         nullptr, [](RenderOptions& o, const OptionArg&) { o.env.default_light = false; }},
+         "No default environment: a scene without a world of its own is lit by its own lights alone (refused if it has "
+         "none)",
+         nullptr, nullptr, [](RenderOptions& o, const OptionArg&) { o.env.default_light = false; }},
         {"Checkpoints", "--checkpoint", nullptr, "FILE",
          "Save the complete progressive state to FILE (atomically) periodically, on Ctrl-C and at the end",
          "a file name", "none", [](RenderOptions& o, const OptionArg& a) { o.checkpoint = non_empty(a); }},

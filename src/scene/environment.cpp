@@ -90,17 +90,17 @@ void apply_environment(Scene& scene, const EnvironmentSettings& s, std::string* 
             said = "world: " + file_label + ": colour " + number_text(color[0]) + "," + number_text(color[1]) + "," +
                    number_text(color[2]) + (strength != 1.0 ? " x " + number_text(strength) : std::string());
         }
-    } else if (s.default_light && !scene_has_lights(scene)) {
+    } else if (s.default_light) {
+        // As every glTF viewer shows a model: under an environment, besides its own lights.
         uniform = true;
         source = "the default environment";
-        said = scene.source + ": no lights in the scene: lit by a uniform white environment of radiance " +
-               number_text(strength) + " (as a Blender world of strength " + number_text(strength) +
-               "); --no-default-light refuses such scenes";
+        said = "world: the default environment, uniform white of radiance " + number_text(strength) +
+               " (as a Blender world of strength " + number_text(strength) + "): " + scene.source +
+               " sets no world of its own" +
+               (scene_has_lights(scene) ? " (extras.clppm_environment; --no-default-light: its own lights alone)"
+                                        : " and has no lights (--no-default-light refuses it)");
     } else {
-        if (note)
-            *note = s.default_light ? "world: none: the scene's own lights (the file sets no world; --env or "
-                                      "--env-color give one)"
-                                    : "world: none (--no-default-light)";
+        if (note) *note = "world: none (--no-default-light): the scene's own lights alone";
         return;
     }
     if (note) *note = said;
