@@ -191,8 +191,10 @@ const std::vector<RenderOptionSpec>& render_option_table() {
              o.error_output = a.value;
          }},
         {"Lighting", "--env", nullptr, "FILE",
-         "Light the scene with an equirectangular environment map (top row +Y, centre -Z, u towards +X)",
-         "an .exr or .hdr file", "none", [](RenderOptions& o, const OptionArg& a) { o.env.file = non_empty(a); }},
+         "Light the scene with an equirectangular environment map (top row +Y, centre -Z, u towards +X), or with "
+         "the built-in studio environment (a soft key light and a rim light) for looking at a model",
+         "an .exr or .hdr file, or studio (./studio for a file of that name)", "none",
+         [](RenderOptions& o, const OptionArg& a) { o.env.file = non_empty(a); }},
         {"Lighting", "--env-color", nullptr, "R,G,B", "Light the scene with a uniform environment of this radiance",
          "three numbers >= 0, comma-separated", "none",
          [](RenderOptions& o, const OptionArg& a) {

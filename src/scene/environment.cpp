@@ -7,6 +7,7 @@
 #include "io/image_io.h"
 #include "io/radiance_hdr.h"
 #include "io/regular_file.h"
+#include "scene/studio_environment.h"
 #include "util/error.h"
 
 namespace clppm {
@@ -34,6 +35,8 @@ Image read_map(const std::string& path, const std::string& label) {
     }
     throw Error(label + ": not an equirectangular .exr or .hdr file");
 }
+
+constexpr const char* kStudio = "studio"; // --env studio: the built-in studio, not a file
 
 std::string number_text(double x) {
     char text[32];
@@ -68,7 +71,12 @@ void apply_environment(Scene& scene, const EnvironmentSettings& s, std::string* 
     bool uniform = s.has_color;
     double strength = s.strength, rotation = s.rotate_degrees;
     std::string said;
-    if (!s.file.empty()) {
+    if (s.file == kStudio) {
+        label = "--env studio";
+        source = "the studio environment";
+        said = "world: --env studio: the built-in studio environment (a soft key light upper left, a rim light "
+               "behind; irradiance pi on an upward surface, as the white world's)";
+    } else if (!s.file.empty()) {
         said = "world: --env " + s.file;
     } else if (s.has_color) {
         color = s.color;
@@ -110,7 +118,7 @@ void apply_environment(Scene& scene, const EnvironmentSettings& s, std::string* 
     env.source = source;
     const float k = float(strength);
     if (!uniform) {
-        const Image img = read_map(map, label);
+        const Image img = map == kStudio && s.file == kStudio ? studio_environment() : read_map(map, label);
         if (img.width <= 0 || img.height <= 0) throw Error(label + ": the image is empty");
         dev::Texture t{};
         t.offset = uint32_t(scene.texels.size());
