@@ -60,7 +60,16 @@ RenderJob::RenderJob(const RenderOptions& options, RenderLog& log)
 RenderJob::~RenderJob() = default;
 
 void RenderJob::load_scene() {
-    scene_ = options_.scene.empty() ? load_default_scene() : load_gltf(options_.scene);
+    if (options_.scene.empty() && !options_.variant.empty())
+        throw Error("--variant " + options_.variant + ": the built-in scene has no material variants");
+    scene_ = options_.scene.empty() ? load_default_scene() : load_gltf(options_.scene, options_.variant);
+    if (!scene_.variants.empty()) {
+        std::string names;
+        for (const std::string& n : scene_.variants) names += (names.empty() ? "" : ", ") + n;
+        variant_note_ = "material variants: " + names + "; rendering " +
+                        (scene_.variant.empty() ? "the file's default materials (--variant NAME for one)"
+                                                : "variant " + scene_.variant);
+    }
     for (const std::string& w : scene_.warnings) log_.warn(scene_.source + ": " + w);
     if (scene_.degenerate_triangles_skipped)
         log_.warn(scene_.source + ": skipped " + std::to_string(scene_.degenerate_triangles_skipped) +
@@ -136,6 +145,7 @@ void RenderJob::build_kernels(const std::vector<DeviceInfo>& chosen) {
               (build_.from_cache ? "cached" : "built") + " in " + number("%.3f", build_.seconds) + " s" +
               (build_.driver_cache ? " (the driver's cache)" : ""));
     if (!world_note_.empty()) log_.note(world_note_);
+    if (!variant_note_.empty()) log_.note(variant_note_);
     if (!integrator_note_.empty()) log_.note(integrator_note_);
     const char* unit = row_->unit == WorkUnit::Photons ? "photons" : "pixels";
     if (cluster().distributed())

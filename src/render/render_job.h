@@ -108,7 +108,8 @@ private:
     Scene scene_;
     uint64_t scene_hash_ = 0;
     std::string integrator_note_;
-    std::string world_note_; // which world the render uses, and where it came from
+    std::string world_note_;   // which world the render uses, and where it came from
+    std::string variant_note_; // the file's material variants and the one rendered
     std::unique_ptr<DeviceContext> dc_;
     std::unique_ptr<DeviceScene> ds_;
     std::string features_;

@@ -39,6 +39,7 @@ Json options_every_rank_shares(const RenderOptions& o) {
             {"--width", s.width},
             {"--height", s.height},
             {"--camera", s.camera},
+            {"--variant", o.variant},
             {"--spp", s.spp},
             {"--photons", s.photons},
             {"--alpha", s.alpha},

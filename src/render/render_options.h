@@ -17,6 +17,7 @@ namespace clppm {
 
 struct RenderOptions {
     std::string scene;       // .gltf/.glb; empty: the built-in Cornell box
+    std::string variant;     // --variant: a KHR_materials_variants name; empty: the default materials
     RenderSettings settings; // what shapes the image (integrator, size, photons, alpha, seed, ...)
 
     // When to stop. No pass count: the integrator's default (integrator_table.h) without a time

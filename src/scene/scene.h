@@ -69,6 +69,8 @@ struct Scene {
     std::vector<CameraDesc> cameras; // empty: no camera in the file
     Environment environment;
     FileWorld file_world;
+    std::vector<std::string> variants; // KHR_materials_variants' names, in the file's order
+    std::string variant;               // the one rendered; empty: the file's default materials
     // Diagnostics from loading, reported by the CLI.
     size_t degenerate_triangles_skipped = 0;
     size_t meshes_without_normals = 0;

@@ -12,9 +12,9 @@ namespace clppm {
 namespace {
 
 struct Lobe {
-    double dir[3];   // unit direction the light comes from
-    double width;    // in 1 - cos(angle): the lobe falls to 1/e at this distance from its axis
-    double rgb[3];   // peak radiance
+    double dir[3]; // unit direction the light comes from
+    double width;  // in 1 - cos(angle): the lobe falls to 1/e at this distance from its axis
+    double rgb[3]; // peak radiance
 };
 
 // A warm key light high on the camera's left, in front of the model; a cool, weaker rim light

@@ -37,7 +37,7 @@ inline const std::set<std::string> kSupportedExtensions = {
     "KHR_materials_specular",     "KHR_mesh_quantization",
     "EXT_mesh_gpu_instancing",    "KHR_draco_mesh_compression",
     "EXT_texture_webp",           "KHR_texture_transform",
-    "KHR_materials_volume"};
+    "KHR_materials_volume",       "KHR_materials_variants"};
 
 // Error messages are one line: tinygltf and nlohmann texts are joined with "; ".
 std::string one_line(const std::string& text);

@@ -11,6 +11,7 @@
 #include "scene/gltf/gltf_files.h"
 #include "scene/gltf/gltf_parse.h"
 #include "scene/gltf/gltf_scene_builder.h"
+#include "scene/gltf/gltf_variants.h"
 #include "scene/gltf/gltf_world.h"
 #include "util/embedded_files.h"
 #include "util/error.h"
@@ -22,12 +23,14 @@ namespace {
 namespace fs = std::filesystem;
 using namespace gltf;
 
-Scene load_bytes(const std::vector<unsigned char>& bytes, const std::string& base, const std::string& source) {
+Scene load_bytes(const std::vector<unsigned char>& bytes, const std::string& base, const std::string& source,
+                 const std::string& variant) {
     Scene scene;
     scene.source = source;
     LoadContext ctx(source, &scene);
     tinygltf::Model model = parse_model(bytes, base, ctx);
     decode_draco_primitives(model, ctx);
+    apply_material_variant(model, variant, ctx, scene);
     SceneBuilder(model, ctx, scene).build();
     read_file_world(model, base, ctx, scene);
     return scene;
@@ -35,17 +38,17 @@ Scene load_bytes(const std::vector<unsigned char>& bytes, const std::string& bas
 
 } // namespace
 
-Scene load_gltf(const std::string& path) {
+Scene load_gltf(const std::string& path, const std::string& variant) {
     std::string why;
     std::vector<unsigned char> bytes = read_whole_file(path, &why);
     if (!why.empty()) throw Error(path + ": cannot open file (" + why + ")");
-    return load_bytes(bytes, absolute_dir(fs::path(path).parent_path().string()), path);
+    return load_bytes(bytes, absolute_dir(fs::path(path).parent_path().string()), path, variant);
 }
 
 Scene load_gltf_text(const std::string& json_text, const std::string& base_dir, const std::string& display_name) {
     if (json_text.size() > kMaxFileBytes) throw Error(display_name + ": larger than 1 GiB");
     std::vector<unsigned char> bytes(json_text.begin(), json_text.end());
-    return load_bytes(bytes, base_dir.empty() ? std::string() : absolute_dir(base_dir), display_name);
+    return load_bytes(bytes, base_dir.empty() ? std::string() : absolute_dir(base_dir), display_name, "");
 }
 
 Scene load_default_scene() {

@@ -17,7 +17,8 @@ namespace clppm {
 
 // Loads a .gltf or .glb file (detected by the GLB magic, not the extension). External files may
 // only be referenced inside the file's directory.
-Scene load_gltf(const std::string& path);
+// `variant`: a KHR_materials_variants name to render (empty: the file's default materials).
+Scene load_gltf(const std::string& path, const std::string& variant = "");
 
 // Loads glTF JSON text held in memory. base_dir resolves external URIs; empty base_dir allows
 // data: URIs only. display_name starts every error message and becomes Scene::source.
