@@ -11,6 +11,7 @@
 #include "scene/gltf/gltf_files.h"
 #include "scene/gltf/gltf_parse.h"
 #include "scene/gltf/gltf_scene_builder.h"
+#include "scene/gltf/gltf_spec_gloss.h"
 #include "scene/gltf/gltf_variants.h"
 #include "scene/gltf/gltf_world.h"
 #include "util/embedded_files.h"
@@ -31,6 +32,11 @@ Scene load_bytes(const std::vector<unsigned char>& bytes, const std::string& bas
     tinygltf::Model model = parse_model(bytes, base, ctx);
     decode_draco_primitives(model, ctx);
     apply_material_variant(model, variant, ctx, scene);
+    if (const int n = convert_specular_glossiness(model, ctx))
+        ctx.warn(std::to_string(n) +
+                 " material(s) in KHR_materials_pbrSpecularGlossiness (archived) converted to "
+                 "metallic-roughness with KHR_materials_specular: F0 = the specular colour, roughness = 1 - "
+                 "glossiness (README, \"Scenes and conventions\")");
     SceneBuilder(model, ctx, scene).build();
     read_file_world(model, base, ctx, scene);
     return scene;

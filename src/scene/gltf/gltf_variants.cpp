@@ -30,8 +30,8 @@ void apply_material_variant(tinygltf::Model& model, const std::string& variant, 
     for (size_t i = 0; i < scene.variants.size(); ++i)
         if (scene.variants[i] == variant) index = int(i);
     if (index < 0)
-        ctx.fail("--variant " + printable(variant) + ": no such material variant (the file's: " +
-                 names_text(scene.variants) + ")");
+        ctx.fail("--variant " + printable(variant) +
+                 ": no such material variant (the file's: " + names_text(scene.variants) + ")");
     scene.variant = variant;
     for (size_t m = 0; m < model.meshes.size(); ++m)
         for (size_t p = 0; p < model.meshes[m].primitives.size(); ++p) {
@@ -45,9 +45,11 @@ void apply_material_variant(tinygltf::Model& model, const std::string& variant, 
                 const tinygltf::Value& mapping = mappings.Get(int(k));
                 const tinygltf::Value& material = mapping.Get("material");
                 const tinygltf::Value& variants = mapping.Get("variants");
-                if (!material.IsInt() || material.Get<int>() < 0 || size_t(material.Get<int>()) >= model.materials.size())
+                if (!material.IsInt() || material.Get<int>() < 0 ||
+                    size_t(material.Get<int>()) >= model.materials.size())
                     ctx.fail(label + ": " + kExt + " mapping " + std::to_string(k) + " names no material of the file");
-                if (!variants.IsArray()) ctx.fail(label + ": " + kExt + " mapping " + std::to_string(k) + " has no variants");
+                if (!variants.IsArray())
+                    ctx.fail(label + ": " + kExt + " mapping " + std::to_string(k) + " has no variants");
                 for (size_t v = 0; v < variants.ArrayLen(); ++v)
                     if (variants.Get(int(v)).IsInt() && variants.Get(int(v)).Get<int>() == index)
                         prim.material = material.Get<int>();
