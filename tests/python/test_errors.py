@@ -23,6 +23,7 @@ from conftest import SMALL, cli_args
         dict(aperture=1e30, integrator="vcm"),
         dict(device="no-such-device"),
         dict(env="/nonexistent/sky.hdr"),
+        dict(variant="Red"),  # the built-in scene has none
     ],
 )
 def test_the_command_lines_message(options, run_cli):

@@ -106,3 +106,10 @@ def test_devices_are_listed():
     devices = clppm.devices()
     assert devices and {"index", "name", "type", "fp64"} <= set(devices[0])
     assert devices[0]["index"] == 0
+
+
+def test_the_studio_world_by_keyword():
+    """env="studio" is the command line's --env studio: the same image."""
+    from conftest import SMALL
+    image = clppm.render(env="studio", integrator="pt", **dict(SMALL, passes=2))
+    assert image.shape[2] == 3 and image.mean() > 0
