@@ -20,8 +20,8 @@ namespace {
 // green material as the variants "Red" and "Green".
 std::string variant_sphere(const std::string& dir) {
     nlohmann::json g = nlohmann::json::parse(slurp(std::string(CLPPM_TEST_DATA) + "/env_sphere.gltf"));
-    for (const auto& [name, rgb] : {std::pair<const char*, std::array<double, 3>>{"red", {0.8, 0.1, 0.1}},
-                                    {"green", {0.1, 0.8, 0.1}}}) {
+    for (const auto& [name, rgb] :
+         {std::pair<const char*, std::array<double, 3>>{"red", {0.8, 0.1, 0.1}}, {"green", {0.1, 0.8, 0.1}}}) {
         nlohmann::json m = g["materials"][0];
         m["name"] = name;
         m["pbrMetallicRoughness"]["baseColorFactor"] = {rgb[0], rgb[1], rgb[2], 1.0};
@@ -41,7 +41,8 @@ std::array<double, 3> middle(const Image& img) {
     int n = 0;
     for (int y = img.height / 3; y < 2 * img.height / 3; ++y)
         for (int x = img.width / 3; x < 2 * img.width / 3; ++x, ++n)
-            for (int c = 0; c < 3; ++c) sum[size_t(c)] += img.rgb[(size_t(y) * size_t(img.width) + size_t(x)) * 3 + size_t(c)];
+            for (int c = 0; c < 3; ++c)
+                sum[size_t(c)] += img.rgb[(size_t(y) * size_t(img.width) + size_t(x)) * 3 + size_t(c)];
     for (double& s : sum) s /= n;
     return sum;
 }
@@ -52,8 +53,8 @@ TEST(MaterialVariants, EachVariantGivesItsMaterialAndTheDefaultKeepsTheFiles) {
     const std::string d = make_temp_dir("variants"), scene = variant_sphere(d);
     std::string out;
     auto render = [&](const std::string& args) {
-        EXPECT_EQ(run_clppm(scene + " --width 24 --height 24 --integrator pt --passes 16 --no-png " + args + " -o " + d +
-                                "/x.exr",
+        EXPECT_EQ(run_clppm(scene + " --width 24 --height 24 --integrator pt --passes 16 --no-png " + args + " -o " +
+                                d + "/x.exr",
                             &out),
                   0)
             << out;

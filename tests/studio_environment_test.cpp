@@ -21,7 +21,8 @@ namespace {
 // The map's nearest texel towards unit direction d (mean over RGB).
 double lookup(const Image& img, double x, double y, double z) {
     const std::array<double, 2> uv = env_uv({x, y, z});
-    const int i = std::min(img.width - 1, int(uv[0] * img.width)), j = std::min(img.height - 1, int(uv[1] * img.height));
+    const int i = std::min(img.width - 1, int(uv[0] * img.width)),
+              j = std::min(img.height - 1, int(uv[1] * img.height));
     const size_t k = (size_t(j) * size_t(img.width) + size_t(i)) * 3;
     return (double(img.rgb[k]) + img.rgb[k + 1] + img.rgb[k + 2]) / 3;
 }
