@@ -157,7 +157,7 @@ __kernel void eye_pass(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong p
         }
         Surface sf = make_surface(SCENE_ARGS, r.dir, &hit);
         if (HAS_VOLUME) r.weight *= volume_transmittance(SCENE_ARGS, &sf, sf.t * length(r.dir));
-        float3 le = surface_emission(SCENE_ARGS, &sf);
+        float3 le = surface_emission(SCENE_ARGS, &sf, r.dir);
         if (max3(le) > 0.0f) emitted += r.weight * le * (r.delta ? 1.0f : emission_mis(SCENE_ARGS, &sf, r.dir, r.pdf));
         if (r.depth + 1 >= info->max_bounces) continue;
         float plen = r.path_length + sf.t;

@@ -25,7 +25,8 @@
     X(HAS_SPOT_LIGHTS, spot_lights, "spot lights")                                                                     \
     X(HAS_DIRECTIONAL_LIGHTS, directional_lights, "directional lights")                                                \
     X(HAS_ENV_LIGHT, env_light, "environment light")                                                                   \
-    X(HAS_THIN_LENS, thin_lens, "thin lens")
+    X(HAS_THIN_LENS, thin_lens, "thin lens")                                                                           \
+    X(HAS_EMISSION_SPREAD, emission_spread, "emission spread")
 
 #ifdef __OPENCL_VERSION__
 
@@ -70,6 +71,9 @@
 #endif
 #ifndef HAS_ENV_LIGHT
 #define HAS_ENV_LIGHT 1
+#endif
+#ifndef HAS_EMISSION_SPREAD
+#define HAS_EMISSION_SPREAD 1
 #endif
 #ifndef HAS_THIN_LENS
 #define HAS_THIN_LENS 1

@@ -106,6 +106,8 @@ void emit_light(SCENE_PARAMS, Rng* rng, LightEmission* e) {
          * photon starts (for a textured emitter, pick is by the texture's mean: Light.power) */
         e->flux = rad * (L->area * PI_F * sides / (pick * info->total_power));
         e->cos_light = fmax(dot(e->dir, n), 0.0f);
+        if (HAS_EMISSION_SPREAD) /* cosine-distributed still: the flux carries the spread (scene.cl) */
+            e->flux *= emission_spread_factor(materials[shading[L->prim].material].emission_spread, e->cos_light);
         e->direct_pdf_a = pick / L->area;
         e->emission_pdf_w = e->direct_pdf_a * e->cos_light * INV_PI_F / sides;
         e->delta = false;
@@ -213,6 +215,8 @@ bool sample_light_full(SCENE_PARAMS, float3 x, Rng* rng, LightSample* s) {
         float cos_y = -dot(s->wi, ny); /* > 0: x sees the front face */
         if (L->two_sided) cos_y = fabs(cos_y);
         if (cos_y <= 0.0f) return false;
+        if (HAS_EMISSION_SPREAD)
+            rad *= emission_spread_factor(materials[shading[L->prim].material].emission_spread, cos_y);
         /* Le cos_y / d^2 / (pick / A): area sampling (Veach 1997, Eq. 8.10) */
         s->contrib = rad * (cos_y * L->area / (d2 * pick));
         bool textured = HAS_TEXTURES && materials[shading[L->prim].material].emissive_tex >= 0;

@@ -31,7 +31,7 @@ __kernel void path_trace(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong
         }
         Surface sf = make_surface(SCENE_ARGS, dir, &hit);
         if (HAS_VOLUME) beta *= volume_transmittance(SCENE_ARGS, &sf, sf.t * length(dir));
-        float3 le = surface_emission(SCENE_ARGS, &sf);
+        float3 le = surface_emission(SCENE_ARGS, &sf, dir);
         if (max3(le) > 0.0f) {
             L += beta * le * (prev_delta ? 1.0f : emission_mis(SCENE_ARGS, &sf, dir, prev_pdf));
         }

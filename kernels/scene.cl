@@ -144,11 +144,31 @@ float3 material_emission(SCENE_PARAMS, uint material, float4 uv) {
     return le;
 }
 
-/* Emitted radiance towards the ray: from the front face, or both faces when double-sided. */
-float3 surface_emission(SCENE_PARAMS, const Surface* s) {
+/* An area light's spread (Blender's, as Cycles models it: a soft box's grid of slats, D10594):
+ * the radiance at angle a from the emitting side's normal is scaled by
+ * f(a) = max(tan h - tan a, 0) / (tan h - h), h half the spread, which keeps the Lambertian
+ * emitter's power: int f cos dw over the hemisphere = pi (so light powers, light choice and the
+ * cosine-distributed emission pdfs stay as they are; photons carry f in their flux). t = tan h,
+ * 0 for none (f = 1). */
+float emission_spread_factor(float t, float cos_a) {
+    if (!HAS_EMISSION_SPREAD || !(t > 0.0f)) return 1.0f;
+    if (!(cos_a > 0.0f)) return 0.0f;
+    float tan_a = sqrt(fmax(0.0f, 1.0f - cos_a * cos_a)) / cos_a;
+    float h = atan(t);
+    /* tan h - h, by its series where it cancels in float: h^3/3 + 2h^5/15 */
+    float norm = h > 0.05f ? t - h : h * h * h * (1.0f / 3.0f + h * h * (2.0f / 15.0f));
+    return fmax(t - tan_a, 0.0f) / norm;
+}
+
+/* Emitted radiance towards the ray (direction dir, not necessarily unit): from the front face,
+ * or both faces when double-sided; an area light's spread narrows it. */
+float3 surface_emission(SCENE_PARAMS, const Surface* s, float3 dir) {
     __global const Material* m = &materials[s->material];
     if (!s->front && !(m->flags & MATERIAL_FLAG_DOUBLE_SIDED)) return (float3)(0.0f);
-    return material_emission(SCENE_ARGS, s->material, s->uv);
+    float3 le = material_emission(SCENE_ARGS, s->material, s->uv);
+    if (HAS_EMISSION_SPREAD && m->emission_spread > 0.0f)
+        le *= emission_spread_factor(m->emission_spread, -dot(normalize(dir), s->ng));
+    return le;
 }
 
 #endif

@@ -101,8 +101,8 @@ typedef struct {
     i32 transmission_tex;       /* transmissionTexture (linear, R scales transmission); -1 when none */
     i32 specular_tex;           /* KHR_materials_specular specularTexture (linear, A); -1 when none */
     i32 specular_color_tex;     /* specularColorTexture (sRGB, RGB); -1 when none */
-    u32 pad0;
-} Material; /* 128 bytes */
+    float emission_spread;      /* tan of half an area light's spread (kernels/scene.cl); 0: Lambertian */
+} Material;                     /* 128 bytes */
 
 /* Sampler bits of a texture. Wrap per axis (glTF sampler wrapS, wrapT): clamp s, clamp t, mirror
  * s, mirror t; none set is REPEAT. TEXTURE_NEAREST: magFilter NEAREST, the texel the coordinate

@@ -292,7 +292,7 @@ __kernel void vcm_camera(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong
         float3 wo = -dir;
         vcm_on_hit(&m, sf.t * sf.t * dot(dir, dir) / area_scale, fabs(dot(sf.ns, wo)) / length(dir), false);
         if (first) {
-            float3 le = surface_emission(SCENE_ARGS, &sf);
+            float3 le = surface_emission(SCENE_ARGS, &sf, dir);
             if (max3(le) > 0.0f)
                 L += beta * le * vcm_emission_weight(SCENE_ARGS, &sf, dir, t, specular, &m, mode, area_scale);
         }

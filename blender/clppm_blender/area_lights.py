@@ -7,8 +7,8 @@ L = P / (pi A) over its area A. The same surface in clppm, an emissive material 
 (emissiveFactor = colour, KHR_materials_emissive_strength = L) on single-sided triangles facing
 -Z, emits the same power the same way. A disk or an ellipse is a polygon of SEGMENTS sides; its
 radiance uses the polygon's area, so that the power is the light's exactly. A spread below 180
-degrees narrows Cycles' emission to a cone, which emissive geometry cannot do: such a light is
-exported as if its spread were 180 degrees, and the add-on says so.
+degrees narrows the emission as Cycles' soft box does (max(tan h - tan a, 0) / (tan h - h), the
+power kept): the material's extras "clppm_area_light_spread" in degrees (kernels/scene.cl).
 """
 import base64
 import math
@@ -97,6 +97,8 @@ def append(gltf, lights):
             "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": light["radiance"]},
                            "KHR_materials_specular": {"specularFactor": 0.0}},
         })
+        if light.get("spread", 180.0) < 180.0:
+            materials[-1]["extras"] = {"clppm_area_light_spread": light["spread"]}
         meshes.append({"name": light["name"], "primitives": [{
             "attributes": {"POSITION": len(accessors) - 3, "NORMAL": len(accessors) - 2},
             "indices": len(accessors) - 1, "material": len(materials) - 1}]})

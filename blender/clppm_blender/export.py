@@ -33,14 +33,12 @@ def _area_light(obj, warn):
     power = light.energy * 2.0 ** getattr(light, "exposure", 0.0)
     if not getattr(light, "normalize", True):
         power *= area
-    if light.spread < math.pi - 1e-4:
-        warn("area light %s: a spread of %.0f degrees is not supported; it emits as 180 degrees"
-             % (obj.name, math.degrees(light.spread)))
+    spread = math.degrees(light.spread)  # Cycles' soft-box spread, power kept (README, "Blender")
     color = list(light.color)
     if getattr(light, "use_temperature", False):
         color = [c * t for c, t in zip(color, light.temperature_color)]
     return {"name": obj.name, "points": points, "radiance": area_lights.radiance(power, area), "color": color,
-            "matrix": area_lights.gltf_matrix(m)}
+            "matrix": area_lights.gltf_matrix(m), "spread": min(180.0, max(spread, 0.01))}
 
 
 def _solid_glass(gltf):

@@ -103,12 +103,24 @@ def test_the_export_carries_area_lights_world_depth_of_field_and_resolution(tmp_
     assert said == []
 
 
-def test_an_unsupported_spread_is_said(tmp_path):
+def test_an_area_lights_spread_is_exported(tmp_path):
     scenes.diffuse_room()
     bpy.data.lights[0].spread = math.radians(60)
     said = []
-    export.export(bpy.context.evaluated_depsgraph_get(), str(tmp_path), said.append)
-    assert any("spread of 60 degrees is not supported" in s for s in said), said
+    path, _ = export.export(bpy.context.evaluated_depsgraph_get(), str(tmp_path), said.append)
+    import json
+    lamp = [m for m in json.load(open(path))["materials"] if m["name"].endswith("(area light)")][0]
+    assert lamp["extras"]["clppm_area_light_spread"] == pytest.approx(60.0, rel=1e-5)
+    assert said == []
+
+
+def test_an_area_lights_spread_matches_cycles(tmp_path):
+    # Cycles' soft box: radiance times max(tan h - tan a, 0) / (tan h - h), the power kept.
+    scenes.diffuse_room()
+    bpy.data.lights[0].spread = math.radians(60)
+    _, _, ratio, box = compare("spread_60", tmp_path, clppm_seconds=6.0, samples=1024)
+    assert abs(ratio - 1) < 0.05
+    assert box < 0.02
 
 
 def test_esc_stops_the_render_within_a_second_and_keeps_the_image(tmp_path, monkeypatch):

@@ -839,6 +839,24 @@ def environment_scenes():
         b.write_embedded(out(name))
 
 
+def spread_light():
+    """A small square emitter (0.1 x 0.1, radiance 100, facing down) 5 above a Lambertian floor of
+    albedo 0.5 (20 x 20), seen from the side at 45 degrees, black world: the point of the floor
+    under it sees the emitter within 0.6 degrees of its axis, where a spread multiplies its
+    radiance by f(0) = tan h / (tan h - h) (tests/emission_spread_test.cpp adds the spread)."""
+    b = GltfBuilder("clppm tests/data/make_test_gltf.py")
+    floor = b.material("floor", (0.5, 0.5, 0.5), specular=0.0)
+    lamp = b.material("lamp", (0.0, 0.0, 0.0), specular=0.0, emissive=(1.0, 1.0, 1.0), emissive_strength=100.0)
+    fpos, fnrm, fidx = quad((0.0, 0.0, 0.0), (0.0, 0.0, 10.0), (10.0, 0.0, 0.0))
+    lpos, lnrm, lidx = quad((0.0, 5.0, 0.0), (0.05, 0.0, 0.0), (0.0, 0.0, 0.05))
+    assert lnrm[0] == (0.0, -1.0, 0.0)
+    prims = [b.primitive(fpos, fidx, fnrm, material=floor), b.primitive(lpos, lidx, lnrm, material=lamp)]
+    cam = b.node(name="camera", camera=b.camera(0.3), translation=[0.0, 3.0, 3.0],
+                 rotation=quat_axis_angle((1, 0, 0), -math.pi / 4))
+    b.scene([b.node(name="set", mesh=b.mesh(prims)), cam])
+    b.write_embedded(out("spread_light.gltf"))
+
+
 def specular_textures():
     """KHR_materials_specular textures: a plate whose uniform specularTexture (A = 51: 0.2) and
     specularColorTexture (sRGB (255, 0, 255)) scale factors of 1, against the plate with factors
@@ -952,7 +970,7 @@ def main():
                  materials, texture, lights, cameras, quantized, sparse, strips_fans, gpu_instancing, emissive_texture,
                  normal_maps, vertex_colors, alpha_modes,
                  texture_transform, uv1_plates, volumes, skinned,
-                 specular_textures, reference_scenes, environment_scenes, errors):
+                 specular_textures, reference_scenes, environment_scenes, spread_light, errors):
         make()
 
 

@@ -77,6 +77,18 @@ float MaterialConverter::finite_factor(double v, const std::string& what, const 
     return f;
 }
 
+// An area light's spread (Blender's, in degrees, in (0, 180]) from the material's extras
+// "clppm_area_light_spread": tan of half of it for kernels/scene.cl, 0 for 180 (Lambertian).
+float MaterialConverter::emission_spread(const tinygltf::Material& g, const std::string& label) {
+    if (!g.extras.IsObject() || !g.extras.Has("clppm_area_light_spread")) return 0.f;
+    const tinygltf::Value& v = g.extras.Get("clppm_area_light_spread");
+    const double degrees = v.IsNumber() ? v.GetNumberAsDouble() : NAN;
+    if (!(degrees > 0.0 && degrees <= 180.0))
+        ctx_.fail(label + " extras.clppm_area_light_spread must be a number of degrees in (0, 180]");
+    if (degrees >= 180.0) return 0.f;
+    return float(std::tan(0.5 * degrees * kPi / 180.0));
+}
+
 dev::Material MaterialConverter::convert_material(int index) {
     const tinygltf::Material& g = m_.materials[size_t(index)];
     const auto& pbr = g.pbrMetallicRoughness;
@@ -95,6 +107,7 @@ dev::Material MaterialConverter::convert_material(int index) {
         m.emission[c] = std::max(0.f, e);
     }
     if (negative) ctx_.warn(label + " emissiveFactor * emissiveStrength is negative; that part emits nothing");
+    m.emission_spread = emission_spread(g, label);
     m.metallic = std::clamp(finite_factor(pbr.metallicFactor, "metallicFactor", label), 0.f, 1.f);
     m.roughness = std::clamp(finite_factor(pbr.roughnessFactor, "roughnessFactor", label), 0.f, 1.f);
     m.transmission = std::clamp(

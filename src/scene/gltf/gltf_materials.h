@@ -38,6 +38,7 @@ private:
                               const std::string& label, bool srgb);
 
     dev::Material convert_material(int index);
+    float emission_spread(const tinygltf::Material& g, const std::string& label);
 
     // -- textures --
 

@@ -103,14 +103,13 @@ int convert_specular_glossiness(tinygltf::Model& model, LoadContext& ctx) {
         const double glossiness = numbers(v, "glossinessFactor", {1}, label, ctx)[0];
         tinygltf::PbrMetallicRoughness& pbr = m.pbrMetallicRoughness;
         pbr.baseColorFactor = diffuse;
-        pbr.baseColorTexture = v.Has("diffuseTexture") ? texture_info(v, "diffuseTexture", label, ctx)
-                                                       : tinygltf::TextureInfo();
+        pbr.baseColorTexture =
+            v.Has("diffuseTexture") ? texture_info(v, "diffuseTexture", label, ctx) : tinygltf::TextureInfo();
         pbr.metallicFactor = 0.0;
         pbr.roughnessFactor = 1.0 - std::clamp(glossiness, 0.0, 1.0);
         pbr.metallicRoughnessTexture = tinygltf::TextureInfo();
         const double color[3] = {specular[0] / f0_ior, specular[1] / f0_ior, specular[2] / f0_ior};
-        tinygltf::Value::Object spec{{"specularFactor", tinygltf::Value(1.0)},
-                                     {"specularColorFactor", array3(color)}};
+        tinygltf::Value::Object spec{{"specularFactor", tinygltf::Value(1.0)}, {"specularColorFactor", array3(color)}};
         if (v.Has("specularGlossinessTexture")) {
             const tinygltf::TextureInfo sg = texture_info(v, "specularGlossinessTexture", label, ctx);
             spec["specularColorTexture"] = texture_value(sg);
