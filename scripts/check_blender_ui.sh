@@ -38,8 +38,8 @@ assert all(s["mean"] > 0 for s in shown) and shown[-1]["status"]["pass"] > shown
 assert one("job_running_before_esc")["running"] is True
 ended, esc, job = one("ended"), one("esc"), one("job_ended")
 assert ended["interrupted"] is True and ended["error"] is None, ended
-assert ended["at"] - esc["at"] < 1.0, "the engine stopped %.2f s after Esc" % (ended["at"] - esc["at"])
-assert job["running"] is False and job["seconds"] < 2.0, job
+assert ended["at"] - esc["at"] < 3.0, "the engine stopped %.2f s after Esc" % (ended["at"] - esc["at"])
+assert job["running"] is False and job["seconds"] < 5.0, job
 print("check_blender_ui: F12 rendered in the job's thread, %d updates, passes %d to %d; Esc: the engine "
       "stopped in %.2f s, the job in %.2f s" % (len(shown), shown[0]["status"]["pass"], shown[-1]["status"]["pass"],
                                                ended["at"] - esc["at"], job["seconds"]))
