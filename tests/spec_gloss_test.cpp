@@ -40,9 +40,8 @@ struct Result {
 Result render(const std::string& scene) {
     Result r;
     const std::string out_file = make_temp_dir("spec_gloss_out") + "/x.exr";
-    EXPECT_EQ(run_clppm(scene + " --width 24 --height 24 --integrator pt --passes 32 --no-png -o " + out_file,
-                        &r.output),
-              0)
+    EXPECT_EQ(
+        run_clppm(scene + " --width 24 --height 24 --integrator pt --passes 32 --no-png -o " + out_file, &r.output), 0)
         << r.output;
     r.image = read_exr(out_file);
     return r;
@@ -59,12 +58,12 @@ double mean(const Image& img) {
 TEST(SpecGloss, FactorsRenderAsTheMetallicRoughnessMaterialTheyConvertTo) {
     const std::string d = make_temp_dir("spec_gloss");
     const std::vector<double> diffuse{0.5, 0.4, 0.3, 1.0}, specular{0.2, 0.15, 0.1};
-    const Result sg = render(plate_with(
-        d, "sg.gltf",
-        {{"name", "sg"},
-         {"extensions",
-          {{"KHR_materials_pbrSpecularGlossiness",
-            {{"diffuseFactor", diffuse}, {"specularFactor", specular}, {"glossinessFactor", 0.7}}}}}}));
+    const Result sg = render(
+        plate_with(d, "sg.gltf",
+                   {{"name", "sg"},
+                    {"extensions",
+                     {{"KHR_materials_pbrSpecularGlossiness",
+                       {{"diffuseFactor", diffuse}, {"specularFactor", specular}, {"glossinessFactor", 0.7}}}}}}));
     const Result mr = render(plate_with(
         d, "mr.gltf",
         {{"name", "mr"},
@@ -90,12 +89,12 @@ TEST(SpecGloss, ItsTextureGivesWhatItsValuesGiveAsFactors) {
     for (int i = 0; i < 4; ++i) std::copy(texel, texel + 4, px + 4 * i);
     ASSERT_NE(stbi_write_png((d + "/sg.png").c_str(), 2, 2, 4, px, 8), 0);
     const double spec = std::pow((203 / 255.0 + 0.055) / 1.055, 2.4);
-    const Result tex = render(plate_with(d, "tex.gltf",
-                                         {{"name", "tex"},
-                                          {"extensions",
-                                           {{"KHR_materials_pbrSpecularGlossiness",
-                                             {{"diffuseFactor", {0.5, 0.5, 0.5, 1.0}},
-                                              {"specularGlossinessTexture", {{"index", 1}}}}}}}}));
+    const Result tex = render(
+        plate_with(d, "tex.gltf",
+                   {{"name", "tex"},
+                    {"extensions",
+                     {{"KHR_materials_pbrSpecularGlossiness",
+                       {{"diffuseFactor", {0.5, 0.5, 0.5, 1.0}}, {"specularGlossinessTexture", {{"index", 1}}}}}}}}));
     const Result factors = render(plate_with(d, "factors.gltf",
                                              {{"name", "factors"},
                                               {"extensions",
