@@ -59,6 +59,8 @@ typedef struct {
     float dielectric, glass, metal; /* lobe weights */
     float eta;                      /* LOBE_GLASS: relative index n_t / n_i for light crossing from the ns side */
     bool thin;                      /* LOBE_GLASS: thin-walled, transmission does not bend */
+    bool front;                     /* the side of ns is outside the mesh (the winding's front) */
+    float3 sigma;                   /* KHR_materials_volume: the mesh's absorption coefficient */
 } Bsdf;
 
 typedef struct {
@@ -526,7 +528,20 @@ Bsdf surface_bsdf(SCENE_PARAMS, const Surface* s) {
     b.f90 = spec;
     b.thin = (m->flags & MATERIAL_FLAG_THIN_WALLED) != 0u;
     b.eta = s->front || b.thin ? m->ior : 1.0f / m->ior;
+    b.front = s->front;
+    b.sigma = HAS_VOLUME ? load3g(m->attenuation) : (float3)(0.0f);
     return b;
+}
+
+/* KHR_materials_volume on a straight segment of length dist that leaves the surface along w (a
+ * light sample's shadow ray, a connection): Beer-Lambert's exp(-sigma dist) when the segment runs
+ * inside the surface's mesh, that is when w enters it through the front face or stays on the
+ * inside of a back face; 1 elsewhere. Paths that are traced get the same factor on arrival
+ * (volume_transmittance). */
+float3 bsdf_segment_transmittance(const Bsdf* b, float3 w, float dist) {
+    if (!HAS_VOLUME || !(max3(b->sigma) > 0.0f)) return (float3)(1.0f);
+    bool inside = b->front ? dot(w, b->ng) < 0.0f : dot(w, b->ng) > 0.0f;
+    return inside ? exp(-b->sigma * dist) : (float3)(1.0f);
 }
 
 #endif

@@ -48,6 +48,8 @@ Bsdf hitpoint_bsdf(__global const HitPoint* hp, float3 n) {
     b.glass = 0.0f;
     b.eta = 1.0f;
     b.thin = false;
+    b.front = true;
+    b.sigma = (float3)(0.0f);
     return b;
 }
 

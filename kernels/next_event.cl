@@ -29,7 +29,7 @@ float3 next_event(SCENE_PARAMS, const Bsdf* b, float3 p, float3 wo, uint mask, R
     if (trace_occluded(SCENE_ARGS, offset_origin(SCENE_ARGS, p, through ? -b->ng : b->ng), wi, dist))
         return (float3)(0.0f);
     float mis = light_pdf > 0.0f ? power_heuristic(light_pdf, bsdf_pdf(b, wo, wi, mask)) : 1.0f;
-    return f * contrib * (fabs(cos_x) * mis);
+    return f * contrib * bsdf_segment_transmittance(b, wi, dist) * (fabs(cos_x) * mis);
 }
 
 /* The MIS weight of emission found at surface sf by a ray along dir that was sampled with

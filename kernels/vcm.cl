@@ -73,7 +73,7 @@ void vcm_connect_to_camera(SCENE_PARAMS, __constant Camera* cam, const Surface* 
     if (mode != VCM_MODE_LT)
         weight =
             vcm_weight_camera_connection(m, camera_pdf_a, light_paths, bsdf_pdf_rev(b, wo, w, LOBE_ALL), vm_factor);
-    float3 v = T * f * (weight * camera_pdf_a / light_paths);
+    float3 v = T * f * bsdf_segment_transmittance(b, w, sqrt(dist2)) * (weight * camera_pdf_a / light_paths);
     if (!all(isfinite(v)) || !(max3(v) > 0.0f)) return;
     float3 a = offset_origin(SCENE_ARGS, sf->p, dot(w, sf->ng) > 0.0f ? sf->ng : -sf->ng);
     float3 e = c - a;
@@ -184,7 +184,7 @@ float3 vcm_light_sample(SCENE_PARAMS, const Surface* sf, const Bsdf* b, float3 w
     float w = vcm_weight_light_sample(m, ls.pdf_w, ls.emission_pdf_w * area_scale, ls.cos_light, ls.delta,
                                       bsdf_pdf(b, wo, ls.wi, LOBE_ALL), bsdf_pdf_rev(b, wo, ls.wi, LOBE_ALL), cos_x,
                                       vm_factor);
-    return f * ls.contrib * (cos_x * w);
+    return f * ls.contrib * bsdf_segment_transmittance(b, ls.wi, ls.dist) * (cos_x * w);
 }
 
 /* s, t >= 2: the camera vertex at sf (BSDF b, wo, state m) joined to light vertex lv; the light
@@ -220,7 +220,9 @@ float3 vcm_connect(SCENE_PARAMS, const Surface* sf, const Bsdf* b, float3 wo, co
     float weight = vcm_weight_connection(
         m, &ml, bsdf_pdf(b, wo, w, LOBE_ALL) * cos_l / dist2n, bsdf_pdf_rev(b, wo, w, LOBE_ALL),
         bsdf_pdf(&bl, wi_l, -w, LOBE_ALL) * cos_c / dist2n, bsdf_pdf_rev(&bl, wi_l, -w, LOBE_ALL), vm_factor);
-    float3 v = f_c * f_l * load3g(lv->throughput) * (weight * cos_c * cos_l / dist2n);
+    /* A segment inside a volume is inside it at both ends: absorbed once. */
+    float3 v = f_c * f_l * load3g(lv->throughput) * bsdf_segment_transmittance(b, w, sqrt(dist2)) *
+               (weight * cos_c * cos_l / dist2n);
     if (!all(isfinite(v)) || !(max3(v) > 0.0f)) return (float3)(0.0f);
     if (!vcm_visible(SCENE_ARGS, sf->p, sf->ng, y, sl.ng, w)) return (float3)(0.0f);
     return v;

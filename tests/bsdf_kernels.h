@@ -63,6 +63,8 @@ Bsdf test_bsdf(__global const float* p, float3 n) {
     b.metal = p[10];
     b.eta = p[11];
     b.thin = p[12] != 0.0f;
+    b.front = true;
+    b.sigma = (float3)(0.0f);
     return b;
 }
 /* bsdf_eval (rgb) and bsdf_pdf at (wo, wi[i]) over the lobes in mask. */

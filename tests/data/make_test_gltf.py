@@ -667,13 +667,16 @@ def volumes():
     """KHR_materials_volume: a smooth glass slab 0.5 thick between the camera and an emitter,
     attenuationColor (0.5, 0.25, 1) at attenuationDistance 0.5, so exp(-sigma d) = (0.5, 0.25, 1);
     the same slab without attenuation; and transmissionTexture: the slab at transmission 1 with
-    a uniform texture of R = 51 against transmissionFactor 0.2."""
+    a uniform texture of R = 51 against transmissionFactor 0.2. The rough_ pair is the slab at
+    roughness 0.5 lit by a point light behind it: what the camera sees of it comes through both
+    faces, and bidirectional methods connect vertices on the two faces through the inside."""
     variants = (("volume_slab.gltf", "volume"), ("volume_clear.gltf", "clear"),
-                ("transmission_texture.gltf", "texture"), ("transmission_factor.gltf", "factor"))
+                ("transmission_texture.gltf", "texture"), ("transmission_factor.gltf", "factor"),
+                ("rough_volume_slab.gltf", "volume"), ("rough_volume_clear.gltf", "clear"))
     for name, kind in variants:
         b = GltfBuilder("clppm tests/data/make_test_gltf.py")
         # A solid slab in every variant (thicknessFactor 0.5); only "volume" absorbs.
-        glass = b.material("glass", (1.0, 1.0, 1.0), roughness=0.0,
+        glass = b.material("glass", (1.0, 1.0, 1.0), roughness=0.5 if name.startswith("rough_") else 0.0,
                            transmission=0.2 if kind == "factor" else 1.0, ior=1.5, thickness=0.5)
         if kind == "volume":
             b.doc["materials"][glass]["extensions"]["KHR_materials_volume"].update(
@@ -690,8 +693,14 @@ def volumes():
         emitter = b.primitive([(-5, -5, -1), (5, -5, -1), (5, 5, -1), (-5, 5, -1)], [0, 1, 2, 0, 2, 3],
                               [(0, 0, 1)] * 4, material=lamp)
         cam = b.camera(0.1)
-        b.scene([b.node(name="slab", mesh=b.mesh([slab, emitter])),
-                 b.node(name="camera", camera=cam, translation=[0.0, 0.0, 2.0])])
+        if name.startswith("rough_"):  # lit by a point light behind the slab instead
+            lamp = b.light({"name": "lamp", "type": "point", "intensity": 10.0})
+            b.scene([b.node(name="slab", mesh=b.mesh([slab])),
+                     b.node(name="camera", camera=cam, translation=[0.0, 0.0, 2.0]),
+                     b.node(name="lamp", light=lamp, translation=[0.0, 0.0, -1.0])])
+        else:
+            b.scene([b.node(name="slab", mesh=b.mesh([slab, emitter])),
+                     b.node(name="camera", camera=cam, translation=[0.0, 0.0, 2.0])])
         b.write_embedded(out(name))
 
 
