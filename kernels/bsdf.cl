@@ -530,6 +530,7 @@ Bsdf surface_bsdf(SCENE_PARAMS, const Surface* s) {
     b.eta = s->front || b.thin ? m->ior : 1.0f / m->ior;
     b.front = s->front;
     b.sigma = HAS_VOLUME ? load3g(m->attenuation) : (float3)(0.0f);
+    if (surface_is_unlit(SCENE_ARGS, s)) b.dielectric = b.glass = b.metal = 0.0f;
     return b;
 }
 

@@ -30,6 +30,7 @@ typedef struct {
     uint depth;
     float pdf;  /* density the direction was sampled with (MIS against light sampling) */
     bool delta; /* a camera ray or a delta lobe: emission found counts in full */
+    bool chain; /* every bounce from the camera delta: unlit surfaces are seen */
 } EyeRay;
 
 /* One way an eye path can go on from a surface: a new ray, or a hit point here. */
@@ -142,6 +143,7 @@ __kernel void eye_pass(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong p
     stack[0].depth = 0;
     stack[0].pdf = 0.0f;
     stack[0].delta = true;
+    stack[0].chain = true;
     top = 1;
     float3 emitted = (float3)(0.0f);
     __global HitPoint* out = &hitpoints[(size_t)i * EYE_SLOTS];
@@ -159,6 +161,7 @@ __kernel void eye_pass(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong p
         if (HAS_VOLUME) r.weight *= volume_transmittance(SCENE_ARGS, &sf, sf.t * length(r.dir));
         float3 le = surface_emission(SCENE_ARGS, &sf, r.dir);
         if (max3(le) > 0.0f) emitted += r.weight * le * (r.delta ? 1.0f : emission_mis(SCENE_ARGS, &sf, r.dir, r.pdf));
+        if (HAS_UNLIT && r.chain) emitted += r.weight * surface_unlit(SCENE_ARGS, &sf);
         if (r.depth + 1 >= info->max_bounces) continue;
         float plen = r.path_length + sf.t;
 
@@ -211,7 +214,8 @@ __kernel void eye_pass(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong p
                              plen,
                              r.depth + 1,
                              b.pdf,
-                             b.delta};
+                             b.delta,
+                             r.chain && b.delta};
                 stack[top++] = nr;
             }
         }

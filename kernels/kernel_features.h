@@ -26,7 +26,8 @@
     X(HAS_DIRECTIONAL_LIGHTS, directional_lights, "directional lights")                                                \
     X(HAS_ENV_LIGHT, env_light, "environment light")                                                                   \
     X(HAS_THIN_LENS, thin_lens, "thin lens")                                                                           \
-    X(HAS_EMISSION_SPREAD, emission_spread, "emission spread")
+    X(HAS_EMISSION_SPREAD, emission_spread, "emission spread")                                                        \
+    X(HAS_UNLIT, unlit, "unlit materials")
 
 #ifdef __OPENCL_VERSION__
 
@@ -74,6 +75,9 @@
 #endif
 #ifndef HAS_EMISSION_SPREAD
 #define HAS_EMISSION_SPREAD 1
+#endif
+#ifndef HAS_UNLIT
+#define HAS_UNLIT 1
 #endif
 #ifndef HAS_THIN_LENS
 #define HAS_THIN_LENS 1

@@ -21,6 +21,7 @@ __kernel void path_trace(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong
     camera_ray(cam, (float)(pixel % cam->width) + off.x, (float)(pixel / cam->width) + off.y, lens, &org, &dir);
     float3 L = (float3)(0.0f), beta = (float3)(1.0f);
     bool prev_delta = true; /* camera rays and delta lobes: emission found counts in full */
+    bool chain = true;      /* every bounce so far delta: unlit surfaces are seen */
     float prev_pdf = 0.0f;
     for (uint depth = 0; depth < info->max_bounces; ++depth) {
         Hit hit;
@@ -35,6 +36,7 @@ __kernel void path_trace(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong
         if (max3(le) > 0.0f) {
             L += beta * le * (prev_delta ? 1.0f : emission_mis(SCENE_ARGS, &sf, dir, prev_pdf));
         }
+        if (HAS_UNLIT && chain) L += beta * surface_unlit(SCENE_ARGS, &sf);
         Bsdf b = surface_bsdf(SCENE_ARGS, &sf);
         float3 wo = -dir;
         L += beta * next_event(SCENE_ARGS, &b, sf.p, wo, LOBE_ALL, &rng);
@@ -50,6 +52,7 @@ __kernel void path_trace(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong
             beta *= s.weight;
         }
         prev_delta = s.delta;
+        chain = chain && s.delta;
         prev_pdf = s.pdf;
         dir = s.wi;
         org = offset_origin(SCENE_ARGS, sf.p, s.below ? -sf.ng : sf.ng);

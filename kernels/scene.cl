@@ -126,6 +126,18 @@ float3 surface_base_color(SCENE_PARAMS, const Surface* s) {
     return c;
 }
 
+/* KHR_materials_unlit: what an unlit surface shows, its base colour as it is (factor, texture
+ * and COLOR_0), to camera rays and to chains of delta bounces from the camera (a mirror's or
+ * smooth glass's image of it); zero for any other surface. Such a surface scatters nothing
+ * (surface_bsdf gives it no lobe): it lights nothing, gathers nothing and ends every path. */
+bool surface_is_unlit(SCENE_PARAMS, const Surface* s) {
+    return HAS_UNLIT && (materials[s->material].flags & MATERIAL_FLAG_UNLIT) != 0u;
+}
+
+float3 surface_unlit(SCENE_PARAMS, const Surface* s) {
+    return surface_is_unlit(SCENE_ARGS, s) ? surface_base_color(SCENE_ARGS, s) : (float3)(0.0f);
+}
+
 /* KHR_materials_volume: the fraction of light that survives the segment of length dist a ray
  * travelled to reach s from inside (s's back face) a mesh of an absorbing material, by
  * Beer-Lambert's law exp(-sigma dist). 1 elsewhere. Meshes are taken as closed and not nested. */

@@ -76,6 +76,8 @@ typedef struct {
 #define MATERIAL_FLAG_DOUBLE_SIDED 1u
 /* transmission through a thin wall (no KHR_materials_volume, or thicknessFactor 0): no refraction */
 #define MATERIAL_FLAG_THIN_WALLED 2u
+/* KHR_materials_unlit: the base colour shown as it is; the surface scatters nothing (scene.cl) */
+#define MATERIAL_FLAG_UNLIT 4u
 
 /* glTF alphaMode */
 #define ALPHA_OPAQUE 0u

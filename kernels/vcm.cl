@@ -297,6 +297,7 @@ __kernel void vcm_camera(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong
             float3 le = surface_emission(SCENE_ARGS, &sf, dir);
             if (max3(le) > 0.0f)
                 L += beta * le * vcm_emission_weight(SCENE_ARGS, &sf, dir, t, specular, &m, mode, area_scale);
+            if (HAS_UNLIT && specular) L += beta * surface_unlit(SCENE_ARGS, &sf);
         }
         if (t >= max_len) break;
         wo = normalize(wo);

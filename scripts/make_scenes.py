@@ -106,7 +106,7 @@ class GltfBuilder:
     def material(self, name, base_color=(0.8, 0.8, 0.8), metallic=0.0, roughness=1.0,
                  emissive=None, emissive_strength=None, transmission=None, ior=None,
                  double_sided=False, base_color_texture=None, specular=None, specular_color=None,
-                 metallic_roughness_texture=None, thickness=None):
+                 metallic_roughness_texture=None, thickness=None, extensions=None):
         pbr = {"baseColorFactor": list(base_color) + [1.0] * (4 - len(base_color)),
                "metallicFactor": metallic, "roughnessFactor": roughness}
         if base_color_texture is not None:
@@ -132,6 +132,7 @@ class GltfBuilder:
             if specular_color is not None:
                 spec["specularColorFactor"] = list(specular_color)
             ext["KHR_materials_specular"] = spec
+        ext.update(extensions or {})  # any other material extension, as the file spells it
         if ext:
             m["extensions"] = ext
             self.extensions_used.update(ext)

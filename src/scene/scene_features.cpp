@@ -29,6 +29,7 @@ SceneFeatures scene_features(const Scene& scene, const DeviceScene& ds) {
             f.volume = true;
         if (m.transmission_tex >= 0 || m.specular_tex >= 0 || m.specular_color_tex >= 0) f.textures = true;
         if (m.emission_spread > 0.f) f.emission_spread = true;
+        if (m.flags & MATERIAL_FLAG_UNLIT) f.unlit = true;
     }
     f.vertex_colors = !scene.colors.empty();
     for (const dev::Light& l : ds.lights) {

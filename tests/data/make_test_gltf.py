@@ -704,6 +704,27 @@ def volumes():
         b.write_embedded(out(name))
 
 
+def unlit():
+    """KHR_materials_unlit: a wall (diffuse 0.8, no specular layer) at z = -1 facing the camera
+    and, before its left half at z = 0, an unlit panel of base colour (0.2, 0.5, 0.8) times a
+    COLOR_0 of (1, 0.5, 1); a point light at (1, 0, 1) lights the wall, and the panel shadows part
+    of it. unlit_dark.gltf: the same panel with base colour 0. A black world."""
+    for name, color in (("unlit_panel.gltf", (0.2, 0.5, 0.8)), ("unlit_dark.gltf", (0.0, 0.0, 0.0))):
+        b = GltfBuilder("clppm tests/data/make_test_gltf.py")
+        wall = b.material("wall", (0.8, 0.8, 0.8), specular=0.0)
+        panel = b.material("panel", color, metallic=1.0, roughness=0.0, extensions={"KHR_materials_unlit": {}})
+        w = b.primitive([(-4, -4, -1), (4, -4, -1), (4, 4, -1), (-4, 4, -1)], [0, 1, 2, 0, 2, 3],
+                        [(0, 0, 1)] * 4, material=wall)
+        p = b.primitive([(-2, -1, 0), (-0.2, -1, 0), (-0.2, 1, 0), (-2, 1, 0)], [0, 1, 2, 0, 2, 3],
+                        [(0, 0, 1)] * 4, material=panel)
+        p["attributes"]["COLOR_0"] = b.accessor([1.0, 0.5, 1.0] * 4, FLOAT, "VEC3", ARRAY_BUFFER)
+        lamp = b.light({"name": "lamp", "type": "point", "intensity": 4.0})
+        b.scene([b.node(name="scene", mesh=b.mesh([w, p])),
+                 b.node(name="lamp", light=lamp, translation=[1.0, 0.0, 1.0]),
+                 b.node(name="camera", camera=b.camera(0.8), translation=[0.0, 0.0, 3.0])])
+        b.write_embedded(out(name))
+
+
 def reference_scenes():
     """Scenes with images from an independent renderer (tests/references/make_references.py,
     Mitsuba 3): a glass block on a floor before a wall, a red box half behind it, under a 1 x 1
@@ -979,7 +1000,7 @@ def main():
                  materials, texture, lights, cameras, quantized, sparse, strips_fans, gpu_instancing, emissive_texture,
                  normal_maps, vertex_colors, alpha_modes,
                  texture_transform, uv1_plates, volumes, skinned,
-                 specular_textures, reference_scenes, environment_scenes, spread_light, errors):
+                 specular_textures, unlit, reference_scenes, environment_scenes, spread_light, errors):
         make()
 
 

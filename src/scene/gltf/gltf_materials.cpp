@@ -128,7 +128,22 @@ dev::Material MaterialConverter::convert_material(int index) {
     convert_volume(g, label, m);
     convert_specular(g, label, m);
     if (g.doubleSided) m.flags |= MATERIAL_FLAG_DOUBLE_SIDED;
+    if (g.extensions.count("KHR_materials_unlit")) convert_unlit(m);
     return m;
+}
+
+// KHR_materials_unlit: the base colour (factor, texture, COLOR_0) shown as it is, not lit; the
+// surface scatters nothing (kernels/scene.cl). Alpha and emission keep their meaning; the lobes'
+// parameters are cleared so that the kernels are built for what the scene shows.
+void MaterialConverter::convert_unlit(dev::Material& m) {
+    m.flags |= MATERIAL_FLAG_UNLIT;
+    m.metallic = 0.f;
+    m.roughness = 1.f;
+    m.transmission = 0.f;
+    m.specular_color[3] = 0.f;
+    m.metallic_roughness_tex = m.normal_tex = m.transmission_tex = m.specular_tex = m.specular_color_tex = -1;
+    for (float& a : m.attenuation) a = 0.f;
+    m.flags &= ~MATERIAL_FLAG_THIN_WALLED;
 }
 
 // A textureInfo inside a material extension (tinygltf leaves those as JSON values): -1 without it.
