@@ -26,6 +26,13 @@
  *    sample's weight is (1 - F) G2 / G1 whichever way light goes and photons and eye paths share
  *    one function; eye paths thereby carry radiance times (eta_light / eta_eye)^2, which is 1
  *    whenever the camera and the lights are both outside every dielectric (README.md).
+ *  - LOBE_COAT, KHR_materials_clearcoat: a GGX layer of weight coat (clearcoatFactor), its own alpha
+ *    and normal nc, Schlick's Fresnel with F0 0.04 (ior 1.5) and F90 1, over all of the above,
+ *    which it scales by min(1 - coat E_c(|nc.wo|), 1 - coat E_c(|nc.wi|)), E_c the coat's
+ *    directional albedo: the rule the sheen extension gives for the layers under sheen. It is
+ *    reciprocal and never gains energy (the albedo at wo is at most coat E_c(wo) + (1 - coat
+ *    E_c(wo)) times the rest's); what it loses against an exact layer is light the coat would
+ *    send back down into the base and the base up again (README.md, "Materials").
  * Reflection lobes with alpha below MIRROR_ALPHA are mirrors (delta lobes): the same Fresnel at
  * the view angle, so the model is continuous in roughness down to 0.
  * All directions point away from the surface; wo is on the side of the shading normal. */
@@ -47,7 +54,10 @@
 #define LOBE_SPECULAR 2u
 #define LOBE_GLASS 4u
 #define LOBE_METAL 8u
-#define LOBE_ALL 15u
+#define LOBE_COAT 16u
+#define LOBE_ALL 31u
+/* The coat's Schlick F0: ior 1.5, as KHR_materials_clearcoat fixes it. */
+#define COAT_F0 0.04f
 
 typedef struct {
     float3 ns, ng;                  /* shading and geometric normal on the side of wo */
@@ -61,6 +71,8 @@ typedef struct {
     bool thin;                      /* LOBE_GLASS: thin-walled, transmission does not bend */
     bool front;                     /* the side of ns is outside the mesh (the winding's front) */
     float3 sigma;                   /* KHR_materials_volume: the mesh's absorption coefficient */
+    float3 nc;                      /* LOBE_COAT: the coat's normal, on the side of wo */
+    float coat, coat_alpha;         /* LOBE_COAT: weight (0: none) and GGX alpha */
 } Bsdf;
 
 typedef struct {
@@ -131,6 +143,25 @@ float ggx_table_avg(__constant float* t, float alpha) {
 }
 
 bool bsdf_is_mirror(const Bsdf* b) { return b->alpha < MIRROR_ALPHA; }
+
+bool has_coat(const Bsdf* b) { return HAS_CLEARCOAT && b->coat > 0.0f; }
+
+bool coat_is_mirror(const Bsdf* b) { return b->coat_alpha < MIRROR_ALPHA; }
+
+/* E_c(mu): the coat's directional albedo, F0 COAT_F0 and F90 1 (exact Schlick for a mirror). */
+float coat_albedo(const Bsdf* b, float mu) {
+    mu = clamp(mu, 0.0f, 1.0f);
+    if (coat_is_mirror(b)) return COAT_F0 + (1.0f - COAT_F0) * pow5(1.0f - mu);
+    return COAT_F0 * ggx_table(ggx_albedo_a, mu, b->coat_alpha) +
+           (1.0f - COAT_F0) * ggx_table(ggx_albedo_b, mu, b->coat_alpha);
+}
+
+/* What the coat leaves of the lobes under it for light between wo and wi (either side). */
+float coat_scale(const Bsdf* b, float3 wo, float3 wi) {
+    if (!has_coat(b)) return 1.0f;
+    float e = fmax(coat_albedo(b, fabs(dot(b->nc, wo))), coat_albedo(b, fabs(dot(b->nc, wi))));
+    return fmax(0.0f, 1.0f - b->coat * e);
+}
 
 /* E(mu): the dielectric layer's directional albedo (exact Schlick for a mirror). */
 float3 layer_albedo(const Bsdf* b, float mu) {
@@ -222,6 +253,7 @@ bool has_layer(const Bsdf* b) { return HAS_SPECULAR_LAYER && b->dielectric > 0.0
 
 /* Nothing but the Lambertian lobe (no layer, metal or glass): the fast paths below. */
 bool bsdf_plain_lambert(const Bsdf* b) {
+    if (has_coat(b)) return false;
     if (HAS_METAL && b->metal > 0.0f) return false;
     if (HAS_GLASS && b->glass > 0.0f) return false;
     return !has_layer(b);
@@ -261,14 +293,16 @@ float3 metal_ms_eval(const Bsdf* b, float cos_o, float cos_i) {
 #define TECH_GLASS 2
 #define TECH_METAL 3
 #define TECH_METAL_MS 4
+#define TECH_COAT 5
 
 typedef struct {
-    float diffuse, layer, glass, metal, metal_ms, total;
+    float diffuse, layer, glass, metal, metal_ms, coat, total;
 } LobeWeights;
 
-LobeWeights lobe_weights(const Bsdf* b, float cos_o, uint mask) {
+LobeWeights lobe_weights(const Bsdf* b, float3 wo, uint mask) {
+    float cos_o = dot(b->ns, wo);
     LobeWeights w;
-    w.diffuse = w.layer = w.glass = w.metal = w.metal_ms = 0.0f;
+    w.diffuse = w.layer = w.glass = w.metal = w.metal_ms = w.coat = 0.0f;
     float3 e = has_layer(b) ? layer_albedo(b, cos_o) : (float3)(0.0f);
     if (mask & LOBE_DIFFUSE) w.diffuse = b->dielectric * mean3(b->base * (1.0f - e));
     if (HAS_SPECULAR_LAYER && (mask & LOBE_SPECULAR)) w.layer = b->dielectric * mean3(e);
@@ -282,7 +316,17 @@ LobeWeights lobe_weights(const Bsdf* b, float cos_o, uint mask) {
             if (1.0f - a_avg > 1e-6f) w.metal_ms = b->metal * mean3(metal_ms_color(b, a_avg)) * (1.0f - a_o);
         }
     }
-    w.total = w.diffuse + w.layer + w.glass + w.metal + w.metal_ms;
+    if (has_coat(b)) { /* the coat's albedo at wo, and what it leaves of the rest */
+        float e = b->coat * coat_albedo(b, dot(b->nc, wo));
+        float rest = 1.0f - e;
+        w.diffuse *= rest;
+        w.layer *= rest;
+        w.glass *= rest;
+        w.metal *= rest;
+        w.metal_ms *= rest;
+        if (mask & LOBE_COAT) w.coat = e;
+    }
+    w.total = w.diffuse + w.layer + w.glass + w.metal + w.metal_ms + w.coat;
     return w;
 }
 
@@ -295,9 +339,8 @@ bool bsdf_smooth_side(const Bsdf* b, float3 wi) {
     return !HAS_NORMAL_MAPS || (dot(wi, b->nl) > 0.0f) == (dot(wi, b->ns) > 0.0f);
 }
 
-/* f(wo, wi) of the non-delta part of the lobes in mask; zero for wi below the surface. */
-float3 bsdf_eval(const Bsdf* b, float3 wo, float3 wi, uint mask) {
-    if (!bsdf_smooth_side(b, wi)) return (float3)(0.0f);
+/* f(wo, wi) of the non-delta part of the lobes under the coat in mask. */
+float3 bsdf_eval_under(const Bsdf* b, float3 wo, float3 wi, uint mask) {
     float cos_o = dot(b->ns, wo), cos_i = dot(b->ns, wi);
     float3 f = (float3)(0.0f);
     if (HAS_ROUGH_GLASS && (mask & LOBE_GLASS) && b->glass > 0.0f && glass_is_rough(b)) {
@@ -320,6 +363,20 @@ float3 bsdf_eval(const Bsdf* b, float3 wo, float3 wi, uint mask) {
     return f;
 }
 
+/* f(wo, wi) of the non-delta part of the lobes in mask; zero for wi below the surface. */
+float3 bsdf_eval(const Bsdf* b, float3 wo, float3 wi, uint mask) {
+    if (!bsdf_smooth_side(b, wi)) return (float3)(0.0f);
+    float3 f = bsdf_eval_under(b, wo, wi, mask);
+    if (!has_coat(b)) return f;
+    f *= coat_scale(b, wo, wi);
+    if ((mask & LOBE_COAT) && !coat_is_mirror(b) && dot(b->ns, wi) > 0.0f) {
+        float cos_d;
+        float g = ggx_reflection(b->nc, wo, wi, b->coat_alpha, &cos_d);
+        f += b->coat * (COAT_F0 + (1.0f - COAT_F0) * pow5(1.0f - cos_d)) * g;
+    }
+    return f;
+}
+
 /* The density bsdf_sample draws a non-delta wi with, given the selection weights w. */
 float bsdf_pdf_weighted(const Bsdf* b, float3 wo, float3 wi, const LobeWeights* w) {
     if (!bsdf_smooth_side(b, wi)) return 0.0f;
@@ -331,6 +388,7 @@ float bsdf_pdf_weighted(const Bsdf* b, float3 wo, float3 wi, const LobeWeights* 
         p *= w->glass;
     }
     if (cos_i <= 0.0f) return p / w->total;
+    if (w->coat > 0.0f && !coat_is_mirror(b)) p += w->coat * ggx_pdf(b->nc, wo, wi, b->coat_alpha);
     p += (w->diffuse + w->metal_ms) * cos_i * INV_PI_F;
     if (!bsdf_is_mirror(b) && w->layer + w->metal > 0.0f) p += (w->layer + w->metal) * ggx_pdf(b->ns, wo, wi, b->alpha);
     return p / w->total;
@@ -343,7 +401,7 @@ float bsdf_pdf(const Bsdf* b, float3 wo, float3 wi, uint mask) {
                    ? cos_i * INV_PI_F
                    : 0.0f;
     }
-    LobeWeights w = lobe_weights(b, dot(b->ns, wo), mask);
+    LobeWeights w = lobe_weights(b, wo, mask);
     return bsdf_pdf_weighted(b, wo, wi, &w);
 }
 
@@ -366,7 +424,7 @@ bool bsdf_sample_lobes(const Bsdf* b, float3 wo, uint mask, float u_lobe, float 
         s->weight = b->base * b->dielectric;
         return true;
     }
-    LobeWeights w = lobe_weights(b, cos_o, mask);
+    LobeWeights w = lobe_weights(b, wo, mask);
     float total = w.total;
     if (!(total > 0.0f)) return false;
     /* The technique, and u_lobe rescaled to [0, 1) within it (glass's reflect-or-refract choice):
@@ -386,6 +444,7 @@ bool bsdf_sample_lobes(const Bsdf* b, float3 wo, uint mask, float u_lobe, float 
     CLPPM_PICK(glass, TECH_GLASS)
     CLPPM_PICK(metal, TECH_METAL)
     CLPPM_PICK(metal_ms, TECH_METAL_MS)
+    CLPPM_PICK(coat, TECH_COAT)
 #undef CLPPM_PICK
     if (!found) acc -= wt; /* u rounded past the end: the last technique */
     float u_in = clamp((u - acc) / wt, 0.0f, 0.99999994f);
@@ -398,13 +457,13 @@ bool bsdf_sample_lobes(const Bsdf* b, float3 wo, uint mask, float u_lobe, float 
         s->delta = true;
         if (u_in < F) {
             s->wi = bsdf_mirror(b, wo);
-            s->weight = (float3)(b->glass / p_tech);
+            s->weight = (float3)(b->glass * coat_scale(b, wo, s->wi) / p_tech);
             return true;
         }
         s->wi = b->thin ? -wo : refract_dir(-wo, b->ns, b->eta);
         if (dot(s->wi, b->ng) >= 0.0f) return false;
         s->below = true;
-        s->weight = b->base * (b->glass / p_tech);
+        s->weight = b->base * (b->glass * coat_scale(b, wo, s->wi) / p_tech);
         return true;
     }
     if (mirror && (tech == TECH_LAYER || tech == TECH_METAL)) {
@@ -412,7 +471,15 @@ bool bsdf_sample_lobes(const Bsdf* b, float3 wo, uint mask, float u_lobe, float 
         s->wi = bsdf_mirror(b, wo);
         float3 F = tech == TECH_LAYER ? (b->f0 + (b->f90 - b->f0) * pow5(1.0f - cos_o)) * b->dielectric
                                       : metal_fresnel(b, cos_o) * b->metal;
-        s->weight = F / p_tech;
+        s->weight = F * coat_scale(b, wo, s->wi) / p_tech;
+        return true;
+    }
+    if (tech == TECH_COAT && coat_is_mirror(b)) { /* a smooth coat: its mirror, Fresnel at the view */
+        s->delta = true;
+        s->wi = reflect_dir(-wo, b->nc);
+        if (dot(s->wi, b->ng) <= 0.0f || dot(s->wi, b->ns) <= 0.0f) return false;
+        float cos_c = clamp(dot(b->nc, wo), 0.0f, 1.0f);
+        s->weight = (float3)(b->coat * (COAT_F0 + (1.0f - COAT_F0) * pow5(1.0f - cos_c)) / p_tech);
         return true;
     }
     if (rough_glass) {
@@ -427,13 +494,16 @@ bool bsdf_sample_lobes(const Bsdf* b, float3 wo, uint mask, float u_lobe, float 
         }
     } else if (tech == TECH_DIFFUSE || tech == TECH_METAL_MS) {
         s->wi = sample_cosine_hemisphere(b->ns, u1, u2);
+    } else if (tech == TECH_COAT) {
+        float3 h = ggx_sample_h(b->nc, wo, b->coat_alpha, u1, u2);
+        s->wi = normalize(2.0f * dot(wo, h) * h - wo);
     } else {
         float3 h = ggx_sample_h(b->ns, wo, b->alpha, u1, u2);
         s->wi = normalize(2.0f * dot(wo, h) * h - wo);
     }
     float cos_i = dot(b->ns, s->wi);
     if (cos_i <= 0.0f || dot(s->wi, b->ng) <= 0.0f) return false;
-    if (!HAS_NON_DIFFUSE || (mask & ~LOBE_DIFFUSE) == 0u || total == w.diffuse) {
+    if (!HAS_NON_DIFFUSE || (!has_coat(b) && ((mask & ~LOBE_DIFFUSE) == 0u || total == w.diffuse))) {
         /* Only the diffuse lobe: f cos / pdf in closed form (exactly the base colour when the
          * surface is plain Lambertian). */
         s->pdf = cos_i * INV_PI_F;
@@ -460,12 +530,14 @@ float bsdf_pdf_rev(const Bsdf* b, float3 wo, float3 wi, uint mask) {
     f.ns = -b->ns;
     f.ng = -b->ng;
     f.nl = -b->nl;
+    f.nc = -b->nc;
     if (!b->thin) f.eta = 1.0f / b->eta;
     return bsdf_pdf(&f, wi, wo, mask);
 }
 
 /* Whether a lobe other than a delta one exists here: what a connection or a merge can evaluate. */
 bool bsdf_has_nondelta(const Bsdf* b) {
+    if (has_coat(b) && !coat_is_mirror(b)) return true;
     if (b->dielectric > 0.0f && max3(b->base) > 0.0f) return true;
     if (!bsdf_is_mirror(b) && (has_layer(b) || (HAS_METAL && b->metal > 0.0f))) return true;
     return HAS_ROUGH_GLASS && b->glass > 0.0f && glass_is_rough(b);
@@ -485,8 +557,15 @@ uint bsdf_gathered_lobes(float alpha) {
     return alpha >= GLOSSY_HITPOINT_ALPHA ? (LOBE_DIFFUSE | LOBE_SPECULAR | LOBE_METAL) : LOBE_DIFFUSE;
 }
 
+/* The same for a whole BSDF: the coat too when it is rough enough. */
+uint bsdf_gathered(const Bsdf* b) {
+    uint lobes = bsdf_gathered_lobes(b->alpha);
+    return has_coat(b) && b->coat_alpha >= GLOSSY_HITPOINT_ALPHA ? lobes | LOBE_COAT : lobes;
+}
+
 /* Whether the surface has a lobe hit points keep (photons are stored there). */
 bool bsdf_has_gathered(const Bsdf* b) {
+    if (has_coat(b) && b->coat_alpha >= GLOSSY_HITPOINT_ALPHA) return true;
     if (b->dielectric > 0.0f && (max3(b->base) > 0.0f || has_layer(b))) return true;
     return HAS_METAL && b->metal > 0.0f && b->alpha >= GLOSSY_HITPOINT_ALPHA;
 }
@@ -530,7 +609,17 @@ Bsdf surface_bsdf(SCENE_PARAMS, const Surface* s) {
     b.eta = s->front || b.thin ? m->ior : 1.0f / m->ior;
     b.front = s->front;
     b.sigma = HAS_VOLUME ? load3g(m->attenuation) : (float3)(0.0f);
-    if (surface_is_unlit(SCENE_ARGS, s)) b.dielectric = b.glass = b.metal = 0.0f;
+    b.nc = s->nc;
+    b.coat = HAS_CLEARCOAT ? m->clearcoat : 0.0f;
+    b.coat_alpha = 0.0f;
+    if (HAS_CLEARCOAT && b.coat > 0.0f) { /* clearcoatTexture's R, clearcoatRoughnessTexture's G */
+        float cr = m->clearcoat_roughness;
+        if (HAS_TEXTURES && m->clearcoat_tex >= 0) b.coat *= texture_lookup(SCENE_ARGS, m->clearcoat_tex, s->uv).x;
+        if (HAS_TEXTURES && m->clearcoat_roughness_tex >= 0)
+            cr *= texture_lookup(SCENE_ARGS, m->clearcoat_roughness_tex, s->uv).y;
+        b.coat_alpha = cr * cr;
+    }
+    if (surface_is_unlit(SCENE_ARGS, s)) b.dielectric = b.glass = b.metal = b.coat = 0.0f;
     return b;
 }
 

@@ -70,7 +70,7 @@ Branch ray_branch(float3 weight, float3 dir, bool below) {
 /* The lobes the eye path samples through with one ray (and lights by next-event estimation):
  * the reflection lobes hit points do not keep, and rough glass; smooth glass branches apart. */
 uint eye_followed_lobes(const Bsdf* bsdf) {
-    uint followed = LOBE_ALL & ~bsdf_gathered_lobes(bsdf->alpha);
+    uint followed = LOBE_ALL & ~bsdf_gathered(bsdf);
     return glass_is_rough(bsdf) ? followed : followed & ~LOBE_GLASS;
 }
 
@@ -89,8 +89,8 @@ uint surface_branches(const Bsdf* bsdf, float3 wo, float3 weight, Rng* rng, Bran
         return 1;
     }
     float cos_o = dot(bsdf->ns, wo);
-    uint gathered = bsdf_gathered_lobes(bsdf->alpha);
-    float kept = lobe_weights(bsdf, cos_o, gathered).total;
+    uint gathered = bsdf_gathered(bsdf);
+    float kept = lobe_weights(bsdf, wo, gathered).total;
     if (kept > 0.0f) {
         Branch b = no_branch();
         b.weight = weight;
@@ -100,7 +100,7 @@ uint surface_branches(const Bsdf* bsdf, float3 wo, float3 weight, Rng* rng, Bran
     }
     if (!HAS_NON_DIFFUSE) return n;
     uint followed = eye_followed_lobes(bsdf);
-    if (lobe_weights(bsdf, cos_o, followed).total > 0.0f) {
+    if (lobe_weights(bsdf, wo, followed).total > 0.0f) {
         BsdfSample s;
         float u0 = rng_float(rng), u1 = rng_float(rng), u2 = rng_float(rng);
         if (bsdf_sample(bsdf, wo, followed, u0, u1, u2, &s)) {
@@ -111,11 +111,13 @@ uint surface_branches(const Bsdf* bsdf, float3 wo, float3 weight, Rng* rng, Bran
     }
     if (HAS_GLASS && bsdf->glass > 0.0f && !glass_is_rough(bsdf)) {
         float F = fresnel_dielectric(cos_o, bsdf->eta);
-        br[n++] = ray_branch(weight * (bsdf->glass * F), bsdf_mirror(bsdf, wo), false);
+        float3 r = bsdf_mirror(bsdf, wo);
+        br[n++] = ray_branch(weight * (bsdf->glass * F * coat_scale(bsdf, wo, r)), r, false);
         if (F < 1.0f) {
             float3 t = bsdf->thin ? -wo : refract_dir(-wo, bsdf->ns, bsdf->eta);
             if (dot(t, bsdf->ng) < 0.0f)
-                br[n++] = ray_branch(weight * bsdf->base * (bsdf->glass * (1.0f - F)), t, true);
+                br[n++] = ray_branch(weight * bsdf->base * (bsdf->glass * (1.0f - F) * coat_scale(bsdf, wo, t)), t,
+                                     true);
         }
     }
     return n;
@@ -168,9 +170,9 @@ __kernel void eye_pass(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong p
         Bsdf bsdf = surface_bsdf(SCENE_ARGS, &sf);
         /* The lobes the eye path samples through see the lights directly too (with MIS): no hit
          * point gathers their direct light, and a sampled ray never finds a punctual light. */
-        if (!bsdf_plain_lambert(&bsdf) && !bsdf_is_mirror(&bsdf)) {
+        if (!bsdf_plain_lambert(&bsdf) && (!bsdf_is_mirror(&bsdf) || (has_coat(&bsdf) && !coat_is_mirror(&bsdf)))) {
             uint followed = eye_followed_lobes(&bsdf);
-            if (lobe_weights(&bsdf, dot(bsdf.ns, -r.dir), followed).total > 0.0f)
+            if (lobe_weights(&bsdf, -r.dir, followed).total > 0.0f)
                 emitted += r.weight * next_event(SCENE_ARGS, &bsdf, sf.p, -r.dir, followed, &rng);
         }
         Branch br[MAX_BRANCHES];

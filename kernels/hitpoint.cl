@@ -30,6 +30,9 @@ void store_hitpoint(__global HitPoint* hp, uint pixel, float3 p, float3 wo, floa
     hp->ng_oct = oct_encode(b->ng);
     hp->wo_oct = oct_encode(wo);
     hp->nl_oct = oct_encode(b->nl);
+    hp->coat = HAS_CLEARCOAT ? b->coat : 0.0f;
+    hp->coat_alpha = b->coat_alpha;
+    hp->nc_oct = oct_encode(b->nc);
     hp->pixel = pixel;
 }
 
@@ -50,6 +53,9 @@ Bsdf hitpoint_bsdf(__global const HitPoint* hp, float3 n) {
     b.thin = false;
     b.front = true;
     b.sigma = (float3)(0.0f);
+    b.coat = HAS_CLEARCOAT ? hp->coat : 0.0f;
+    b.coat_alpha = hp->coat_alpha;
+    b.nc = HAS_CLEARCOAT ? oct_decode(hp->nc_oct) : n;
     return b;
 }
 
@@ -68,7 +74,7 @@ HitBrdf hitpoint_brdf_make(__global const HitPoint* hp, float3 n) {
     HitBrdf h;
     h.b = hitpoint_bsdf(hp, n);
     h.wo = HAS_NON_DIFFUSE ? oct_decode(hp->wo_oct) : n; /* Lambertian ignores wo */
-    h.lobes = bsdf_gathered_lobes(h.b.alpha);
+    h.lobes = bsdf_gathered(&h.b);
     h.lambert = bsdf_plain_lambert(&h.b);
     h.f_lambert = h.b.base * (h.b.dielectric * INV_PI_F);
     return h;

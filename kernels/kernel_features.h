@@ -27,7 +27,8 @@
     X(HAS_ENV_LIGHT, env_light, "environment light")                                                                   \
     X(HAS_THIN_LENS, thin_lens, "thin lens")                                                                           \
     X(HAS_EMISSION_SPREAD, emission_spread, "emission spread")                                                        \
-    X(HAS_UNLIT, unlit, "unlit materials")
+    X(HAS_UNLIT, unlit, "unlit materials")                                                                            \
+    X(HAS_CLEARCOAT, clearcoat, "clearcoat")
 
 #ifdef __OPENCL_VERSION__
 
@@ -76,6 +77,9 @@
 #ifndef HAS_EMISSION_SPREAD
 #define HAS_EMISSION_SPREAD 1
 #endif
+#ifndef HAS_CLEARCOAT
+#define HAS_CLEARCOAT 1
+#endif
 #ifndef HAS_UNLIT
 #define HAS_UNLIT 1
 #endif
@@ -89,7 +93,7 @@ enum { CLPPM_FEATURES_WITH_DEFAULTS = 0 CLPPM_KERNEL_FEATURES(CLPPM_FEATURE_TERM
 #undef CLPPM_FEATURE_TERM
 
 /* Any surface that is not Lambertian. */
-#define HAS_NON_DIFFUSE (HAS_SPECULAR_LAYER || HAS_METAL || HAS_GLASS)
+#define HAS_NON_DIFFUSE (HAS_SPECULAR_LAYER || HAS_METAL || HAS_GLASS || HAS_CLEARCOAT)
 
 #endif /* __OPENCL_VERSION__ */
 

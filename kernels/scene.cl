@@ -24,6 +24,7 @@ typedef struct {
     float3 ng; /* geometric normal, on the side the ray came from */
     float3 ns; /* shading normal, on the same side */
     float3 nl; /* the smooth normal: ns before the normal map (= ns without one), same side */
+    float3 nc; /* KHR_materials_clearcoat: the coat's normal (its own map's, else nl), same side */
     float4 uv; /* xy: TEXCOORD_0, zw: TEXCOORD_1 (= TEXCOORD_0 when the scene has none) */
     uint material;
     uint prim;
@@ -53,16 +54,17 @@ float3 texture_lookup(SCENE_PARAMS, int index, float4 uv);
 /* glTF normalTexture (Sec. 3.9.3): the map's normal, (texel * 2 - 1) with x and y times scale,
  * in the frame (t, b, n) of triangle prim at barycentrics (b1, b2): n the interpolated shading
  * normal, t the interpolated tangent made orthogonal to n, b = cross(n, t) w. A corner without
- * a tangent (zero) leaves n as it is. */
-float3 normal_mapped(SCENE_PARAMS, __global const Material* m, uint prim, float b1, float b2, float3 n, float4 uv) {
+ * a tangent (zero) leaves n as it is. tex and scale: the material's normalTexture, or its
+ * clearcoatNormalTexture. */
+float3 normal_mapped(SCENE_PARAMS, int tex, float scale, uint prim, float b1, float b2, float3 n, float4 uv) {
     float4 t4 = tangents[3 * prim] * (1.0f - b1 - b2) + tangents[3 * prim + 1] * b1 + tangents[3 * prim + 2] * b2;
     float3 t = t4.xyz - n * dot(n, t4.xyz);
     float len = length(t);
     if (!(len > 1e-12f)) return n;
     t /= len;
     float3 b = cross(n, t) * (t4.w < 0.0f ? -1.0f : 1.0f);
-    float3 c = texture_lookup(SCENE_ARGS, m->normal_tex, uv) * 2.0f - 1.0f;
-    float3 v = t * (c.x * m->normal_scale) + b * (c.y * m->normal_scale) + n * c.z;
+    float3 c = texture_lookup(SCENE_ARGS, tex, uv) * 2.0f - 1.0f;
+    float3 v = t * (c.x * scale) + b * (c.y * scale) + n * c.z;
     float l = length(v);
     return (l > 1e-12f && isfinite(l)) ? v / l : n;
 }
@@ -98,20 +100,27 @@ Surface make_surface(SCENE_PARAMS, float3 dir, const Hit* h) {
                   ? colors[3 * prim] * b0 + colors[3 * prim + 1] * b1 + colors[3 * prim + 2] * b2
                   : (float4)(1.0f);
     float3 nl = ns;
-    if (HAS_NORMAL_MAPS && materials[s.material].normal_tex >= 0)
-        ns = normal_mapped(SCENE_ARGS, &materials[s.material], prim, b1, b2, ns, s.uv);
+    __global const Material* m = &materials[s.material];
+    float3 nc = nl;
+    if (HAS_CLEARCOAT && HAS_NORMAL_MAPS && m->clearcoat > 0.0f && m->clearcoat_normal_tex >= 0)
+        nc = normal_mapped(SCENE_ARGS, m->clearcoat_normal_tex, m->clearcoat_normal_scale, prim, b1, b2, nl, s.uv);
+    if (HAS_NORMAL_MAPS && m->normal_tex >= 0)
+        ns = normal_mapped(SCENE_ARGS, m->normal_tex, m->normal_scale, prim, b1, b2, ns, s.uv);
     s.front = dot(ng, dir) < 0.0f;
     if (!s.front) {
         ng = -ng;
         ns = -ns;
         nl = -nl;
+        nc = -nc;
     }
     /* An interpolated normal facing away from the ray would make shading inconsistent. */
     if (dot(ns, dir) >= 0.0f) ns = ng;
     if (dot(nl, dir) >= 0.0f) nl = ng;
+    if (dot(nc, dir) >= 0.0f) nc = ng;
     s.ng = ng;
     s.ns = ns;
     s.nl = HAS_NORMAL_MAPS ? nl : ns;
+    s.nc = HAS_CLEARCOAT ? nc : s.nl;
     return s;
 }
 

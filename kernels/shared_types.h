@@ -104,7 +104,15 @@ typedef struct {
     i32 specular_tex;           /* KHR_materials_specular specularTexture (linear, A); -1 when none */
     i32 specular_color_tex;     /* specularColorTexture (sRGB, RGB); -1 when none */
     float emission_spread;      /* tan of half an area light's spread (kernels/scene.cl); 0: Lambertian */
-} Material;                     /* 128 bytes */
+    /* KHR_materials_clearcoat (kernels/bsdf.cl): a GGX coat of ior 1.5 over the rest */
+    float clearcoat;               /* clearcoatFactor */
+    float clearcoat_roughness;     /* clearcoatRoughnessFactor */
+    i32 clearcoat_tex;             /* clearcoatTexture (linear, R scales the factor); -1 when none */
+    i32 clearcoat_roughness_tex;   /* clearcoatRoughnessTexture (linear, G); -1 when none */
+    i32 clearcoat_normal_tex;      /* clearcoatNormalTexture; -1: the coat follows the smooth normal */
+    float clearcoat_normal_scale;  /* its scale */
+    float pad_coat[2];
+} Material;                        /* 160 bytes */
 
 /* Sampler bits of a texture. Wrap per axis (glTF sampler wrapS, wrapT): clamp s, clamp t, mirror
  * s, mirror t; none set is REPEAT. TEXTURE_NEAREST: magFilter NEAREST, the texel the coordinate
@@ -202,7 +210,10 @@ typedef struct {
     u32 ng_oct;       /* geometric normal, same side (shadow-ray offsets) */
     u32 wo_oct;       /* unit direction back along the eye path */
     u32 nl_oct;       /* smooth normal (before any normal map), same side */
-} HitPoint;           /* 88 bytes */
+    float coat;       /* KHR_materials_clearcoat: the coat's weight (0: none) */
+    float coat_alpha; /* its GGX alpha */
+    u32 nc_oct;       /* its normal, same side */
+} HitPoint;           /* 100 bytes */
 
 #define HITPOINT_NONE 0xffffffffu
 

@@ -47,8 +47,8 @@ __kernel void ggx_sample_many(float nx, float ny, float nz, float ox, float oy, 
     o[0] = wi.x; o[1] = wi.y; o[2] = wi.z; o[3] = w.x;
     o[4] = f.x * fmax(0.0f, dot(n, wi)); o[5] = pdf;
 }
-/* The whole model (kernels/bsdf.cl) from 12 parameters: base rgb, f0 rgb, f90, alpha, dielectric,
- * glass, metal, eta; the shading and geometric normal are n. */
+/* The whole model (kernels/bsdf.cl) from 15 parameters: base rgb, f0 rgb, f90, alpha, dielectric,
+ * glass, metal, eta, thin, coat, coat alpha; the shading, geometric and coat normal are n. */
 Bsdf test_bsdf(__global const float* p, float3 n) {
     Bsdf b;
     b.ns = n;
@@ -65,6 +65,9 @@ Bsdf test_bsdf(__global const float* p, float3 n) {
     b.thin = p[12] != 0.0f;
     b.front = true;
     b.sigma = (float3)(0.0f);
+    b.nc = n;
+    b.coat = p[13];
+    b.coat_alpha = p[14];
     return b;
 }
 /* bsdf_eval (rgb) and bsdf_pdf at (wo, wi[i]) over the lobes in mask. */
@@ -164,21 +167,24 @@ inline std::vector<float> uniforms(size_t n, uint64_t seed) {
 
 // ---- the whole model (kernels/bsdf.cl) through the wrappers above ----
 
-constexpr unsigned kDiffuse = 1, kSpecular = 2, kGlass = 4, kMetal = 8, kAll = 15;
+constexpr unsigned kDiffuse = 1, kSpecular = 2, kGlass = 4, kMetal = 8, kCoat = 16, kAll = 31;
 
 struct Params {
     D3 base{1, 1, 1}, f0{0.04, 0.04, 0.04};
     double f90 = 1, alpha = 0.25, dielectric = 1, glass = 0, metal = 0, eta = 1.5;
     bool thin = false;
+    double coat = 0, coat_alpha = 0; // KHR_materials_clearcoat, on the same normal
     std::vector<float> pack() const {
-        return {float(base.x), float(base.y),     float(base.z), float(f0.x),  float(f0.y), float(f0.z),     float(f90),
-                float(alpha),  float(dielectric), float(glass),  float(metal), float(eta),  thin ? 1.f : 0.f};
+        return {float(base.x),     float(base.y),       float(base.z), float(f0.x),  float(f0.y),
+                float(f0.z),       float(f90),          float(alpha),  float(dielectric), float(glass),
+                float(metal),      float(eta),          thin ? 1.f : 0.f, float(coat), float(coat_alpha)};
     }
     std::string name() const {
         return "base (" + std::to_string(base.x) + "," + std::to_string(base.y) + "," + std::to_string(base.z) +
                ") alpha " + std::to_string(alpha) + " dielectric " + std::to_string(dielectric) + " metal " +
                std::to_string(metal) + " glass " + std::to_string(glass) + " eta " + std::to_string(eta) +
-               (thin ? " thin" : "") + " f90 " + std::to_string(f90);
+               (thin ? " thin" : "") + " f90 " + std::to_string(f90) +
+               (coat > 0 ? " coat " + std::to_string(coat) + " alpha " + std::to_string(coat_alpha) : "");
     }
 };
 

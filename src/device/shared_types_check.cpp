@@ -21,7 +21,10 @@ CLPPM_CHECK_SIZE(BvhTriBlock, 40 * BVH_TRI_BLOCK);
 CLPPM_CHECK_OFFSET(BvhTriBlock, prim, 36 * BVH_TRI_BLOCK);
 static_assert(BVH_WIDTH == 4 || BVH_WIDTH == 8, "bvh_traverse.cl has float4 and float8 node tests");
 
-CLPPM_CHECK_SIZE(Material, 128);
+CLPPM_CHECK_SIZE(Material, 160);
+CLPPM_CHECK_OFFSET(Material, emission_spread, 124);
+CLPPM_CHECK_OFFSET(Material, clearcoat, 128);
+CLPPM_CHECK_OFFSET(Material, clearcoat_normal_scale, 148);
 CLPPM_CHECK_OFFSET(Material, emission, 16);
 CLPPM_CHECK_OFFSET(Material, specular_color, 32);
 CLPPM_CHECK_OFFSET(Material, metallic, 48);
@@ -57,7 +60,9 @@ CLPPM_CHECK_OFFSET(SceneInfo, max_bounces, 40);
 CLPPM_CHECK_OFFSET(SceneInfo, vertex_colors, 44);
 CLPPM_CHECK_OFFSET(SceneInfo, texcoord1, 48);
 
-CLPPM_CHECK_SIZE(HitPoint, 88);
+CLPPM_CHECK_SIZE(HitPoint, 100);
+CLPPM_CHECK_OFFSET(HitPoint, coat, 88);
+CLPPM_CHECK_OFFSET(HitPoint, nc_oct, 96);
 CLPPM_CHECK_OFFSET(HitPoint, pixel, 12);
 CLPPM_CHECK_OFFSET(HitPoint, weight, 16);
 CLPPM_CHECK_OFFSET(HitPoint, footprint, 28);

@@ -30,6 +30,10 @@ SceneFeatures scene_features(const Scene& scene, const DeviceScene& ds) {
         if (m.transmission_tex >= 0 || m.specular_tex >= 0 || m.specular_color_tex >= 0) f.textures = true;
         if (m.emission_spread > 0.f) f.emission_spread = true;
         if (m.flags & MATERIAL_FLAG_UNLIT) f.unlit = true;
+        if (m.clearcoat > 0.f) f.clearcoat = true;
+        if (m.clearcoat > 0.f && (m.clearcoat_tex >= 0 || m.clearcoat_roughness_tex >= 0)) f.textures = true;
+        if (m.clearcoat > 0.f && m.clearcoat_normal_tex >= 0 && !scene.tangents.empty())
+            f.textures = f.normal_maps = true;
     }
     f.vertex_colors = !scene.colors.empty();
     for (const dev::Light& l : ds.lights) {

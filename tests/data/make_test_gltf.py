@@ -725,6 +725,38 @@ def unlit():
         b.write_embedded(out(name))
 
 
+def clearcoat():
+    """KHR_materials_clearcoat: a plate facing the camera (yfov 0.1, so views within 3 degrees of
+    the normal) of a black base without specular layer under a full coat, in a uniform white
+    world of radiance 1: what it shows is the coat's directional albedo, exactly 0.04 (Schlick at
+    normal incidence) for coat_plate.gltf (smooth) and the GGX layer's for coat_rough_plate.gltf
+    (clearcoatRoughnessFactor 0.5). coat_textured.gltf: factors and textures of every kind, for
+    the loader."""
+    for name, rough in (("coat_plate.gltf", 0.0), ("coat_rough_plate.gltf", 0.5)):
+        b = GltfBuilder("clppm tests/data/make_test_gltf.py")
+        plate = b.material("plate", (0.0, 0.0, 0.0), specular=0.0,
+                           extensions={"KHR_materials_clearcoat": {"clearcoatFactor": 1.0,
+                                                                   "clearcoatRoughnessFactor": rough}})
+        p = b.primitive([(-1, -1, 0), (1, -1, 0), (1, 1, 0), (-1, 1, 0)], [0, 1, 2, 0, 2, 3], [(0, 0, 1)] * 4,
+                        material=plate)
+        b.scene([b.node(name="plate", mesh=b.mesh([p])),
+                 b.node(name="camera", camera=b.camera(0.1), translation=[0.0, 0.0, 3.0])])
+        b.world(color=(1.0, 1.0, 1.0))
+        b.write_embedded(out(name))
+    b = GltfBuilder("clppm tests/data/make_test_gltf.py")
+    png = png_rgba([[(128, 64, 0, 255)] * 2] * 2)
+    b.doc["images"] = [{"uri": "data:image/png;base64," + base64.b64encode(png).decode("ascii")}]
+    b.doc["textures"] = [{"source": 0}]
+    coat = {"clearcoatFactor": 0.8, "clearcoatRoughnessFactor": 0.3, "clearcoatTexture": {"index": 0},
+            "clearcoatRoughnessTexture": {"index": 0}, "clearcoatNormalTexture": {"index": 0, "scale": 0.5}}
+    plate = b.material("plate", (0.5, 0.5, 0.5), extensions={"KHR_materials_clearcoat": coat})
+    p = b.primitive([(-1, -1, 0), (1, -1, 0), (1, 1, 0), (-1, 1, 0)], [0, 1, 2, 0, 2, 3], [(0, 0, 1)] * 4,
+                    material=plate)
+    p["attributes"]["TEXCOORD_0"] = b.accessor([0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 1.0], FLOAT, "VEC2", ARRAY_BUFFER)
+    b.scene([b.node(name="plate", mesh=b.mesh([p]))])
+    b.write_embedded(out("coat_textured.gltf"))
+
+
 def reference_scenes():
     """Scenes with images from an independent renderer (tests/references/make_references.py,
     Mitsuba 3): a glass block on a floor before a wall, a red box half behind it, under a 1 x 1
@@ -1000,7 +1032,7 @@ def main():
                  materials, texture, lights, cameras, quantized, sparse, strips_fans, gpu_instancing, emissive_texture,
                  normal_maps, vertex_colors, alpha_modes,
                  texture_transform, uv1_plates, volumes, skinned,
-                 specular_textures, unlit, reference_scenes, environment_scenes, spread_light, errors):
+                 specular_textures, unlit, clearcoat, reference_scenes, environment_scenes, spread_light, errors):
         make()
 
 

@@ -50,6 +50,8 @@ dev::Material default_material() {
     m.alpha_cutoff = 0.5f;
     m.transmission_tex = -1;
     m.specular_tex = m.specular_color_tex = -1;
+    m.clearcoat_tex = m.clearcoat_roughness_tex = m.clearcoat_normal_tex = -1;
+    m.clearcoat_normal_scale = 1.f;
     return m;
 }
 
@@ -127,6 +129,7 @@ dev::Material MaterialConverter::convert_material(int index) {
     convert_alpha(g, label, m);
     convert_volume(g, label, m);
     convert_specular(g, label, m);
+    convert_clearcoat(g, label, m);
     if (g.doubleSided) m.flags |= MATERIAL_FLAG_DOUBLE_SIDED;
     if (g.extensions.count("KHR_materials_unlit")) convert_unlit(m);
     return m;
@@ -142,8 +145,39 @@ void MaterialConverter::convert_unlit(dev::Material& m) {
     m.transmission = 0.f;
     m.specular_color[3] = 0.f;
     m.metallic_roughness_tex = m.normal_tex = m.transmission_tex = m.specular_tex = m.specular_color_tex = -1;
+    m.clearcoat = 0.f;
+    m.clearcoat_tex = m.clearcoat_roughness_tex = m.clearcoat_normal_tex = -1;
     for (float& a : m.attenuation) a = 0.f;
     m.flags &= ~MATERIAL_FLAG_THIN_WALLED;
+}
+
+// KHR_materials_clearcoat: clearcoatFactor times clearcoatTexture's R weighs a GGX coat of ior 1.5
+// (F0 0.04) with alpha = (clearcoatRoughnessFactor times clearcoatRoughnessTexture's G)^2 over the
+// rest of the material, on its own normal: clearcoatNormalTexture's, else the smooth surface
+// normal (the base's normal map does not tilt the coat). kernels/bsdf.cl has the layering.
+void MaterialConverter::convert_clearcoat(const tinygltf::Material& g, const std::string& label, dev::Material& m) {
+    m.clearcoat_tex = m.clearcoat_roughness_tex = m.clearcoat_normal_tex = -1;
+    m.clearcoat_normal_scale = 1.f;
+    auto it = g.extensions.find("KHR_materials_clearcoat");
+    if (it == g.extensions.end() || !it->second.IsObject()) return;
+    const char* ext = "KHR_materials_clearcoat";
+    m.clearcoat = std::clamp(
+        finite_factor(extension_number(g.extensions, ext, "clearcoatFactor", 0.0), "clearcoatFactor", label), 0.f,
+        1.f);
+    m.clearcoat_roughness =
+        std::clamp(finite_factor(extension_number(g.extensions, ext, "clearcoatRoughnessFactor", 0.0),
+                                 "clearcoatRoughnessFactor", label),
+                   0.f, 1.f);
+    if (!(m.clearcoat > 0.f)) return;
+    m.clearcoat_tex = extension_texture(g, ext, "clearcoatTexture", label, false);
+    m.clearcoat_roughness_tex = extension_texture(g, ext, "clearcoatRoughnessTexture", label, false);
+    m.clearcoat_normal_tex = extension_texture(g, ext, "clearcoatNormalTexture", label, false);
+    const tinygltf::Value& v = it->second;
+    if (m.clearcoat_normal_tex >= 0 && v.Get("clearcoatNormalTexture").Has("scale")) {
+        const tinygltf::Value& s = v.Get("clearcoatNormalTexture").Get("scale");
+        if (!s.IsNumber()) ctx_.fail(label + " clearcoatNormalTexture scale must be a number");
+        m.clearcoat_normal_scale = finite_factor(s.GetNumberAsDouble(), "clearcoatNormalTexture.scale", label);
+    }
 }
 
 // A textureInfo inside a material extension (tinygltf leaves those as JSON values): -1 without it.

@@ -9,10 +9,17 @@
 
 namespace clppm::gltf {
 
+namespace {
+// A material whose shading reads tangents: a normal map, or a clearcoat's own.
+bool normal_mapped(const dev::Material& m) {
+    return m.normal_tex >= 0 || (m.clearcoat > 0.f && m.clearcoat_normal_tex >= 0);
+}
+} // namespace
+
 void SceneBuilder::build() {
     warn_unsupported_extensions();
     materials_.convert_materials();
-    for (const dev::Material& m : s_.materials) tangents_needed_ = tangents_needed_ || m.normal_tex >= 0;
+    for (const dev::Material& m : s_.materials) tangents_needed_ = tangents_needed_ || normal_mapped(m);
     for (const tinygltf::Mesh& mesh : m_.meshes)
         for (const tinygltf::Primitive& prim : mesh.primitives)
             colors_needed_ = colors_needed_ || prim.attributes.count("COLOR_0");
@@ -370,7 +377,7 @@ void SceneBuilder::add_primitive(const tinygltf::Primitive& prim, const glm::dma
     std::vector<uint32_t> idx = triangle_indices(prim, v.position.size(), label);
     // Tangents per corner: the file's per vertex, else generated where the material needs them.
     std::vector<glm::dvec4> corner_tangents;
-    if (tangents_needed_ && s_.materials[material].normal_tex >= 0) {
+    if (tangents_needed_ && normal_mapped(s_.materials[material])) {
         if (!v.tangent.empty()) {
             corner_tangents.resize(idx.size());
             for (size_t i = 0; i < idx.size(); ++i) corner_tangents[i] = v.tangent[idx[i]];
