@@ -26,6 +26,12 @@
  *    sample's weight is (1 - F) G2 / G1 whichever way light goes and photons and eye paths share
  *    one function; eye paths thereby carry radiance times (eta_light / eta_eye)^2, which is 1
  *    whenever the camera and the lights are both outside every dielectric (README.md).
+ *  - LOBE_SHEEN, KHR_materials_sheen: sheen colour times the Charlie distribution (Estevez and
+ *    Kulla 2017) with Neubelt and Pettineo's visibility, D V / max(1, E_s(wo), E_s(wi)), over the
+ *    lobes above, which it scales by min(1 - max(sheen) E'(wo), 1 - max(sheen) E'(wi)), E_s the
+ *    lobe's directional albedo (kernels/sheen_albedo.h) and E' = min(E_s, 1): the extension's
+ *    albedo scaling, with the lobe kept from exceeding albedo 1 at grazing angles (where the
+ *    smoothest Charlie lobes reach 3.7) so that there is no gain. Sampled by the cosine.
  *  - LOBE_COAT, KHR_materials_clearcoat: a GGX layer of weight coat (clearcoatFactor), its own alpha
  *    and normal nc, Schlick's Fresnel with F0 0.04 (ior 1.5) and F90 1, over all of the above,
  *    which it scales by min(1 - coat E_c(|nc.wo|), 1 - coat E_c(|nc.wi|)), E_c the coat's
@@ -42,6 +48,7 @@
 #include "scene.cl"
 #include "ggx.cl"
 #include "ggx_albedo.h"
+#include "sheen_albedo.h"
 
 /* Reflection lobes at least this rough (GGX alpha = roughness^2) get hit points and are gathered
  * with the BSDF; smoother ones are sampled through by the eye pass, where a density estimate
@@ -55,7 +62,8 @@
 #define LOBE_GLASS 4u
 #define LOBE_METAL 8u
 #define LOBE_COAT 16u
-#define LOBE_ALL 31u
+#define LOBE_SHEEN 32u
+#define LOBE_ALL 63u
 /* The coat's Schlick F0: ior 1.5, as KHR_materials_clearcoat fixes it. */
 #define COAT_F0 0.04f
 
@@ -73,6 +81,8 @@ typedef struct {
     float3 sigma;                   /* KHR_materials_volume: the mesh's absorption coefficient */
     float3 nc;                      /* LOBE_COAT: the coat's normal, on the side of wo */
     float coat, coat_alpha;         /* LOBE_COAT: weight (0: none) and GGX alpha */
+    float3 sheen;                   /* LOBE_SHEEN: colour (0: none) */
+    float sheen_r;                  /* LOBE_SHEEN: roughness, at least SHEEN_MIN_ROUGHNESS */
 } Bsdf;
 
 typedef struct {
@@ -162,6 +172,43 @@ float coat_scale(const Bsdf* b, float3 wo, float3 wi) {
     float e = fmax(coat_albedo(b, fabs(dot(b->nc, wo))), coat_albedo(b, fabs(dot(b->nc, wi))));
     return fmax(0.0f, 1.0f - b->coat * e);
 }
+
+bool has_sheen(const Bsdf* b) { return HAS_SHEEN && max3(b->sheen) > 0.0f; }
+
+/* E_s(mu): the sheen lobe's directional albedo for colour 1 (bilinear in kernels/sheen_albedo.h). */
+float sheen_albedo_at(const Bsdf* b, float mu) {
+    float x = clamp(mu * (float)SHEEN_ALBEDO_MU - 0.5f, 0.0f, (float)(SHEEN_ALBEDO_MU - 1));
+    float y = clamp((b->sheen_r - SHEEN_MIN_ROUGHNESS) / (1.0f - SHEEN_MIN_ROUGHNESS) * (float)(SHEEN_ALBEDO_R - 1),
+                    0.0f, (float)(SHEEN_ALBEDO_R - 1));
+    int i = min((int)x, SHEEN_ALBEDO_MU - 2), j = min((int)y, SHEEN_ALBEDO_R - 2);
+    float fx = x - (float)i, fy = y - (float)j;
+    __constant float* r0 = sheen_albedo + j * SHEEN_ALBEDO_MU;
+    __constant float* r1 = r0 + SHEEN_ALBEDO_MU;
+    float a = r0[i] + (r0[i + 1] - r0[i]) * fx, c = r1[i] + (r1[i + 1] - r1[i]) * fx;
+    return a + (c - a) * fy;
+}
+
+/* What the sheen leaves of the lobes under it. */
+float sheen_scale(const Bsdf* b, float3 wo, float3 wi) {
+    if (!has_sheen(b)) return 1.0f;
+    float e = fmin(1.0f, fmax(sheen_albedo_at(b, fabs(dot(b->ns, wo))), sheen_albedo_at(b, fabs(dot(b->ns, wi)))));
+    return fmax(0.0f, 1.0f - max3(b->sheen) * e);
+}
+
+/* The sheen lobe at (wo, wi), both above ns. */
+float3 sheen_eval(const Bsdf* b, float3 wo, float3 wi) {
+    float cos_o = dot(b->ns, wo), cos_i = dot(b->ns, wi);
+    if (!(cos_o > 0.0f) || !(cos_i > 0.0f)) return (float3)(0.0f);
+    float3 h = normalize(wo + wi);
+    float ch = dot(b->ns, h), alpha = b->sheen_r * b->sheen_r;
+    float d = (2.0f + 1.0f / alpha) * pow(fmax(0.0f, 1.0f - ch * ch), 0.5f / alpha) * (0.5f * INV_PI_F);
+    float v = 1.0f / (4.0f * (cos_i + cos_o - cos_i * cos_o));
+    float norm = fmax(1.0f, fmax(sheen_albedo_at(b, cos_o), sheen_albedo_at(b, cos_i)));
+    return b->sheen * (d * v / norm);
+}
+
+/* What the coat and the sheen leave of the lobes under both. */
+float layers_scale(const Bsdf* b, float3 wo, float3 wi) { return coat_scale(b, wo, wi) * sheen_scale(b, wo, wi); }
 
 /* E(mu): the dielectric layer's directional albedo (exact Schlick for a mirror). */
 float3 layer_albedo(const Bsdf* b, float mu) {
@@ -253,7 +300,7 @@ bool has_layer(const Bsdf* b) { return HAS_SPECULAR_LAYER && b->dielectric > 0.0
 
 /* Nothing but the Lambertian lobe (no layer, metal or glass): the fast paths below. */
 bool bsdf_plain_lambert(const Bsdf* b) {
-    if (has_coat(b)) return false;
+    if (has_coat(b) || has_sheen(b)) return false;
     if (HAS_METAL && b->metal > 0.0f) return false;
     if (HAS_GLASS && b->glass > 0.0f) return false;
     return !has_layer(b);
@@ -294,15 +341,16 @@ float3 metal_ms_eval(const Bsdf* b, float cos_o, float cos_i) {
 #define TECH_METAL 3
 #define TECH_METAL_MS 4
 #define TECH_COAT 5
+#define TECH_SHEEN 6
 
 typedef struct {
-    float diffuse, layer, glass, metal, metal_ms, coat, total;
+    float diffuse, layer, glass, metal, metal_ms, coat, sheen, total;
 } LobeWeights;
 
 LobeWeights lobe_weights(const Bsdf* b, float3 wo, uint mask) {
     float cos_o = dot(b->ns, wo);
     LobeWeights w;
-    w.diffuse = w.layer = w.glass = w.metal = w.metal_ms = w.coat = 0.0f;
+    w.diffuse = w.layer = w.glass = w.metal = w.metal_ms = w.coat = w.sheen = 0.0f;
     float3 e = has_layer(b) ? layer_albedo(b, cos_o) : (float3)(0.0f);
     if (mask & LOBE_DIFFUSE) w.diffuse = b->dielectric * mean3(b->base * (1.0f - e));
     if (HAS_SPECULAR_LAYER && (mask & LOBE_SPECULAR)) w.layer = b->dielectric * mean3(e);
@@ -316,6 +364,16 @@ LobeWeights lobe_weights(const Bsdf* b, float3 wo, uint mask) {
             if (1.0f - a_avg > 1e-6f) w.metal_ms = b->metal * mean3(metal_ms_color(b, a_avg)) * (1.0f - a_o);
         }
     }
+    if (has_sheen(b)) { /* the sheen's albedo at wo, and what it leaves of the rest */
+        float e = max3(b->sheen) * fmin(1.0f, sheen_albedo_at(b, cos_o));
+        float rest = 1.0f - e;
+        w.diffuse *= rest;
+        w.layer *= rest;
+        w.glass *= rest;
+        w.metal *= rest;
+        w.metal_ms *= rest;
+        if (mask & LOBE_SHEEN) w.sheen = e;
+    }
     if (has_coat(b)) { /* the coat's albedo at wo, and what it leaves of the rest */
         float e = b->coat * coat_albedo(b, dot(b->nc, wo));
         float rest = 1.0f - e;
@@ -324,9 +382,10 @@ LobeWeights lobe_weights(const Bsdf* b, float3 wo, uint mask) {
         w.glass *= rest;
         w.metal *= rest;
         w.metal_ms *= rest;
+        w.sheen *= rest;
         if (mask & LOBE_COAT) w.coat = e;
     }
-    w.total = w.diffuse + w.layer + w.glass + w.metal + w.metal_ms + w.coat;
+    w.total = w.diffuse + w.layer + w.glass + w.metal + w.metal_ms + w.coat + w.sheen;
     return w;
 }
 
@@ -367,6 +426,10 @@ float3 bsdf_eval_under(const Bsdf* b, float3 wo, float3 wi, uint mask) {
 float3 bsdf_eval(const Bsdf* b, float3 wo, float3 wi, uint mask) {
     if (!bsdf_smooth_side(b, wi)) return (float3)(0.0f);
     float3 f = bsdf_eval_under(b, wo, wi, mask);
+    if (has_sheen(b)) {
+        f *= sheen_scale(b, wo, wi);
+        if ((mask & LOBE_SHEEN) && dot(b->ns, wi) > 0.0f) f += sheen_eval(b, wo, wi);
+    }
     if (!has_coat(b)) return f;
     f *= coat_scale(b, wo, wi);
     if ((mask & LOBE_COAT) && !coat_is_mirror(b) && dot(b->ns, wi) > 0.0f) {
@@ -389,7 +452,7 @@ float bsdf_pdf_weighted(const Bsdf* b, float3 wo, float3 wi, const LobeWeights* 
     }
     if (cos_i <= 0.0f) return p / w->total;
     if (w->coat > 0.0f && !coat_is_mirror(b)) p += w->coat * ggx_pdf(b->nc, wo, wi, b->coat_alpha);
-    p += (w->diffuse + w->metal_ms) * cos_i * INV_PI_F;
+    p += (w->diffuse + w->metal_ms + w->sheen) * cos_i * INV_PI_F;
     if (!bsdf_is_mirror(b) && w->layer + w->metal > 0.0f) p += (w->layer + w->metal) * ggx_pdf(b->ns, wo, wi, b->alpha);
     return p / w->total;
 }
@@ -445,6 +508,7 @@ bool bsdf_sample_lobes(const Bsdf* b, float3 wo, uint mask, float u_lobe, float 
     CLPPM_PICK(metal, TECH_METAL)
     CLPPM_PICK(metal_ms, TECH_METAL_MS)
     CLPPM_PICK(coat, TECH_COAT)
+    CLPPM_PICK(sheen, TECH_SHEEN)
 #undef CLPPM_PICK
     if (!found) acc -= wt; /* u rounded past the end: the last technique */
     float u_in = clamp((u - acc) / wt, 0.0f, 0.99999994f);
@@ -457,13 +521,13 @@ bool bsdf_sample_lobes(const Bsdf* b, float3 wo, uint mask, float u_lobe, float 
         s->delta = true;
         if (u_in < F) {
             s->wi = bsdf_mirror(b, wo);
-            s->weight = (float3)(b->glass * coat_scale(b, wo, s->wi) / p_tech);
+            s->weight = (float3)(b->glass * layers_scale(b, wo, s->wi) / p_tech);
             return true;
         }
         s->wi = b->thin ? -wo : refract_dir(-wo, b->ns, b->eta);
         if (dot(s->wi, b->ng) >= 0.0f) return false;
         s->below = true;
-        s->weight = b->base * (b->glass * coat_scale(b, wo, s->wi) / p_tech);
+        s->weight = b->base * (b->glass * layers_scale(b, wo, s->wi) / p_tech);
         return true;
     }
     if (mirror && (tech == TECH_LAYER || tech == TECH_METAL)) {
@@ -471,7 +535,7 @@ bool bsdf_sample_lobes(const Bsdf* b, float3 wo, uint mask, float u_lobe, float 
         s->wi = bsdf_mirror(b, wo);
         float3 F = tech == TECH_LAYER ? (b->f0 + (b->f90 - b->f0) * pow5(1.0f - cos_o)) * b->dielectric
                                       : metal_fresnel(b, cos_o) * b->metal;
-        s->weight = F * coat_scale(b, wo, s->wi) / p_tech;
+        s->weight = F * layers_scale(b, wo, s->wi) / p_tech;
         return true;
     }
     if (tech == TECH_COAT && coat_is_mirror(b)) { /* a smooth coat: its mirror, Fresnel at the view */
@@ -492,7 +556,7 @@ bool bsdf_sample_lobes(const Bsdf* b, float3 wo, uint mask, float u_lobe, float 
             s->weight = bsdf_eval(b, wo, s->wi, mask) * (-cos_t / s->pdf);
             return true;
         }
-    } else if (tech == TECH_DIFFUSE || tech == TECH_METAL_MS) {
+    } else if (tech == TECH_DIFFUSE || tech == TECH_METAL_MS || tech == TECH_SHEEN) {
         s->wi = sample_cosine_hemisphere(b->ns, u1, u2);
     } else if (tech == TECH_COAT) {
         float3 h = ggx_sample_h(b->nc, wo, b->coat_alpha, u1, u2);
@@ -503,7 +567,7 @@ bool bsdf_sample_lobes(const Bsdf* b, float3 wo, uint mask, float u_lobe, float 
     }
     float cos_i = dot(b->ns, s->wi);
     if (cos_i <= 0.0f || dot(s->wi, b->ng) <= 0.0f) return false;
-    if (!HAS_NON_DIFFUSE || (!has_coat(b) && ((mask & ~LOBE_DIFFUSE) == 0u || total == w.diffuse))) {
+    if (!HAS_NON_DIFFUSE || (!has_coat(b) && !has_sheen(b) && ((mask & ~LOBE_DIFFUSE) == 0u || total == w.diffuse))) {
         /* Only the diffuse lobe: f cos / pdf in closed form (exactly the base colour when the
          * surface is plain Lambertian). */
         s->pdf = cos_i * INV_PI_F;
@@ -537,7 +601,7 @@ float bsdf_pdf_rev(const Bsdf* b, float3 wo, float3 wi, uint mask) {
 
 /* Whether a lobe other than a delta one exists here: what a connection or a merge can evaluate. */
 bool bsdf_has_nondelta(const Bsdf* b) {
-    if (has_coat(b) && !coat_is_mirror(b)) return true;
+    if ((has_coat(b) && !coat_is_mirror(b)) || has_sheen(b)) return true;
     if (b->dielectric > 0.0f && max3(b->base) > 0.0f) return true;
     if (!bsdf_is_mirror(b) && (has_layer(b) || (HAS_METAL && b->metal > 0.0f))) return true;
     return HAS_ROUGH_GLASS && b->glass > 0.0f && glass_is_rough(b);
@@ -559,13 +623,13 @@ uint bsdf_gathered_lobes(float alpha) {
 
 /* The same for a whole BSDF: the coat too when it is rough enough. */
 uint bsdf_gathered(const Bsdf* b) {
-    uint lobes = bsdf_gathered_lobes(b->alpha);
+    uint lobes = bsdf_gathered_lobes(b->alpha) | (has_sheen(b) ? LOBE_SHEEN : 0u);
     return has_coat(b) && b->coat_alpha >= GLOSSY_HITPOINT_ALPHA ? lobes | LOBE_COAT : lobes;
 }
 
 /* Whether the surface has a lobe hit points keep (photons are stored there). */
 bool bsdf_has_gathered(const Bsdf* b) {
-    if (has_coat(b) && b->coat_alpha >= GLOSSY_HITPOINT_ALPHA) return true;
+    if ((has_coat(b) && b->coat_alpha >= GLOSSY_HITPOINT_ALPHA) || has_sheen(b)) return true;
     if (b->dielectric > 0.0f && (max3(b->base) > 0.0f || has_layer(b))) return true;
     return HAS_METAL && b->metal > 0.0f && b->alpha >= GLOSSY_HITPOINT_ALPHA;
 }
@@ -619,7 +683,19 @@ Bsdf surface_bsdf(SCENE_PARAMS, const Surface* s) {
             cr *= texture_lookup(SCENE_ARGS, m->clearcoat_roughness_tex, s->uv).y;
         b.coat_alpha = cr * cr;
     }
-    if (surface_is_unlit(SCENE_ARGS, s)) b.dielectric = b.glass = b.metal = b.coat = 0.0f;
+    b.sheen = HAS_SHEEN ? load3g(m->sheen_color) : (float3)(0.0f);
+    b.sheen_r = 1.0f;
+    if (HAS_SHEEN && max3(b.sheen) > 0.0f) { /* sheenColorTexture's RGB, sheenRoughnessTexture's A */
+        float sr = m->sheen_roughness;
+        if (HAS_TEXTURES && m->sheen_color_tex >= 0) b.sheen *= texture_lookup(SCENE_ARGS, m->sheen_color_tex, s->uv);
+        if (HAS_TEXTURES && m->sheen_roughness_tex >= 0)
+            sr *= texture_rgba(textures, texels, m->sheen_roughness_tex, s->uv).w;
+        b.sheen_r = fmax(sr, SHEEN_MIN_ROUGHNESS);
+    }
+    if (surface_is_unlit(SCENE_ARGS, s)) {
+        b.dielectric = b.glass = b.metal = b.coat = 0.0f;
+        b.sheen = (float3)(0.0f);
+    }
     return b;
 }
 

@@ -112,11 +112,11 @@ uint surface_branches(const Bsdf* bsdf, float3 wo, float3 weight, Rng* rng, Bran
     if (HAS_GLASS && bsdf->glass > 0.0f && !glass_is_rough(bsdf)) {
         float F = fresnel_dielectric(cos_o, bsdf->eta);
         float3 r = bsdf_mirror(bsdf, wo);
-        br[n++] = ray_branch(weight * (bsdf->glass * F * coat_scale(bsdf, wo, r)), r, false);
+        br[n++] = ray_branch(weight * (bsdf->glass * F * layers_scale(bsdf, wo, r)), r, false);
         if (F < 1.0f) {
             float3 t = bsdf->thin ? -wo : refract_dir(-wo, bsdf->ns, bsdf->eta);
             if (dot(t, bsdf->ng) < 0.0f)
-                br[n++] = ray_branch(weight * bsdf->base * (bsdf->glass * (1.0f - F) * coat_scale(bsdf, wo, t)), t,
+                br[n++] = ray_branch(weight * bsdf->base * (bsdf->glass * (1.0f - F) * layers_scale(bsdf, wo, t)), t,
                                      true);
         }
     }

@@ -33,6 +33,10 @@ void store_hitpoint(__global HitPoint* hp, uint pixel, float3 p, float3 wo, floa
     hp->coat = HAS_CLEARCOAT ? b->coat : 0.0f;
     hp->coat_alpha = b->coat_alpha;
     hp->nc_oct = oct_encode(b->nc);
+    hp->sheen[0] = HAS_SHEEN ? b->sheen.x : 0.0f;
+    hp->sheen[1] = HAS_SHEEN ? b->sheen.y : 0.0f;
+    hp->sheen[2] = HAS_SHEEN ? b->sheen.z : 0.0f;
+    hp->sheen_r = b->sheen_r;
     hp->pixel = pixel;
 }
 
@@ -56,6 +60,8 @@ Bsdf hitpoint_bsdf(__global const HitPoint* hp, float3 n) {
     b.coat = HAS_CLEARCOAT ? hp->coat : 0.0f;
     b.coat_alpha = hp->coat_alpha;
     b.nc = HAS_CLEARCOAT ? oct_decode(hp->nc_oct) : n;
+    b.sheen = HAS_SHEEN ? load3g(hp->sheen) : (float3)(0.0f);
+    b.sheen_r = hp->sheen_r;
     return b;
 }
 

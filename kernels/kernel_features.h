@@ -28,7 +28,8 @@
     X(HAS_THIN_LENS, thin_lens, "thin lens")                                                                           \
     X(HAS_EMISSION_SPREAD, emission_spread, "emission spread")                                                        \
     X(HAS_UNLIT, unlit, "unlit materials")                                                                            \
-    X(HAS_CLEARCOAT, clearcoat, "clearcoat")
+    X(HAS_CLEARCOAT, clearcoat, "clearcoat")                                                                          \
+    X(HAS_SHEEN, sheen, "sheen")
 
 #ifdef __OPENCL_VERSION__
 
@@ -77,6 +78,9 @@
 #ifndef HAS_EMISSION_SPREAD
 #define HAS_EMISSION_SPREAD 1
 #endif
+#ifndef HAS_SHEEN
+#define HAS_SHEEN 1
+#endif
 #ifndef HAS_CLEARCOAT
 #define HAS_CLEARCOAT 1
 #endif
@@ -93,7 +97,7 @@ enum { CLPPM_FEATURES_WITH_DEFAULTS = 0 CLPPM_KERNEL_FEATURES(CLPPM_FEATURE_TERM
 #undef CLPPM_FEATURE_TERM
 
 /* Any surface that is not Lambertian. */
-#define HAS_NON_DIFFUSE (HAS_SPECULAR_LAYER || HAS_METAL || HAS_GLASS || HAS_CLEARCOAT)
+#define HAS_NON_DIFFUSE (HAS_SPECULAR_LAYER || HAS_METAL || HAS_GLASS || HAS_CLEARCOAT || HAS_SHEEN)
 
 #endif /* __OPENCL_VERSION__ */
 

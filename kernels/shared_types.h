@@ -111,8 +111,12 @@ typedef struct {
     i32 clearcoat_roughness_tex;   /* clearcoatRoughnessTexture (linear, G); -1 when none */
     i32 clearcoat_normal_tex;      /* clearcoatNormalTexture; -1: the coat follows the smooth normal */
     float clearcoat_normal_scale;  /* its scale */
-    float pad_coat[2];
-} Material;                        /* 160 bytes */
+    /* KHR_materials_sheen (kernels/bsdf.cl): a Charlie lobe over the base */
+    float sheen_color[3];          /* sheenColorFactor (linear RGB); 0: no sheen */
+    float sheen_roughness;         /* sheenRoughnessFactor */
+    i32 sheen_color_tex;           /* sheenColorTexture (sRGB, RGB); -1 when none */
+    i32 sheen_roughness_tex;       /* sheenRoughnessTexture (linear, A); -1 when none */
+} Material;                        /* 176 bytes */
 
 /* Sampler bits of a texture. Wrap per axis (glTF sampler wrapS, wrapT): clamp s, clamp t, mirror
  * s, mirror t; none set is REPEAT. TEXTURE_NEAREST: magFilter NEAREST, the texel the coordinate
@@ -213,7 +217,9 @@ typedef struct {
     float coat;       /* KHR_materials_clearcoat: the coat's weight (0: none) */
     float coat_alpha; /* its GGX alpha */
     u32 nc_oct;       /* its normal, same side */
-} HitPoint;           /* 100 bytes */
+    float sheen[3];   /* KHR_materials_sheen: the sheen colour (0: none) */
+    float sheen_r;    /* and roughness */
+} HitPoint;           /* 116 bytes */
 
 #define HITPOINT_NONE 0xffffffffu
 

@@ -48,7 +48,7 @@ __kernel void ggx_sample_many(float nx, float ny, float nz, float ox, float oy, 
     o[4] = f.x * fmax(0.0f, dot(n, wi)); o[5] = pdf;
 }
 /* The whole model (kernels/bsdf.cl) from 15 parameters: base rgb, f0 rgb, f90, alpha, dielectric,
- * glass, metal, eta, thin, coat, coat alpha; the shading, geometric and coat normal are n. */
+ * glass, metal, eta, thin, coat, coat alpha, sheen rgb, sheen roughness; every normal is n. */
 Bsdf test_bsdf(__global const float* p, float3 n) {
     Bsdf b;
     b.ns = n;
@@ -68,6 +68,8 @@ Bsdf test_bsdf(__global const float* p, float3 n) {
     b.nc = n;
     b.coat = p[13];
     b.coat_alpha = p[14];
+    b.sheen = (float3)(p[15], p[16], p[17]);
+    b.sheen_r = p[18];
     return b;
 }
 /* bsdf_eval (rgb) and bsdf_pdf at (wo, wi[i]) over the lobes in mask. */
@@ -167,24 +169,29 @@ inline std::vector<float> uniforms(size_t n, uint64_t seed) {
 
 // ---- the whole model (kernels/bsdf.cl) through the wrappers above ----
 
-constexpr unsigned kDiffuse = 1, kSpecular = 2, kGlass = 4, kMetal = 8, kCoat = 16, kAll = 31;
+constexpr unsigned kDiffuse = 1, kSpecular = 2, kGlass = 4, kMetal = 8, kCoat = 16, kSheen = 32, kAll = 63;
 
 struct Params {
     D3 base{1, 1, 1}, f0{0.04, 0.04, 0.04};
     double f90 = 1, alpha = 0.25, dielectric = 1, glass = 0, metal = 0, eta = 1.5;
     bool thin = false;
     double coat = 0, coat_alpha = 0; // KHR_materials_clearcoat, on the same normal
+    D3 sheen{0, 0, 0};               // KHR_materials_sheen's colour
+    double sheen_r = 1;              // and roughness (at least SHEEN_MIN_ROUGHNESS)
     std::vector<float> pack() const {
-        return {float(base.x),     float(base.y),       float(base.z), float(f0.x),  float(f0.y),
-                float(f0.z),       float(f90),          float(alpha),  float(dielectric), float(glass),
-                float(metal),      float(eta),          thin ? 1.f : 0.f, float(coat), float(coat_alpha)};
+        return {float(base.x),  float(base.y),      float(base.z),    float(f0.x),  float(f0.y),       float(f0.z),
+                float(f90),     float(alpha),       float(dielectric), float(glass), float(metal),      float(eta),
+                thin ? 1.f : 0.f, float(coat),      float(coat_alpha), float(sheen.x), float(sheen.y), float(sheen.z),
+                float(sheen_r)};
     }
     std::string name() const {
         return "base (" + std::to_string(base.x) + "," + std::to_string(base.y) + "," + std::to_string(base.z) +
                ") alpha " + std::to_string(alpha) + " dielectric " + std::to_string(dielectric) + " metal " +
                std::to_string(metal) + " glass " + std::to_string(glass) + " eta " + std::to_string(eta) +
                (thin ? " thin" : "") + " f90 " + std::to_string(f90) +
-               (coat > 0 ? " coat " + std::to_string(coat) + " alpha " + std::to_string(coat_alpha) : "");
+               (coat > 0 ? " coat " + std::to_string(coat) + " alpha " + std::to_string(coat_alpha) : "") +
+               (sheen.x + sheen.y + sheen.z > 0 ? " sheen " + std::to_string(sheen.x) + " r " + std::to_string(sheen_r)
+                                                : "");
     }
 };
 

@@ -31,6 +31,9 @@ SceneFeatures scene_features(const Scene& scene, const DeviceScene& ds) {
         if (m.emission_spread > 0.f) f.emission_spread = true;
         if (m.flags & MATERIAL_FLAG_UNLIT) f.unlit = true;
         if (m.clearcoat > 0.f) f.clearcoat = true;
+        const bool sheen = m.sheen_color[0] > 0.f || m.sheen_color[1] > 0.f || m.sheen_color[2] > 0.f;
+        if (sheen) f.sheen = true;
+        if (sheen && (m.sheen_color_tex >= 0 || m.sheen_roughness_tex >= 0)) f.textures = true;
         if (m.clearcoat > 0.f && (m.clearcoat_tex >= 0 || m.clearcoat_roughness_tex >= 0)) f.textures = true;
         if (m.clearcoat > 0.f && m.clearcoat_normal_tex >= 0 && !scene.tangents.empty())
             f.textures = f.normal_maps = true;

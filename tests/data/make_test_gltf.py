@@ -757,6 +757,35 @@ def clearcoat():
     b.write_embedded(out("coat_textured.gltf"))
 
 
+def sheen():
+    """KHR_materials_sheen: a plate facing the camera (views within 3 degrees of the normal) of a
+    black base without specular layer under a white sheen of roughness 1 in a uniform white world:
+    it shows the sheen lobe's directional albedo (kernels/sheen_albedo.h). sheen_textured.gltf:
+    factors and textures, for the loader."""
+    b = GltfBuilder("clppm tests/data/make_test_gltf.py")
+    plate = b.material("plate", (0.0, 0.0, 0.0), specular=0.0,
+                       extensions={"KHR_materials_sheen": {"sheenColorFactor": [1.0, 1.0, 1.0],
+                                                           "sheenRoughnessFactor": 1.0}})
+    p = b.primitive([(-1, -1, 0), (1, -1, 0), (1, 1, 0), (-1, 1, 0)], [0, 1, 2, 0, 2, 3], [(0, 0, 1)] * 4,
+                    material=plate)
+    b.scene([b.node(name="plate", mesh=b.mesh([p])),
+             b.node(name="camera", camera=b.camera(0.1), translation=[0.0, 0.0, 3.0])])
+    b.world(color=(1.0, 1.0, 1.0))
+    b.write_embedded(out("sheen_plate.gltf"))
+    b = GltfBuilder("clppm tests/data/make_test_gltf.py")
+    png = png_rgba([[(128, 64, 0, 128)] * 2] * 2)
+    b.doc["images"] = [{"uri": "data:image/png;base64," + base64.b64encode(png).decode("ascii")}]
+    b.doc["textures"] = [{"source": 0}]
+    ext = {"sheenColorFactor": [0.5, 0.25, 1.0], "sheenRoughnessFactor": 0.6, "sheenColorTexture": {"index": 0},
+           "sheenRoughnessTexture": {"index": 0}}
+    plate = b.material("plate", (0.5, 0.5, 0.5), extensions={"KHR_materials_sheen": ext})
+    p = b.primitive([(-1, -1, 0), (1, -1, 0), (1, 1, 0), (-1, 1, 0)], [0, 1, 2, 0, 2, 3], [(0, 0, 1)] * 4,
+                    material=plate)
+    p["attributes"]["TEXCOORD_0"] = b.accessor([0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 1.0], FLOAT, "VEC2", ARRAY_BUFFER)
+    b.scene([b.node(name="plate", mesh=b.mesh([p]))])
+    b.write_embedded(out("sheen_textured.gltf"))
+
+
 def reference_scenes():
     """Scenes with images from an independent renderer (tests/references/make_references.py,
     Mitsuba 3): a glass block on a floor before a wall, a red box half behind it, under a 1 x 1
@@ -1032,7 +1061,7 @@ def main():
                  materials, texture, lights, cameras, quantized, sparse, strips_fans, gpu_instancing, emissive_texture,
                  normal_maps, vertex_colors, alpha_modes,
                  texture_transform, uv1_plates, volumes, skinned,
-                 specular_textures, unlit, clearcoat, reference_scenes, environment_scenes, spread_light, errors):
+                 specular_textures, unlit, clearcoat, sheen, reference_scenes, environment_scenes, spread_light, errors):
         make()
 
 

@@ -45,6 +45,7 @@ inline const std::set<std::string> kSupportedExtensions = {"KHR_lights_punctual"
                                                            "KHR_materials_variants",
                                                            "KHR_materials_unlit",
                                                            "KHR_materials_clearcoat",
+                                                           "KHR_materials_sheen",
                                                            "KHR_materials_pbrSpecularGlossiness"};
 
 // Error messages are one line: tinygltf and nlohmann texts are joined with "; ".

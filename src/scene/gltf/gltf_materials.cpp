@@ -52,6 +52,7 @@ dev::Material default_material() {
     m.specular_tex = m.specular_color_tex = -1;
     m.clearcoat_tex = m.clearcoat_roughness_tex = m.clearcoat_normal_tex = -1;
     m.clearcoat_normal_scale = 1.f;
+    m.sheen_color_tex = m.sheen_roughness_tex = -1;
     return m;
 }
 
@@ -130,6 +131,7 @@ dev::Material MaterialConverter::convert_material(int index) {
     convert_volume(g, label, m);
     convert_specular(g, label, m);
     convert_clearcoat(g, label, m);
+    convert_sheen(g, label, m);
     if (g.doubleSided) m.flags |= MATERIAL_FLAG_DOUBLE_SIDED;
     if (g.extensions.count("KHR_materials_unlit")) convert_unlit(m);
     return m;
@@ -147,6 +149,8 @@ void MaterialConverter::convert_unlit(dev::Material& m) {
     m.metallic_roughness_tex = m.normal_tex = m.transmission_tex = m.specular_tex = m.specular_color_tex = -1;
     m.clearcoat = 0.f;
     m.clearcoat_tex = m.clearcoat_roughness_tex = m.clearcoat_normal_tex = -1;
+    for (int c = 0; c < 3; ++c) m.sheen_color[c] = 0.f;
+    m.sheen_color_tex = m.sheen_roughness_tex = -1;
     for (float& a : m.attenuation) a = 0.f;
     m.flags &= ~MATERIAL_FLAG_THIN_WALLED;
 }
@@ -178,6 +182,31 @@ void MaterialConverter::convert_clearcoat(const tinygltf::Material& g, const std
         if (!s.IsNumber()) ctx_.fail(label + " clearcoatNormalTexture scale must be a number");
         m.clearcoat_normal_scale = finite_factor(s.GetNumberAsDouble(), "clearcoatNormalTexture.scale", label);
     }
+}
+
+// KHR_materials_sheen: sheenColorFactor times sheenColorTexture (sRGB) and sheenRoughnessFactor
+// times sheenRoughnessTexture's A (linear); kernels/bsdf.cl has the lobe and the albedo scaling.
+void MaterialConverter::convert_sheen(const tinygltf::Material& g, const std::string& label, dev::Material& m) {
+    m.sheen_color_tex = m.sheen_roughness_tex = -1;
+    auto it = g.extensions.find("KHR_materials_sheen");
+    if (it == g.extensions.end() || !it->second.IsObject()) return;
+    const char* ext = "KHR_materials_sheen";
+    const tinygltf::Value& v = it->second;
+    if (v.Has("sheenColorFactor")) {
+        const tinygltf::Value& c = v.Get("sheenColorFactor");
+        if (!c.IsArray() || c.ArrayLen() != 3) ctx_.fail(label + " sheenColorFactor must have 3 components");
+        for (int k = 0; k < 3; ++k) {
+            if (!c.Get(k).IsNumber()) ctx_.fail(label + " sheenColorFactor must have 3 numbers");
+            m.sheen_color[k] =
+                std::clamp(finite_factor(c.Get(k).GetNumberAsDouble(), "sheenColorFactor", label), 0.f, 1.f);
+        }
+    }
+    m.sheen_roughness = std::clamp(
+        finite_factor(extension_number(g.extensions, ext, "sheenRoughnessFactor", 0.0), "sheenRoughnessFactor", label),
+        0.f, 1.f);
+    if (!(std::max({m.sheen_color[0], m.sheen_color[1], m.sheen_color[2]}) > 0.f)) return;
+    m.sheen_color_tex = extension_texture(g, ext, "sheenColorTexture", label, true);
+    m.sheen_roughness_tex = extension_texture(g, ext, "sheenRoughnessTexture", label, false);
 }
 
 // A textureInfo inside a material extension (tinygltf leaves those as JSON values): -1 without it.
