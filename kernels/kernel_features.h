@@ -26,9 +26,9 @@
     X(HAS_DIRECTIONAL_LIGHTS, directional_lights, "directional lights")                                                \
     X(HAS_ENV_LIGHT, env_light, "environment light")                                                                   \
     X(HAS_THIN_LENS, thin_lens, "thin lens")                                                                           \
-    X(HAS_EMISSION_SPREAD, emission_spread, "emission spread")                                                        \
-    X(HAS_UNLIT, unlit, "unlit materials")                                                                            \
-    X(HAS_CLEARCOAT, clearcoat, "clearcoat")                                                                          \
+    X(HAS_EMISSION_SPREAD, emission_spread, "emission spread")                                                         \
+    X(HAS_UNLIT, unlit, "unlit materials")                                                                             \
+    X(HAS_CLEARCOAT, clearcoat, "clearcoat")                                                                           \
     X(HAS_SHEEN, sheen, "sheen")
 
 #ifdef __OPENCL_VERSION__

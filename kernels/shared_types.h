@@ -105,18 +105,18 @@ typedef struct {
     i32 specular_color_tex;     /* specularColorTexture (sRGB, RGB); -1 when none */
     float emission_spread;      /* tan of half an area light's spread (kernels/scene.cl); 0: Lambertian */
     /* KHR_materials_clearcoat (kernels/bsdf.cl): a GGX coat of ior 1.5 over the rest */
-    float clearcoat;               /* clearcoatFactor */
-    float clearcoat_roughness;     /* clearcoatRoughnessFactor */
-    i32 clearcoat_tex;             /* clearcoatTexture (linear, R scales the factor); -1 when none */
-    i32 clearcoat_roughness_tex;   /* clearcoatRoughnessTexture (linear, G); -1 when none */
-    i32 clearcoat_normal_tex;      /* clearcoatNormalTexture; -1: the coat follows the smooth normal */
-    float clearcoat_normal_scale;  /* its scale */
+    float clearcoat;              /* clearcoatFactor */
+    float clearcoat_roughness;    /* clearcoatRoughnessFactor */
+    i32 clearcoat_tex;            /* clearcoatTexture (linear, R scales the factor); -1 when none */
+    i32 clearcoat_roughness_tex;  /* clearcoatRoughnessTexture (linear, G); -1 when none */
+    i32 clearcoat_normal_tex;     /* clearcoatNormalTexture; -1: the coat follows the smooth normal */
+    float clearcoat_normal_scale; /* its scale */
     /* KHR_materials_sheen (kernels/bsdf.cl): a Charlie lobe over the base */
-    float sheen_color[3];          /* sheenColorFactor (linear RGB); 0: no sheen */
-    float sheen_roughness;         /* sheenRoughnessFactor */
-    i32 sheen_color_tex;           /* sheenColorTexture (sRGB, RGB); -1 when none */
-    i32 sheen_roughness_tex;       /* sheenRoughnessTexture (linear, A); -1 when none */
-} Material;                        /* 176 bytes */
+    float sheen_color[3];    /* sheenColorFactor (linear RGB); 0: no sheen */
+    float sheen_roughness;   /* sheenRoughnessFactor */
+    i32 sheen_color_tex;     /* sheenColorTexture (sRGB, RGB); -1 when none */
+    i32 sheen_roughness_tex; /* sheenRoughnessTexture (linear, A); -1 when none */
+} Material;                  /* 176 bytes */
 
 /* Sampler bits of a texture. Wrap per axis (glTF sampler wrapS, wrapT): clamp s, clamp t, mirror
  * s, mirror t; none set is REPEAT. TEXTURE_NEAREST: magFilter NEAREST, the texel the coordinate

@@ -50,8 +50,8 @@ double albedo(double mu, double alpha) {
 void print_table(const char* name, const std::vector<double>& t) {
     std::printf("CLPPM_SHEEN_TABLE float %s[%zu] = {\n", name, t.size());
     for (size_t i = 0; i < t.size(); ++i)
-        std::printf("%s%.9ef%s", i % 6 == 0 ? "    " : " ", t[i], i + 1 == t.size() ? "\n" : (i % 6 == 5 ? ",\n" : ","));
-    std::printf("};\n\n");
+        std::printf("%s%.9ef%s", i % 6 == 0 ? "    " : " ", t[i], i + 1 == t.size() ? "" : (i % 6 == 5 ? ",\n" : ","));
+    std::printf("};\n\n"); // as clang-format leaves it
 }
 
 } // namespace

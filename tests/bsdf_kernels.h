@@ -179,10 +179,10 @@ struct Params {
     D3 sheen{0, 0, 0};               // KHR_materials_sheen's colour
     double sheen_r = 1;              // and roughness (at least SHEEN_MIN_ROUGHNESS)
     std::vector<float> pack() const {
-        return {float(base.x),  float(base.y),      float(base.z),    float(f0.x),  float(f0.y),       float(f0.z),
-                float(f90),     float(alpha),       float(dielectric), float(glass), float(metal),      float(eta),
-                thin ? 1.f : 0.f, float(coat),      float(coat_alpha), float(sheen.x), float(sheen.y), float(sheen.z),
-                float(sheen_r)};
+        return {float(base.x),  float(base.y),  float(base.z),    float(f0.x),       float(f0.y),
+                float(f0.z),    float(f90),     float(alpha),     float(dielectric), float(glass),
+                float(metal),   float(eta),     thin ? 1.f : 0.f, float(coat),       float(coat_alpha),
+                float(sheen.x), float(sheen.y), float(sheen.z),   float(sheen_r)};
     }
     std::string name() const {
         return "base (" + std::to_string(base.x) + "," + std::to_string(base.y) + "," + std::to_string(base.z) +

@@ -163,11 +163,21 @@ Params glass(double alpha, double eta, bool thin = false) {
 }
 
 const std::vector<Params>& cases() {
-    static const std::vector<Params> c = {dielectric(0.05), dielectric(0.25),    dielectric(1.0),      metal(0.05),
-                                          metal(0.3),       metal(1.0),          mixed(0.1),           mixed(0.6),
-                                          glass(0.1, 1.5),  glass(0.5, 1 / 1.5), glass(0.3, 1.5, true),
-                                          coated(dielectric(0.5), 1.0, 0.05),     coated(metal(0.3), 0.7, 0.3),
-                                          coated(glass(0.3, 1.5), 0.5, 0.2),      coated(dielectric(0.2), 0.8, 1.0),
+    static const std::vector<Params> c = {dielectric(0.05),
+                                          dielectric(0.25),
+                                          dielectric(1.0),
+                                          metal(0.05),
+                                          metal(0.3),
+                                          metal(1.0),
+                                          mixed(0.1),
+                                          mixed(0.6),
+                                          glass(0.1, 1.5),
+                                          glass(0.5, 1 / 1.5),
+                                          glass(0.3, 1.5, true),
+                                          coated(dielectric(0.5), 1.0, 0.05),
+                                          coated(metal(0.3), 0.7, 0.3),
+                                          coated(glass(0.3, 1.5), 0.5, 0.2),
+                                          coated(dielectric(0.2), 0.8, 1.0),
                                           sheened(dielectric(0.6), {0.9, 0.5, 0.2}, 0.5),
                                           sheened(metal(0.4), {1, 1, 1}, 0.2),
                                           coated(sheened(dielectric(0.7), {0.6, 0.6, 0.9}, 1.0), 0.6, 0.1)};
@@ -325,11 +335,11 @@ TEST(BsdfModel, WhiteFurnaceWithoutGain) {
             }
             // Under a coat (its alpha from 0 to 1 with the base's): never above 1; what the layering
             // loses (README.md, "Materials") is at most the bound below.
-            for (const Params& p : {coated(dielectric(alpha, {1, 1, 1}), 1.0, alpha),
-                                    coated(metal(alpha, {1, 1, 1}), 1.0, alpha),
-                                    coated(dielectric(alpha, {1, 1, 1}), 0.5, 1.0 - alpha),
-                                    sheened(dielectric(alpha, {1, 1, 1}), {1, 1, 1}, std::max(0.07, alpha)),
-                                    sheened(metal(alpha, {1, 1, 1}), {1, 1, 1}, 1.0 - 0.9 * alpha)}) {
+            for (const Params& p :
+                 {coated(dielectric(alpha, {1, 1, 1}), 1.0, alpha), coated(metal(alpha, {1, 1, 1}), 1.0, alpha),
+                  coated(dielectric(alpha, {1, 1, 1}), 0.5, 1.0 - alpha),
+                  sheened(dielectric(alpha, {1, 1, 1}), {1, 1, 1}, std::max(0.07, alpha)),
+                  sheened(metal(alpha, {1, 1, 1}), {1, 1, 1}, 1.0 - 0.9 * alpha)}) {
                 SCOPED_TRACE(p.name() + " cos_o " + std::to_string(cos_o));
                 std::vector<float> s = model_sample(p, n, view(cos_o), m, kAll, 17 + uint64_t(alpha * 100));
                 double sum = 0, sum2 = 0;

@@ -166,8 +166,7 @@ void MaterialConverter::convert_clearcoat(const tinygltf::Material& g, const std
     if (it == g.extensions.end() || !it->second.IsObject()) return;
     const char* ext = "KHR_materials_clearcoat";
     m.clearcoat = std::clamp(
-        finite_factor(extension_number(g.extensions, ext, "clearcoatFactor", 0.0), "clearcoatFactor", label), 0.f,
-        1.f);
+        finite_factor(extension_number(g.extensions, ext, "clearcoatFactor", 0.0), "clearcoatFactor", label), 0.f, 1.f);
     m.clearcoat_roughness =
         std::clamp(finite_factor(extension_number(g.extensions, ext, "clearcoatRoughnessFactor", 0.0),
                                  "clearcoatRoughnessFactor", label),
