@@ -1,4 +1,5 @@
-/* camera.cl: primary rays, pinhole or thin lens. */
+/* camera.cl: primary rays, pinhole, thin lens or orthographic, starting at the clip plane znear
+ * (glTF's near plane: what lies nearer to the camera is not seen, as viewers and Blender clip it). */
 #ifndef CLPPM_CAMERA_CL
 #define CLPPM_CAMERA_CL
 
@@ -6,10 +7,19 @@
 #include "sampling.cl"
 #include "rng.cl" /* pixel_sample_offset */
 
+bool camera_orthographic(__constant Camera* cam) { return HAS_ORTHOGRAPHIC && cam->forward[3] != 0.0f; }
+
 /* Ray through image position (px, py) in pixels, y down. lens_u in [0,1)^2 picks the lens point. */
 void camera_ray(__constant Camera* cam, float px, float py, float2 lens_u, float3* org, float3* dir) {
     float sx = 2.0f * px / (float)cam->width - 1.0f;
     float sy = 1.0f - 2.0f * py / (float)cam->height;
+    float znear = cam->origin[3];
+    if (camera_orthographic(cam)) { /* parallel rays from the image rectangle through the origin */
+        float3 f = load3c(cam->forward);
+        *org = load3c(cam->origin) + load3c(cam->right) * sx + load3c(cam->up) * sy + f * znear;
+        *dir = f;
+        return;
+    }
     float3 d = load3c(cam->forward) + load3c(cam->right) * sx + load3c(cam->up) * sy;
     float3 o = load3c(cam->origin);
     if (HAS_THIN_LENS && cam->lens_radius > 0.0f) {
@@ -21,8 +31,17 @@ void camera_ray(__constant Camera* cam, float px, float py, float2 lens_u, float
         o = o + right * (r * c.x) + up * (r * c.y);
         d = focus - o;
     }
-    *org = o;
-    *dir = normalize(d);
+    d = normalize(d);
+    /* The lens point lies in the plane through the origin across the view axis. */
+    *org = znear > 0.0f ? o + d * (znear / dot(d, load3c(cam->forward))) : o;
+    *dir = d;
+}
+
+/* The width of one pixel's footprint at path length t from the camera (the initial radius
+ * heuristics): t times the angle one pixel subtends, or the pixel's own width when orthographic. */
+float camera_footprint(__constant Camera* cam, float t) {
+    float pixel = 2.0f * length(load3c(cam->up)) / (float)cam->height;
+    return camera_orthographic(cam) ? pixel : t * pixel;
 }
 
 /* The solid-angle density with which one pixel's uniform sample draws a ray at cos_theta to the
@@ -54,7 +73,7 @@ bool camera_project(__constant Camera* cam, float3 x, float2 lens_u, uint* pixel
     if (!(len > 0.0f)) return false;
     d /= len;
     float c = dot(d, f);
-    if (!(c > 0.0f)) return false;
+    if (!(c > 0.0f) || !(len * c > cam->origin[3])) return false; /* behind the lens or nearer than znear */
     /* The image-plane direction at distance 1 (camera_ray's d): through the lens point to the
      * plane of focus, then back from the lens centre. */
     float3 q = lens ? (e + d * (cam->focus_distance / c) - o) / cam->focus_distance : d / c;

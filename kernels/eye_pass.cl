@@ -134,8 +134,6 @@ __kernel void eye_pass(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong p
     float2 off = pixel_sample_offset(s, spp, EYE_SLOTS == 1, &rng);
     float2 lens = (float2)(rng_float(&rng), rng_float(&rng));
     float px = (float)(pixel % cam->width) + off.x, py = (float)(pixel / cam->width) + off.y;
-    /* Pixel footprint per unit distance: the angle one pixel subtends (initial radius heuristic). */
-    float pixel_angle = 2.0f * length(load3c(cam->up)) / (float)cam->height;
 
     EyeRay stack[EYE_SLOTS];
     uint top = 0, stored = 0;
@@ -208,7 +206,7 @@ __kernel void eye_pass(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong p
             if (!take[k]) continue;
             Branch b = br[k];
             if (b.hitpoint) {
-                store_hitpoint(&out[stored++], pixel, sf.p, -r.dir, b.weight, &bsdf, plen * pixel_angle);
+                store_hitpoint(&out[stored++], pixel, sf.p, -r.dir, b.weight, &bsdf, camera_footprint(cam, plen));
             } else {
                 EyeRay nr = {offset_origin(SCENE_ARGS, sf.p, b.below ? -sf.ng : sf.ng),
                              b.dir,

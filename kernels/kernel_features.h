@@ -29,7 +29,8 @@
     X(HAS_EMISSION_SPREAD, emission_spread, "emission spread")                                                         \
     X(HAS_UNLIT, unlit, "unlit materials")                                                                             \
     X(HAS_CLEARCOAT, clearcoat, "clearcoat")                                                                           \
-    X(HAS_SHEEN, sheen, "sheen")
+    X(HAS_SHEEN, sheen, "sheen")                                                                                       \
+    X(HAS_ORTHOGRAPHIC, orthographic, "orthographic camera")
 
 #ifdef __OPENCL_VERSION__
 
@@ -77,6 +78,9 @@
 #endif
 #ifndef HAS_EMISSION_SPREAD
 #define HAS_EMISSION_SPREAD 1
+#endif
+#ifndef HAS_ORTHOGRAPHIC
+#define HAS_ORTHOGRAPHIC 1
 #endif
 #ifndef HAS_SHEEN
 #define HAS_SHEEN 1

@@ -168,10 +168,10 @@ typedef struct {
 /* ---- camera and scene constants ------------------------------------------------------------ */
 
 typedef struct {
-    float origin[4];
-    float forward[4]; /* unit view direction */
-    float right[4];   /* right * tan(xfov/2): screen x in [-1,1] maps onto it */
-    float up[4];      /* up * tan(yfov/2) */
+    float origin[4];  /* [3]: znear, the clip plane's distance along forward (0: none) */
+    float forward[4]; /* unit view direction; [3]: 1 for an orthographic camera */
+    float right[4];   /* right * tan(xfov/2): screen x in [-1,1] maps onto it (orthographic: * xmag) */
+    float up[4];      /* up * tan(yfov/2) (orthographic: * ymag) */
     u32 width, height;
     float lens_radius;    /* 0: pinhole */
     float focus_distance; /* along forward */

@@ -78,7 +78,9 @@ void vcm_connect_to_camera(SCENE_PARAMS, __constant Camera* cam, const Surface* 
     float3 a = offset_origin(SCENE_ARGS, sf->p, dot(w, sf->ng) > 0.0f ? sf->ng : -sf->ng);
     float3 e = c - a;
     float len = length(e);
-    if (!(len > 0.0f) || trace_occluded(SCENE_ARGS, a, e / len, len)) return;
+    /* Up to the clip plane: what lies nearer to the camera than znear is not seen (camera_ray). */
+    float seen = len - cam->origin[3] / cos_theta;
+    if (!(len > 0.0f) || !(seen > 0.0f) || trace_occluded(SCENE_ARGS, a, e / len, seen)) return;
     add_fixed(&splat[3 * pixel], convert_long_sat_rte((double)v.x * splat_scale));
     add_fixed(&splat[3 * pixel + 1], convert_long_sat_rte((double)v.y * splat_scale));
     add_fixed(&splat[3 * pixel + 2], convert_long_sat_rte((double)v.z * splat_scale));
@@ -392,6 +394,5 @@ __kernel void vcm_footprint(SCENE_PARAMS, __constant Camera* cam, uint num_pixel
     float3 org, dir;
     camera_ray(cam, (float)(p % cam->width) + 0.5f, (float)(p / cam->width) + 0.5f, (float2)(0.5f, 0.5f), &org, &dir);
     Hit hit;
-    float pixel_angle = 2.0f * length(load3c(cam->up)) / (float)cam->height;
-    out[p] = trace_closest(SCENE_ARGS, org, dir, INFINITY, &hit) ? hit.t * pixel_angle : -1.0f;
+    out[p] = trace_closest(SCENE_ARGS, org, dir, INFINITY, &hit) ? camera_footprint(cam, hit.t) : -1.0f;
 }

@@ -428,9 +428,9 @@ TEST(GltfLights, PointSpotAndDirectional) {
     EXPECT_TRUE(has_warning(s, "range is ignored"));
 }
 
-TEST(GltfCameras, PerspectiveCamerasInTraversalOrderWithExtras) {
+TEST(GltfCameras, CamerasInTraversalOrderWithExtras) {
     Scene s = load_gltf(data("cameras.gltf"));
-    ASSERT_EQ(s.cameras.size(), 3u);
+    ASSERT_EQ(s.cameras.size(), 4u);
     const CameraDesc& side = s.cameras[0];
     EXPECT_EQ(side.name, "plain");
     expect_vec3(side.position, 0, 0, 0);
@@ -453,7 +453,16 @@ TEST(GltfCameras, PerspectiveCamerasInTraversalOrderWithExtras) {
     expect_vec3(sheared.forward, 0, 0, -1);
     expect_vec3(sheared.up, 0, 1, 0); // (0,1,1) made orthogonal to forward
     EXPECT_FLOAT_EQ(sheared.aperture_radius, 0.f);
-    EXPECT_TRUE(has_warning(s, "orthographic"));
+    EXPECT_FLOAT_EQ(sheared.znear, 0.01f);
+    EXPECT_FALSE(sheared.orthographic);
+
+    const CameraDesc& ortho = s.cameras[3];
+    EXPECT_TRUE(ortho.orthographic);
+    EXPECT_FLOAT_EQ(ortho.xmag, 1.f);
+    EXPECT_FLOAT_EQ(ortho.ymag, 1.f);
+    EXPECT_FLOAT_EQ(ortho.aspect, 1.f);
+    EXPECT_FLOAT_EQ(ortho.znear, 0.1f);
+    EXPECT_TRUE(s.warnings.empty()) << s.warnings[0];
 }
 
 TEST(GltfCameras, NoCameraGivesAnEmptyList) {

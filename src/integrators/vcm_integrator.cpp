@@ -62,6 +62,11 @@ struct VcmIntegrator::Worker {
 VcmIntegrator::VcmIntegrator(const DeviceContext& dc, const DeviceScene& scene, const RenderSettings& settings,
                              const cl::Program& program, const SecondaryDevices& secondaries)
     : PixelSumIntegrator(dc, scene, settings, program), mode_(technique_mode(settings)), grid_(dc, program, stats_) {
+    // Light sub-paths reach the camera through its importance, which is written for a pinhole or
+    // a thin lens (kernels/vcm.cl); an orthographic camera has neither.
+    if (scene.camera.forward[3] != 0.f && mode_ != VCM_MODE_PT)
+        throw Error("--integrator: vcm, bpt and lt need a perspective camera; the scene's is orthographic (pt, "
+                    "sppm, pppm and ppm render it)");
     k_light_ = cl::Kernel(program, "vcm_light");
     k_camera_ = cl::Kernel(program, "vcm_camera");
     k_footprint_ = cl::Kernel(program, "vcm_footprint");

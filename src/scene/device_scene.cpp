@@ -181,14 +181,23 @@ dev::Camera make_camera(const Scene& scene, const SceneSettings& settings, const
     V3 up = V3{desc.up[0], desc.up[1], desc.up[2]};
     V3 right = normalize(cross(f, up));
     up = cross(right, f);
-    double ty = std::tan(desc.yfov / 2), tx = ty * double(w) / h;
+    // Orthographic: right and up are the view's half extents in world units (ymag kept, the width
+    // following the image shape as a perspective camera's horizontal field of view does).
+    double ty = desc.orthographic ? double(desc.ymag) : std::tan(desc.yfov / 2), tx = ty * double(w) / h;
     dev::Camera cam{};
     store4(cam.origin, V3{desc.position[0], desc.position[1], desc.position[2]});
     store4(cam.forward, f);
     store4(cam.right, V3{right.x * tx, right.y * tx, right.z * tx});
     store4(cam.up, V3{up.x * ty, up.y * ty, up.z * ty});
+    cam.origin[3] = desc.znear;                     // kernels/camera.cl: rays start at the clip plane
+    cam.forward[3] = desc.orthographic ? 1.f : 0.f; // and are parallel
     cam.width = w, cam.height = h;
     cam.lens_radius = float(settings.aperture >= 0 ? settings.aperture : desc.aperture_radius);
+    if (desc.orthographic) {
+        if (cam.lens_radius > 0.f && settings.aperture > 0)
+            throw Error("--aperture: the camera is orthographic, which has no lens");
+        cam.lens_radius = 0.f;
+    }
     double focus = settings.focus_distance > 0 ? settings.focus_distance : desc.focus_distance;
     if (!(focus > 0)) { // the plane through the centre of the scene
         V3 c{0.5 * (bmin[0] + bmax[0]), 0.5 * (bmin[1] + bmax[1]), 0.5 * (bmin[2] + bmax[2])};

@@ -22,6 +22,9 @@ struct CameraDesc {
     float aspect = 0.f;            // 0: unknown (glTF aspectRatio absent) -> take the image's
     float aperture_radius = 0.f;   // thin lens (extras), 0 = pinhole
     float focus_distance = 0.f;    // extras, 0 = unset
+    float znear = 0.f;             // clipping distance along the view axis (glTF znear), 0 = none
+    bool orthographic = false;     // glTF orthographic: parallel rays over 2 xmag x 2 ymag
+    float xmag = 0.f, ymag = 0.f;  // its half extents (world units)
 };
 
 // The environment light (src/scene/environment.h sets it from the --env options).

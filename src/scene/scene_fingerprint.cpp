@@ -27,7 +27,8 @@ uint64_t scene_fingerprint(const Scene& s) {
         std::vector<float> v(c.position, c.position + 3);
         v.insert(v.end(), c.forward, c.forward + 3);
         v.insert(v.end(), c.up, c.up + 3);
-        v.insert(v.end(), {c.yfov, c.aspect, c.aperture_radius, c.focus_distance});
+        v.insert(v.end(), {c.yfov, c.aspect, c.aperture_radius, c.focus_distance, c.znear, c.orthographic ? 1.f : 0.f,
+                           c.xmag, c.ymag});
         h = fnv1a64(v, h);
     }
     return h;

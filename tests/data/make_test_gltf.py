@@ -299,7 +299,7 @@ def lights():
 
 def cameras():
     """Perspective cameras in traversal order: extras on the node, extras on the camera under a
-    translated parent, a sheared matrix (up re-orthogonalised); an orthographic one (skipped)."""
+    translated parent, a sheared matrix (up re-orthogonalised); an orthographic one."""
     b = GltfBuilder("clppm tests/data/make_test_gltf.py")
     with_extras = b.camera(0.5, 1.5, "with_extras", extras={"aperture_radius": 0.05, "focus_distance": 4.0})
     plain = b.camera(0.8, None, "plain")
@@ -786,6 +786,44 @@ def sheen():
     b.write_embedded(out("sheen_textured.gltf"))
 
 
+def camera_clipping():
+    """Cameras. ortho_square*.gltf: an unlit square (0.2, 0.5, 0.8) of side 1 at the origin, seen
+    by an orthographic camera of xmag = ymag = 1 from 5 and from 50 along +z, in a white world:
+    it covers the middle half of the image at any distance. znear_*.gltf: the lit wall and unlit panel of
+    unlit_panel.gltf with, 0.3 before the camera, a black unlit occluder over the whole view:
+    clipped at znear 0.5 (znear_clipped.gltf), seen at znear 0.1 (znear_seen.gltf); znear_open.gltf
+    without it."""
+    for name, z in (("ortho_square.gltf", 5.0), ("ortho_square_far.gltf", 50.0)):
+        b = GltfBuilder("clppm tests/data/make_test_gltf.py")
+        square = b.material("square", (0.2, 0.5, 0.8), extensions={"KHR_materials_unlit": {}})
+        p = b.primitive([(-0.5, -0.5, 0), (0.5, -0.5, 0), (0.5, 0.5, 0), (-0.5, 0.5, 0)], [0, 1, 2, 0, 2, 3],
+                        [(0, 0, 1)] * 4, material=square)
+        cam = b._append("cameras", {"type": "orthographic",
+                                    "orthographic": {"xmag": 1.0, "ymag": 1.0, "znear": 0.01, "zfar": 100.0}})
+        b.scene([b.node(name="square", mesh=b.mesh([p])), b.node(name="camera", camera=cam, translation=[0, 0, z])])
+        b.world(color=(1.0, 1.0, 1.0))
+        b.write_embedded(out(name))
+    for name, znear, occluded in (("znear_clipped.gltf", 0.5, True), ("znear_seen.gltf", 0.1, True),
+                                  ("znear_open.gltf", 0.5, False)):
+        b = GltfBuilder("clppm tests/data/make_test_gltf.py")
+        wall = b.material("wall", (0.8, 0.8, 0.8), specular=0.0)
+        panel = b.material("panel", (0.2, 0.5, 0.8), extensions={"KHR_materials_unlit": {}})
+        prims = [b.primitive([(-4, -4, -1), (4, -4, -1), (4, 4, -1), (-4, 4, -1)], [0, 1, 2, 0, 2, 3],
+                             [(0, 0, 1)] * 4, material=wall),
+                 b.primitive([(-2, -1, 0), (-0.2, -1, 0), (-0.2, 1, 0), (-2, 1, 0)], [0, 1, 2, 0, 2, 3],
+                             [(0, 0, 1)] * 4, material=panel)]
+        if occluded:
+            black = b.material("occluder", (0.0, 0.0, 0.0), extensions={"KHR_materials_unlit": {}})
+            prims.append(b.primitive([(-2, -2, 2.7), (2, -2, 2.7), (2, 2, 2.7), (-2, 2, 2.7)], [0, 1, 2, 0, 2, 3],
+                                     [(0, 0, 1)] * 4, material=black))
+        lamp = b.light({"name": "lamp", "type": "point", "intensity": 4.0})
+        cam = b._append("cameras", {"type": "perspective", "perspective": {"yfov": 0.8, "znear": znear}})
+        b.scene([b.node(name="scene", mesh=b.mesh(prims)),
+                 b.node(name="lamp", light=lamp, translation=[1.0, 0.0, 1.0]),
+                 b.node(name="camera", camera=cam, translation=[0.0, 0.0, 3.0])])
+        b.write_embedded(out(name))
+
+
 def reference_scenes():
     """Scenes with images from an independent renderer (tests/references/make_references.py,
     Mitsuba 3): a glass block on a floor before a wall, a red box half behind it, under a 1 x 1
@@ -1061,7 +1099,7 @@ def main():
                  materials, texture, lights, cameras, quantized, sparse, strips_fans, gpu_instancing, emissive_texture,
                  normal_maps, vertex_colors, alpha_modes,
                  texture_transform, uv1_plates, volumes, skinned,
-                 specular_textures, unlit, clearcoat, sheen, reference_scenes, environment_scenes, spread_light, errors):
+                 specular_textures, unlit, clearcoat, sheen, camera_clipping, reference_scenes, environment_scenes, spread_light, errors):
         make()
 
 

@@ -74,8 +74,8 @@ void LightsAndCameras::add_camera(const tinygltf::Node& node, const glm::dmat4& 
         ctx_.fail(node_label + " camera " + std::to_string(node.camera) + " out of range");
     const tinygltf::Camera& g = m_.cameras[size_t(node.camera)];
     std::string label = labelled("camera", node.camera, g.name);
-    if (g.type != "perspective") {
-        ctx_.warn(label + " is " + g.type + "; only perspective cameras are supported, skipped");
+    if (g.type != "perspective" && g.type != "orthographic") {
+        ctx_.warn(label + " type '" + printable(g.type) + "' is neither perspective nor orthographic; skipped");
         return;
     }
     glm::dvec3 forward = unit_or_zero(transform_dir(world, {0, 0, -1}));
@@ -92,10 +92,29 @@ void LightsAndCameras::add_camera(const tinygltf::Node& node, const glm::dmat4& 
         ctx_.fail(node_label + " places " + label + " outside the float range");
     store3(c.forward, forward);
     store3(c.up, up);
+    if (g.type == "orthographic") {
+        // xmag and ymag: half the view's width and height (glTF 2.0 Sec. 3.10.3), as given; the
+        // node's scale, like a perspective camera's, does not change the view. A sign mirrors
+        // nothing here.
+        c.orthographic = true;
+        c.xmag = narrow_to_float(std::fabs(g.orthographic.xmag));
+        c.ymag = narrow_to_float(std::fabs(g.orthographic.ymag));
+        if (!(c.xmag > 0.f && std::isfinite(c.xmag) && c.ymag > 0.f && std::isfinite(c.ymag)))
+            ctx_.fail(label + " xmag and ymag must be finite and not 0");
+        c.aspect = c.xmag / c.ymag;
+        c.znear = narrow_to_float(g.orthographic.znear);
+        if (!(c.znear >= 0.f && std::isfinite(c.znear))) ctx_.fail(label + " znear must be a number >= 0");
+        if (camera_extra(g, node, "aperture_radius", label) > 0.f)
+            ctx_.warn(label + " is orthographic; its extras.aperture_radius (a thin lens) is ignored");
+        s_.cameras.push_back(c);
+        return;
+    }
     c.yfov = narrow_to_float(g.perspective.yfov);
     if (!(c.yfov > 0.f && c.yfov < float(kPi))) ctx_.fail(label + " yfov must lie in (0, pi)");
     c.aspect = narrow_to_float(g.perspective.aspectRatio);
     if (!std::isfinite(c.aspect) || c.aspect < 0.f) ctx_.fail(label + " has an invalid aspectRatio");
+    c.znear = narrow_to_float(g.perspective.znear);
+    if (!(c.znear >= 0.f && std::isfinite(c.znear))) ctx_.fail(label + " znear must be a number >= 0");
     c.aperture_radius = camera_extra(g, node, "aperture_radius", label);
     c.focus_distance = camera_extra(g, node, "focus_distance", label);
     s_.cameras.push_back(c);
