@@ -37,6 +37,9 @@ void store_hitpoint(__global HitPoint* hp, uint pixel, float3 p, float3 wo, floa
     hp->sheen[1] = HAS_SHEEN ? b->sheen.y : 0.0f;
     hp->sheen[2] = HAS_SHEEN ? b->sheen.z : 0.0f;
     hp->sheen_r = b->sheen_r;
+    hp->irid = HAS_IRIDESCENCE ? b->irid : 0.0f;
+    hp->irid_ior = b->irid_ior;
+    hp->irid_d = b->irid_d;
     hp->pixel = pixel;
 }
 
@@ -62,6 +65,9 @@ Bsdf hitpoint_bsdf(__global const HitPoint* hp, float3 n) {
     b.nc = HAS_CLEARCOAT ? oct_decode(hp->nc_oct) : n;
     b.sheen = HAS_SHEEN ? load3g(hp->sheen) : (float3)(0.0f);
     b.sheen_r = hp->sheen_r;
+    b.irid = HAS_IRIDESCENCE ? hp->irid : 0.0f;
+    b.irid_ior = hp->irid_ior;
+    b.irid_d = hp->irid_d;
     return b;
 }
 

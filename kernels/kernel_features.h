@@ -30,7 +30,8 @@
     X(HAS_UNLIT, unlit, "unlit materials")                                                                             \
     X(HAS_CLEARCOAT, clearcoat, "clearcoat")                                                                           \
     X(HAS_SHEEN, sheen, "sheen")                                                                                       \
-    X(HAS_ORTHOGRAPHIC, orthographic, "orthographic camera")
+    X(HAS_ORTHOGRAPHIC, orthographic, "orthographic camera")                                                           \
+    X(HAS_IRIDESCENCE, iridescence, "iridescence")
 
 #ifdef __OPENCL_VERSION__
 
@@ -78,6 +79,9 @@
 #endif
 #ifndef HAS_EMISSION_SPREAD
 #define HAS_EMISSION_SPREAD 1
+#endif
+#ifndef HAS_IRIDESCENCE
+#define HAS_IRIDESCENCE 1
 #endif
 #ifndef HAS_ORTHOGRAPHIC
 #define HAS_ORTHOGRAPHIC 1

@@ -116,7 +116,14 @@ typedef struct {
     float sheen_roughness;   /* sheenRoughnessFactor */
     i32 sheen_color_tex;     /* sheenColorTexture (sRGB, RGB); -1 when none */
     i32 sheen_roughness_tex; /* sheenRoughnessTexture (linear, A); -1 when none */
-} Material;                  /* 176 bytes */
+    /* KHR_materials_iridescence (kernels/iridescence.cl): a thin film on the specular layer and metal */
+    float iridescence;              /* iridescenceFactor; 0: none */
+    float iridescence_ior;          /* iridescenceIor */
+    float iridescence_thickness[2]; /* iridescenceThicknessMinimum, -Maximum (nm) */
+    i32 iridescence_tex;            /* iridescenceTexture (linear, R); -1 when none */
+    i32 iridescence_thickness_tex;  /* iridescenceThicknessTexture (linear, G); -1: the maximum */
+    float pad_irid[2];
+} Material; /* 208 bytes */
 
 /* Sampler bits of a texture. Wrap per axis (glTF sampler wrapS, wrapT): clamp s, clamp t, mirror
  * s, mirror t; none set is REPEAT. TEXTURE_NEAREST: magFilter NEAREST, the texel the coordinate
@@ -219,7 +226,10 @@ typedef struct {
     u32 nc_oct;       /* its normal, same side */
     float sheen[3];   /* KHR_materials_sheen: the sheen colour (0: none) */
     float sheen_r;    /* and roughness */
-} HitPoint;           /* 116 bytes */
+    float irid;       /* KHR_materials_iridescence: the film's weight (0: none) */
+    float irid_ior;   /* its index */
+    float irid_d;     /* its thickness (nm) */
+} HitPoint;           /* 128 bytes */
 
 #define HITPOINT_NONE 0xffffffffu
 

@@ -48,7 +48,8 @@ __kernel void ggx_sample_many(float nx, float ny, float nz, float ox, float oy, 
     o[4] = f.x * fmax(0.0f, dot(n, wi)); o[5] = pdf;
 }
 /* The whole model (kernels/bsdf.cl) from 15 parameters: base rgb, f0 rgb, f90, alpha, dielectric,
- * glass, metal, eta, thin, coat, coat alpha, sheen rgb, sheen roughness; every normal is n. */
+ * glass, metal, eta, thin, coat, coat alpha, sheen rgb, sheen roughness, iridescence weight,
+ * film index, thickness; every normal is n. */
 Bsdf test_bsdf(__global const float* p, float3 n) {
     Bsdf b;
     b.ns = n;
@@ -70,6 +71,9 @@ Bsdf test_bsdf(__global const float* p, float3 n) {
     b.coat_alpha = p[14];
     b.sheen = (float3)(p[15], p[16], p[17]);
     b.sheen_r = p[18];
+    b.irid = p[19];
+    b.irid_ior = p[20];
+    b.irid_d = p[21];
     return b;
 }
 /* bsdf_eval (rgb) and bsdf_pdf at (wo, wi[i]) over the lobes in mask. */
@@ -98,6 +102,13 @@ __kernel void model_sample(__global const float* p, float nx, float ny, float nz
     o[6] = s.pdf;
     o[7] = (float)((ok ? 1 : 0) | (s.delta ? 2 : 0) | (s.below ? 4 : 0));
 }
+/* irid_fresnel for (eta2, d, cos_1, f0 rgb) per item. */
+__kernel void irid(__global const float* in, __global float* out) {
+    uint i = get_global_id(0);
+    __global const float* p = in + 6 * i;
+    float3 r = irid_fresnel(p[0], p[1], p[2], (float3)(p[3], p[4], p[5]));
+    out[3 * i] = r.x; out[3 * i + 1] = r.y; out[3 * i + 2] = r.z;
+}
 /* The diffuse lobe of a hit point's BSDF, seen from the normal. */
 __kernel void lambert(__global const HitPoint* hp, float nx, float ny, float nz, __global const float* wi,
                       __global float* out) {
@@ -112,6 +123,16 @@ __kernel void lambert(__global const HitPoint* hp, float nx, float ny, float nz,
 struct Device : KernelHarness {
     // Include guards make the second file add only what the first lacked (hitpoint.cl).
     Device() : KernelHarness(assemble_kernel_source("bsdf.cl") + assemble_kernel_source("hitpoint.cl") + kWrappers) {}
+
+    // irid_fresnel per 6 floats (eta2, d, cos_1, f0 rgb): 3 floats each.
+    std::vector<float> irid(const std::vector<float>& in) const {
+        size_t n = in.size() / 6;
+        cl::Buffer a = input(in), out = output(3 * n * sizeof(float));
+        cl::Kernel k(program, "irid");
+        k.setArg(0, a), k.setArg(1, out);
+        run(k, n);
+        return read<float>(out, 3 * n);
+    }
 
     std::vector<float> fresnel(const std::vector<float>& cos_eta) const {
         size_t n = cos_eta.size() / 2;
@@ -175,14 +196,15 @@ struct Params {
     D3 base{1, 1, 1}, f0{0.04, 0.04, 0.04};
     double f90 = 1, alpha = 0.25, dielectric = 1, glass = 0, metal = 0, eta = 1.5;
     bool thin = false;
-    double coat = 0, coat_alpha = 0; // KHR_materials_clearcoat, on the same normal
-    D3 sheen{0, 0, 0};               // KHR_materials_sheen's colour
-    double sheen_r = 1;              // and roughness (at least SHEEN_MIN_ROUGHNESS)
+    double coat = 0, coat_alpha = 0;               // KHR_materials_clearcoat, on the same normal
+    D3 sheen{0, 0, 0};                             // KHR_materials_sheen's colour
+    double sheen_r = 1;                            // and roughness (at least SHEEN_MIN_ROUGHNESS)
+    double irid = 0, irid_ior = 1.3, irid_d = 400; // KHR_materials_iridescence
     std::vector<float> pack() const {
-        return {float(base.x),  float(base.y),  float(base.z),    float(f0.x),       float(f0.y),
-                float(f0.z),    float(f90),     float(alpha),     float(dielectric), float(glass),
-                float(metal),   float(eta),     thin ? 1.f : 0.f, float(coat),       float(coat_alpha),
-                float(sheen.x), float(sheen.y), float(sheen.z),   float(sheen_r)};
+        return {float(base.x),    float(base.y), float(base.z),     float(f0.x),    float(f0.y),    float(f0.z),
+                float(f90),       float(alpha),  float(dielectric), float(glass),   float(metal),   float(eta),
+                thin ? 1.f : 0.f, float(coat),   float(coat_alpha), float(sheen.x), float(sheen.y), float(sheen.z),
+                float(sheen_r),   float(irid),   float(irid_ior),   float(irid_d)};
     }
     std::string name() const {
         return "base (" + std::to_string(base.x) + "," + std::to_string(base.y) + "," + std::to_string(base.z) +
@@ -191,7 +213,8 @@ struct Params {
                (thin ? " thin" : "") + " f90 " + std::to_string(f90) +
                (coat > 0 ? " coat " + std::to_string(coat) + " alpha " + std::to_string(coat_alpha) : "") +
                (sheen.x + sheen.y + sheen.z > 0 ? " sheen " + std::to_string(sheen.x) + " r " + std::to_string(sheen_r)
-                                                : "");
+                                                : "") +
+               (irid > 0 ? " iridescence " + std::to_string(irid) + " d " + std::to_string(irid_d) : "");
     }
 };
 

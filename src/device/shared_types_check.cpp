@@ -21,7 +21,9 @@ CLPPM_CHECK_SIZE(BvhTriBlock, 40 * BVH_TRI_BLOCK);
 CLPPM_CHECK_OFFSET(BvhTriBlock, prim, 36 * BVH_TRI_BLOCK);
 static_assert(BVH_WIDTH == 4 || BVH_WIDTH == 8, "bvh_traverse.cl has float4 and float8 node tests");
 
-CLPPM_CHECK_SIZE(Material, 176);
+CLPPM_CHECK_SIZE(Material, 208);
+CLPPM_CHECK_OFFSET(Material, iridescence, 176);
+CLPPM_CHECK_OFFSET(Material, iridescence_thickness_tex, 196);
 CLPPM_CHECK_OFFSET(Material, sheen_color, 152);
 CLPPM_CHECK_OFFSET(Material, sheen_roughness_tex, 172);
 CLPPM_CHECK_OFFSET(Material, emission_spread, 124);
@@ -62,7 +64,8 @@ CLPPM_CHECK_OFFSET(SceneInfo, max_bounces, 40);
 CLPPM_CHECK_OFFSET(SceneInfo, vertex_colors, 44);
 CLPPM_CHECK_OFFSET(SceneInfo, texcoord1, 48);
 
-CLPPM_CHECK_SIZE(HitPoint, 116);
+CLPPM_CHECK_SIZE(HitPoint, 128);
+CLPPM_CHECK_OFFSET(HitPoint, irid, 116);
 CLPPM_CHECK_OFFSET(HitPoint, sheen, 100);
 CLPPM_CHECK_OFFSET(HitPoint, coat, 88);
 CLPPM_CHECK_OFFSET(HitPoint, nc_oct, 96);

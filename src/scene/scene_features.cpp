@@ -33,6 +33,10 @@ SceneFeatures scene_features(const Scene& scene, const DeviceScene& ds) {
         if (m.clearcoat > 0.f) f.clearcoat = true;
         const bool sheen = m.sheen_color[0] > 0.f || m.sheen_color[1] > 0.f || m.sheen_color[2] > 0.f;
         if (sheen) f.sheen = true;
+        // The film acts on the specular layer and the metal only.
+        if (m.iridescence > 0.f && ((dielectric > 0.f && m.specular_color[3] > 0.f) || m.metallic > 0.f))
+            f.iridescence = true;
+        if (m.iridescence > 0.f && (m.iridescence_tex >= 0 || m.iridescence_thickness_tex >= 0)) f.textures = true;
         if (sheen && (m.sheen_color_tex >= 0 || m.sheen_roughness_tex >= 0)) f.textures = true;
         if (m.clearcoat > 0.f && (m.clearcoat_tex >= 0 || m.clearcoat_roughness_tex >= 0)) f.textures = true;
         if (m.clearcoat > 0.f && m.clearcoat_normal_tex >= 0 && !scene.tangents.empty())

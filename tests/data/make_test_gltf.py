@@ -824,6 +824,36 @@ def camera_clipping():
         b.write_embedded(out(name))
 
 
+def iridescence():
+    """KHR_materials_iridescence: a smooth plate (black base, ior 1.5) under a film of index 1.3
+    and 400 nm, facing the camera (views within 0.3 degrees of the normal) in a uniform white world:
+    it shows the film's reflectance at normal incidence. film_textured.gltf: factors and textures,
+    for the loader."""
+    b = GltfBuilder("clppm tests/data/make_test_gltf.py")
+    plate = b.material("plate", (0.0, 0.0, 0.0), roughness=0.0,
+                       extensions={"KHR_materials_iridescence": {"iridescenceFactor": 1.0,
+                                                                 "iridescenceThicknessMaximum": 400.0}})
+    p = b.primitive([(-1, -1, 0), (1, -1, 0), (1, 1, 0), (-1, 1, 0)], [0, 1, 2, 0, 2, 3], [(0, 0, 1)] * 4,
+                    material=plate)
+    b.scene([b.node(name="plate", mesh=b.mesh([p])),
+             b.node(name="camera", camera=b.camera(0.01), translation=[0.0, 0.0, 3.0])])
+    b.world(color=(1.0, 1.0, 1.0))
+    b.write_embedded(out("film_plate.gltf"))
+    b = GltfBuilder("clppm tests/data/make_test_gltf.py")
+    png = png_rgba([[(128, 64, 0, 255)] * 2] * 2)
+    b.doc["images"] = [{"uri": "data:image/png;base64," + base64.b64encode(png).decode("ascii")}]
+    b.doc["textures"] = [{"source": 0}]
+    ext = {"iridescenceFactor": 0.8, "iridescenceIor": 1.8, "iridescenceThicknessMinimum": 200.0,
+           "iridescenceThicknessMaximum": 600.0, "iridescenceTexture": {"index": 0},
+           "iridescenceThicknessTexture": {"index": 0}}
+    plate = b.material("plate", (0.5, 0.5, 0.5), metallic=1.0, extensions={"KHR_materials_iridescence": ext})
+    p = b.primitive([(-1, -1, 0), (1, -1, 0), (1, 1, 0), (-1, 1, 0)], [0, 1, 2, 0, 2, 3], [(0, 0, 1)] * 4,
+                    material=plate)
+    p["attributes"]["TEXCOORD_0"] = b.accessor([0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 1.0], FLOAT, "VEC2", ARRAY_BUFFER)
+    b.scene([b.node(name="plate", mesh=b.mesh([p]))])
+    b.write_embedded(out("film_textured.gltf"))
+
+
 def reference_scenes():
     """Scenes with images from an independent renderer (tests/references/make_references.py,
     Mitsuba 3): a glass block on a floor before a wall, a red box half behind it, under a 1 x 1
@@ -1099,7 +1129,7 @@ def main():
                  materials, texture, lights, cameras, quantized, sparse, strips_fans, gpu_instancing, emissive_texture,
                  normal_maps, vertex_colors, alpha_modes,
                  texture_transform, uv1_plates, volumes, skinned,
-                 specular_textures, unlit, clearcoat, sheen, camera_clipping, reference_scenes, environment_scenes, spread_light, errors):
+                 specular_textures, unlit, clearcoat, sheen, iridescence, camera_clipping, reference_scenes, environment_scenes, spread_light, errors):
         make()
 
 

@@ -53,6 +53,7 @@ dev::Material default_material() {
     m.clearcoat_tex = m.clearcoat_roughness_tex = m.clearcoat_normal_tex = -1;
     m.clearcoat_normal_scale = 1.f;
     m.sheen_color_tex = m.sheen_roughness_tex = -1;
+    m.iridescence_tex = m.iridescence_thickness_tex = -1;
     return m;
 }
 
@@ -132,6 +133,7 @@ dev::Material MaterialConverter::convert_material(int index) {
     convert_specular(g, label, m);
     convert_clearcoat(g, label, m);
     convert_sheen(g, label, m);
+    convert_iridescence(g, label, m);
     if (g.doubleSided) m.flags |= MATERIAL_FLAG_DOUBLE_SIDED;
     if (g.extensions.count("KHR_materials_unlit")) convert_unlit(m);
     return m;
@@ -151,6 +153,8 @@ void MaterialConverter::convert_unlit(dev::Material& m) {
     m.clearcoat_tex = m.clearcoat_roughness_tex = m.clearcoat_normal_tex = -1;
     for (int c = 0; c < 3; ++c) m.sheen_color[c] = 0.f;
     m.sheen_color_tex = m.sheen_roughness_tex = -1;
+    m.iridescence = 0.f;
+    m.iridescence_tex = m.iridescence_thickness_tex = -1;
     for (float& a : m.attenuation) a = 0.f;
     m.flags &= ~MATERIAL_FLAG_THIN_WALLED;
 }
@@ -206,6 +210,38 @@ void MaterialConverter::convert_sheen(const tinygltf::Material& g, const std::st
     if (!(std::max({m.sheen_color[0], m.sheen_color[1], m.sheen_color[2]}) > 0.f)) return;
     m.sheen_color_tex = extension_texture(g, ext, "sheenColorTexture", label, true);
     m.sheen_roughness_tex = extension_texture(g, ext, "sheenRoughnessTexture", label, false);
+}
+
+// KHR_materials_iridescence: iridescenceFactor times iridescenceTexture's R weighs a thin film of
+// index iridescenceIor (default 1.3) and thickness between iridescenceThicknessMinimum and
+// -Maximum (100 and 400 nm) by iridescenceThicknessTexture's G, the maximum without one
+// (kernels/iridescence.cl).
+void MaterialConverter::convert_iridescence(const tinygltf::Material& g, const std::string& label, dev::Material& m) {
+    m.iridescence_tex = m.iridescence_thickness_tex = -1;
+    m.iridescence_ior = 1.3f;
+    m.iridescence_thickness[0] = 100.f;
+    m.iridescence_thickness[1] = 400.f;
+    auto it = g.extensions.find("KHR_materials_iridescence");
+    if (it == g.extensions.end() || !it->second.IsObject()) return;
+    const char* ext = "KHR_materials_iridescence";
+    m.iridescence = std::clamp(
+        finite_factor(extension_number(g.extensions, ext, "iridescenceFactor", 0.0), "iridescenceFactor", label), 0.f,
+        1.f);
+    m.iridescence_ior =
+        finite_factor(extension_number(g.extensions, ext, "iridescenceIor", 1.3), "iridescenceIor", label);
+    if (m.iridescence_ior < 1.f) {
+        ctx_.warn(label + " iridescenceIor " + std::to_string(m.iridescence_ior) + " is below 1; using 1");
+        m.iridescence_ior = 1.f;
+    }
+    for (int k = 0; k < 2; ++k) {
+        const char* key = k == 0 ? "iridescenceThicknessMinimum" : "iridescenceThicknessMaximum";
+        m.iridescence_thickness[k] =
+            finite_factor(extension_number(g.extensions, ext, key, k == 0 ? 100.0 : 400.0), key, label);
+        if (m.iridescence_thickness[k] < 0.f) ctx_.fail(label + " " + key + " must be at least 0");
+    }
+    if (!(m.iridescence > 0.f)) return;
+    m.iridescence_tex = extension_texture(g, ext, "iridescenceTexture", label, false);
+    m.iridescence_thickness_tex = extension_texture(g, ext, "iridescenceThicknessTexture", label, false);
 }
 
 // A textureInfo inside a material extension (tinygltf leaves those as JSON values): -1 without it.
