@@ -32,6 +32,10 @@
  *    lobe's directional albedo (kernels/sheen_albedo.h) and E' = min(E_s, 1): the extension's
  *    albedo scaling, with the lobe kept from exceeding albedo 1 at grazing angles (where the
  *    smoothest Charlie lobes reach 3.7) so that there is no gain. Sampled by the cosine.
+ *  - KHR_materials_anisotropy: the GGX lobes of the layer, the metal and the glass stretch to
+ *    alpha_t = alpha + (1 - alpha) s^2 along the direction ta (s the strength), alpha across it
+ *    (the extension's mapping; Heitz 2014's anisotropic D and Smith Lambda, sampled by visible
+ *    normals); the albedo tables are read at sqrt(alpha_t alpha).
  *  - KHR_materials_iridescence: a thin film of weight irid on the specular layer and the metal,
  *    whose Fresnel becomes (1 - irid) Schlick + irid F_film (kernels/iridescence.cl; for the
  *    layer F_film over the layer's F0, times its F90). Under the film the diffuse lobe is scaled,
@@ -91,6 +95,8 @@ typedef struct {
     float3 sheen;                   /* LOBE_SHEEN: colour (0: none) */
     float sheen_r;                  /* LOBE_SHEEN: roughness, at least SHEEN_MIN_ROUGHNESS */
     float irid, irid_ior, irid_d;   /* KHR_materials_iridescence: weight (0: none), index, thickness (nm) */
+    float3 ta;                      /* KHR_materials_anisotropy: the direction of alpha_t, across ns */
+    float alpha_t;                  /* GGX alpha along ta; alpha (across) otherwise */
 } Bsdf;
 
 typedef struct {
@@ -160,7 +166,69 @@ float ggx_table_avg(__constant float* t, float alpha) {
     return t[j] + (t[j + 1] - t[j]) * fy;
 }
 
-bool bsdf_is_mirror(const Bsdf* b) { return b->alpha < MIRROR_ALPHA; }
+/* KHR_materials_anisotropy: the GGX lobes (layer, metal, glass) stretch to alpha_t along ta. */
+bool has_aniso(const Bsdf* b) { return HAS_ANISOTROPY && b->alpha_t != b->alpha; }
+
+/* A mirror only when smooth in every direction. */
+bool bsdf_is_mirror(const Bsdf* b) { return (HAS_ANISOTROPY ? fmax(b->alpha, b->alpha_t) : b->alpha) < MIRROR_ALPHA; }
+
+/* ---- the microfacet lobes' GGX, isotropic or anisotropic ---------------------------------------- */
+
+float3 mf_local(const Bsdf* b, float3 v) {
+    float3 bt = cross(b->ns, b->ta);
+    return (float3)(dot(v, b->ta), dot(v, bt), dot(v, b->ns));
+}
+
+/* The alpha at which the isotropic albedo tables stand for the lobe seen along v. For an
+ * anisotropic lobe, the smaller one (across ta): a lobe stretched further loses more to masking, so
+ * the tables then overstate its albedo, and the coupled diffuse and Kulla-Conty terms, which give
+ * back what the tables say is lost, lose energy rather than gain it. (The projected alpha in v's
+ * azimuth, the alpha Smith's Lambda has there, gained up to 19% on a white metal of alpha 0.8 by
+ * 0.01: it understates the albedo of a lobe rough in one direction only.) */
+float dir_alpha(const Bsdf* b, float3 v) { return b->alpha; }
+
+/* D(h), h on the side of ns. */
+float mf_d(const Bsdf* b, float3 h) {
+    return has_aniso(b) ? ggx_d_aniso(mf_local(b, h), b->alpha_t, b->alpha) : ggx_d(dot(b->ns, h), b->alpha);
+}
+
+float mf_g1(const Bsdf* b, float3 v) {
+    return has_aniso(b) ? 1.0f / (1.0f + ggx_lambda_aniso(mf_local(b, v), b->alpha_t, b->alpha))
+                        : ggx_g1(dot(b->ns, v), b->alpha);
+}
+
+/* G2(wo, wi), wi on either side. */
+float mf_g2(const Bsdf* b, float3 wo, float3 wi) {
+    if (!has_aniso(b)) return ggx_g2(dot(b->ns, wo), fabs(dot(b->ns, wi)), b->alpha);
+    return 1.0f / (1.0f + ggx_lambda_aniso(mf_local(b, wo), b->alpha_t, b->alpha) +
+                   ggx_lambda_aniso(mf_local(b, wi), b->alpha_t, b->alpha));
+}
+
+/* A microfacet normal by the visible normals from wo. */
+float3 mf_sample_h(const Bsdf* b, float3 wo, float u1, float u2) {
+    if (!has_aniso(b)) return ggx_sample_h(b->ns, wo, b->alpha, u1, u2);
+    float3 h = ggx_sample_h_aniso(mf_local(b, wo), b->alpha_t, b->alpha, u1, u2);
+    return b->ta * h.x + cross(b->ns, b->ta) * h.y + b->ns * h.z;
+}
+
+/* D G2 / (4 cos_o cos_i) and *cos_d = wi.h; zero below the surface (ggx_reflection). */
+float mf_reflection(const Bsdf* b, float3 wo, float3 wi, float* cos_d) {
+    if (!has_aniso(b)) return ggx_reflection(b->ns, wo, wi, b->alpha, cos_d);
+    float cos_o = dot(b->ns, wo), cos_i = dot(b->ns, wi);
+    *cos_d = 1.0f;
+    if (cos_o <= 0.0f || cos_i <= 0.0f) return 0.0f;
+    float3 h = normalize(wo + wi);
+    *cos_d = clamp(dot(wi, h), 0.0f, 1.0f);
+    return mf_d(b, h) * mf_g2(b, wo, wi) / (4.0f * cos_o * cos_i);
+}
+
+/* The density of mf_sample_h's reflection: G1(wo) D(h) / (4 cos_o) (ggx_pdf). */
+float mf_pdf(const Bsdf* b, float3 wo, float3 wi) {
+    if (!has_aniso(b)) return ggx_pdf(b->ns, wo, wi, b->alpha);
+    float cos_o = dot(b->ns, wo), cos_i = dot(b->ns, wi);
+    if (cos_o <= 0.0f || cos_i <= 0.0f) return 0.0f;
+    return mf_g1(b, wo) * mf_d(b, normalize(wo + wi)) / (4.0f * cos_o);
+}
 
 bool has_coat(const Bsdf* b) { return HAS_CLEARCOAT && b->coat > 0.0f; }
 
@@ -219,16 +287,19 @@ float3 sheen_eval(const Bsdf* b, float3 wo, float3 wi) {
 float layers_scale(const Bsdf* b, float3 wo, float3 wi) { return coat_scale(b, wo, wi) * sheen_scale(b, wo, wi); }
 
 /* E(mu): the dielectric layer's directional albedo (exact Schlick for a mirror). */
-float3 layer_albedo(const Bsdf* b, float mu) {
+float3 layer_albedo(const Bsdf* b, float mu, float alpha) {
     if (bsdf_is_mirror(b)) return b->f0 + (b->f90 - b->f0) * pow5(1.0f - mu);
-    return b->f0 * ggx_table(ggx_albedo_a, mu, b->alpha) + (b->f90 - b->f0) * ggx_table(ggx_albedo_b, mu, b->alpha);
+    return b->f0 * ggx_table(ggx_albedo_a, mu, alpha) + (b->f90 - b->f0) * ggx_table(ggx_albedo_b, mu, alpha);
 }
+
+/* A table's hemispherical mean for the lobe, at the alpha dir_alpha gives (the cosine-weighted
+ * mean of its directional values, so that the coupled terms integrate as they should). */
+float ggx_avg(const Bsdf* b, __constant float* t) { return ggx_table_avg(t, b->alpha); }
 
 /* E_avg = 2 int E(mu) mu dmu (Schlick's mean is F0 + (F90 - F0) / 21). */
 float3 layer_albedo_avg(const Bsdf* b) {
     if (bsdf_is_mirror(b)) return b->f0 + (b->f90 - b->f0) * (1.0f / 21.0f);
-    return b->f0 * ggx_table_avg(ggx_albedo_a_avg, b->alpha) +
-           (b->f90 - b->f0) * ggx_table_avg(ggx_albedo_b_avg, b->alpha);
+    return b->f0 * ggx_avg(b, ggx_albedo_a_avg) + (b->f90 - b->f0) * ggx_avg(b, ggx_albedo_b_avg);
 }
 
 /* ---- lobes ------------------------------------------------------------------------------------ */
@@ -237,7 +308,7 @@ float3 layer_albedo_avg(const Bsdf* b) {
  * refract at any roughness: it stays a delta (straight through), where the rough lobe's
  * Jacobian would be singular. */
 bool glass_is_rough(const Bsdf* b) {
-    return HAS_GLASS && HAS_ROUGH_GLASS && b->alpha >= MIRROR_ALPHA && (b->thin || fabs(b->eta - 1.0f) > 1e-3f);
+    return HAS_GLASS && HAS_ROUGH_GLASS && !bsdf_is_mirror(b) && (b->thin || fabs(b->eta - 1.0f) > 1e-3f);
 }
 
 /* The rough glass lobe at (wo, wi), unweighted: f, with the transmission tinted by the base
@@ -263,8 +334,8 @@ float3 glass_eval(const Bsdf* b, float3 wo, float3 wi, float* pdf) {
     float o_h = dot(wo, h);
     if (!(o_h > 0.0f)) return (float3)(0.0f);
     float F = fresnel_dielectric(o_h, b->eta);
-    float d = ggx_d(dot(n, h), b->alpha);
-    float g1 = ggx_g1(cos_o, b->alpha), g2 = ggx_g2(cos_o, fabs(cos_i), b->alpha);
+    float d = mf_d(b, h);
+    float g1 = mf_g1(b, wo), g2 = mf_g2(b, wo, wi);
     if (reflect || b->thin) {
         float k = reflect ? F : 1.0f - F;
         *pdf = k * g1 * d / (4.0f * cos_o);
@@ -284,7 +355,7 @@ float3 glass_eval(const Bsdf* b, float3 wo, float3 wi, float* pdf) {
  * through the surface). False when the direction falls on the wrong side. */
 bool glass_sample(const Bsdf* b, float3 wo, float u_in, float u1, float u2, float3* wi, bool* below) {
     float3 n = b->ns;
-    float3 h = ggx_sample_h(n, wo, b->alpha, u1, u2);
+    float3 h = mf_sample_h(b, wo, u1, u2);
     float o_h = dot(wo, h);
     if (!(o_h > 0.0f)) return false;
     float F = fresnel_dielectric(o_h, b->eta);
@@ -333,25 +404,26 @@ float3 layer_fresnel(const Bsdf* b, float cos_d) {
 /* E_f(mu): the filmed layer's directional albedo, estimated as A(mu) F_film(x), A the GGX lobe's
  * own albedo and x the cosine at which (1 - x)^5 is the lobe's mean of (1 - wo.h)^5, B(mu) / A(mu)
  * from the tables: the microfacets' typical angle to the view (exact for a smooth layer, x = mu). */
-float3 film_layer_albedo(const Bsdf* b, float mu) {
+float3 film_layer_albedo(const Bsdf* b, float mu, float alpha) {
     if (bsdf_is_mirror(b)) return layer_film_fresnel(b, mu);
-    float a = ggx_table(ggx_albedo_a, mu, b->alpha), bb = ggx_table(ggx_albedo_b, mu, b->alpha);
+    float a = ggx_table(ggx_albedo_a, mu, alpha), bb = ggx_table(ggx_albedo_b, mu, alpha);
     float x = a > 1e-6f ? 1.0f - pow(clamp(bb / a, 0.0f, 1.0f), 0.2f) : mu;
     /* 3% over, since the estimate is no bound: measured within 1.2% of the true albedo. */
     return fmin(layer_film_fresnel(b, x) * (a * 1.03f), (float3)(1.0f));
 }
 
-/* The diffuse lobe: base / pi, scaled for the layer above it. */
-float3 diffuse_eval(const Bsdf* b, float cos_o, float cos_i) {
+/* The diffuse lobe: base / pi, scaled for the layer above it; al_o and al_i the tables' alpha
+ * towards wo and wi (dir_alpha). */
+float3 diffuse_eval(const Bsdf* b, float cos_o, float cos_i, float al_o, float al_i) {
     float3 c = b->base * (b->dielectric * INV_PI_F);
     if (!has_layer(b)) return c;
     float3 one = (float3)(1.0f);
     float3 rest = one - layer_albedo_avg(b);
-    float3 s = (one - layer_albedo(b, cos_o)) * (one - layer_albedo(b, cos_i));
+    float3 s = (one - layer_albedo(b, cos_o, al_o)) * (one - layer_albedo(b, cos_i, al_i));
     float3 d = select((float3)(0.0f), c * s / rest, isgreater(rest, (float3)(1e-6f)));
     if (!has_irid(b)) return d;
     /* Under the film, channel by channel: min(1 - E_f(wo), 1 - E_f(wi)). */
-    float3 e = fmax(film_layer_albedo(b, cos_o), film_layer_albedo(b, cos_i));
+    float3 e = fmax(film_layer_albedo(b, cos_o, al_o), film_layer_albedo(b, cos_i, al_i));
     return d + (c * fmax((float3)(0.0f), 1.0f - e) - d) * b->irid;
 }
 
@@ -373,10 +445,14 @@ float3 metal_ms_color(const Bsdf* b, float a_avg) {
     return c + (g * g * a_avg / (1.0f - g * (1.0f - a_avg)) - c) * b->irid;
 }
 
-float3 metal_ms_eval(const Bsdf* b, float cos_o, float cos_i) {
-    float a_avg = ggx_table_avg(ggx_albedo_a_avg, b->alpha);
+float3 metal_ms_eval(const Bsdf* b, float cos_o, float cos_i, float al_o, float al_i) {
+    /* None for an anisotropic lobe: at grazing views its single scattering keeps more than any
+     * isotropic table says (up to 4% more than at its smaller alpha), so giving back what the
+     * table says is lost would gain energy. */
+    if (has_aniso(b)) return (float3)(0.0f);
+    float a_avg = ggx_avg(b, ggx_albedo_a_avg);
     if (!(1.0f - a_avg > 1e-6f)) return (float3)(0.0f);
-    float s = (1.0f - ggx_table(ggx_albedo_a, cos_o, b->alpha)) * (1.0f - ggx_table(ggx_albedo_a, cos_i, b->alpha));
+    float s = (1.0f - ggx_table(ggx_albedo_a, cos_o, al_o)) * (1.0f - ggx_table(ggx_albedo_a, cos_i, al_i));
     return metal_ms_color(b, a_avg) * (b->metal * s * INV_PI_F / (1.0f - a_avg));
 }
 
@@ -399,17 +475,19 @@ LobeWeights lobe_weights(const Bsdf* b, float3 wo, uint mask) {
     float cos_o = dot(b->ns, wo);
     LobeWeights w;
     w.diffuse = w.layer = w.glass = w.metal = w.metal_ms = w.coat = w.sheen = 0.0f;
-    float3 e = has_layer(b) ? layer_albedo(b, cos_o) : (float3)(0.0f);
+    float al_o = dir_alpha(b, wo);
+    float3 e = has_layer(b) ? layer_albedo(b, cos_o, al_o) : (float3)(0.0f);
     if (mask & LOBE_DIFFUSE) w.diffuse = b->dielectric * mean3(b->base * (1.0f - e));
     if (HAS_SPECULAR_LAYER && (mask & LOBE_SPECULAR)) w.layer = b->dielectric * mean3(e);
     if (HAS_GLASS && (mask & LOBE_GLASS)) w.glass = b->glass;
     if (HAS_METAL && (mask & LOBE_METAL) && b->metal > 0.0f) {
         bool mirror = bsdf_is_mirror(b);
-        float a_o = mirror ? 1.0f : ggx_table(ggx_albedo_a, cos_o, b->alpha);
+        float a_o = mirror ? 1.0f : ggx_table(ggx_albedo_a, cos_o, al_o);
         w.metal = b->metal * mean3(metal_fresnel(b, cos_o)) * a_o;
         if (!mirror) {
-            float a_avg = ggx_table_avg(ggx_albedo_a_avg, b->alpha);
-            if (1.0f - a_avg > 1e-6f) w.metal_ms = b->metal * mean3(metal_ms_color(b, a_avg)) * (1.0f - a_o);
+            float a_avg = ggx_avg(b, ggx_albedo_a_avg);
+            if (1.0f - a_avg > 1e-6f && !has_aniso(b))
+                w.metal_ms = b->metal * mean3(metal_ms_color(b, a_avg)) * (1.0f - a_o);
         }
     }
     if (has_sheen(b)) { /* the sheen's albedo at wo, and what it leaves of the rest */
@@ -456,20 +534,24 @@ float3 bsdf_eval_under(const Bsdf* b, float3 wo, float3 wi, uint mask) {
     }
     if (cos_o <= 0.0f || cos_i <= 0.0f) return f;
     if (bsdf_plain_lambert(b)) return (mask & LOBE_DIFFUSE) ? b->base * (b->dielectric * INV_PI_F) : (float3)(0.0f);
-    if (mask & LOBE_DIFFUSE) f += diffuse_eval(b, cos_o, cos_i);
+    if (mask & LOBE_DIFFUSE) f += diffuse_eval(b, cos_o, cos_i, dir_alpha(b, wo), dir_alpha(b, wi));
     if (!HAS_NON_DIFFUSE || bsdf_is_mirror(b)) return f;
     bool layer = has_layer(b) && (mask & LOBE_SPECULAR);
     bool metal = HAS_METAL && b->metal > 0.0f && (mask & LOBE_METAL);
     if (layer || metal) {
         float cos_d;
-        float g = ggx_reflection(b->ns, wo, wi, b->alpha, &cos_d);
+        float g = mf_reflection(b, wo, wi, &cos_d);
         float s5 = pow5(1.0f - cos_d);
         if (!has_irid(b)) {
             if (layer) f += (b->f0 + (b->f90 - b->f0) * s5) * (b->dielectric * g);
-            if (metal) f += (b->base + (1.0f - b->base) * s5) * (b->metal * g) + metal_ms_eval(b, cos_o, cos_i);
+            if (metal)
+                f += (b->base + (1.0f - b->base) * s5) * (b->metal * g) +
+                     metal_ms_eval(b, cos_o, cos_i, dir_alpha(b, wo), dir_alpha(b, wi));
         } else {
             if (layer) f += layer_fresnel(b, cos_d) * (b->dielectric * g);
-            if (metal) f += metal_fresnel(b, cos_d) * (b->metal * g) + metal_ms_eval(b, cos_o, cos_i);
+            if (metal)
+                f += metal_fresnel(b, cos_d) * (b->metal * g) +
+                     metal_ms_eval(b, cos_o, cos_i, dir_alpha(b, wo), dir_alpha(b, wi));
         }
     }
     return f;
@@ -506,7 +588,7 @@ float bsdf_pdf_weighted(const Bsdf* b, float3 wo, float3 wi, const LobeWeights* 
     if (cos_i <= 0.0f) return p / w->total;
     if (w->coat > 0.0f && !coat_is_mirror(b)) p += w->coat * ggx_pdf(b->nc, wo, wi, b->coat_alpha);
     p += (w->diffuse + w->metal_ms + w->sheen) * cos_i * INV_PI_F;
-    if (!bsdf_is_mirror(b) && w->layer + w->metal > 0.0f) p += (w->layer + w->metal) * ggx_pdf(b->ns, wo, wi, b->alpha);
+    if (!bsdf_is_mirror(b) && w->layer + w->metal > 0.0f) p += (w->layer + w->metal) * mf_pdf(b, wo, wi);
     return p / w->total;
 }
 
@@ -614,7 +696,7 @@ bool bsdf_sample_lobes(const Bsdf* b, float3 wo, uint mask, float u_lobe, float 
         float3 h = ggx_sample_h(b->nc, wo, b->coat_alpha, u1, u2);
         s->wi = normalize(2.0f * dot(wo, h) * h - wo);
     } else {
-        float3 h = ggx_sample_h(b->ns, wo, b->alpha, u1, u2);
+        float3 h = mf_sample_h(b, wo, u1, u2);
         s->wi = normalize(2.0f * dot(wo, h) * h - wo);
     }
     float cos_i = dot(b->ns, s->wi);
@@ -623,7 +705,7 @@ bool bsdf_sample_lobes(const Bsdf* b, float3 wo, uint mask, float u_lobe, float 
         /* Only the diffuse lobe: f cos / pdf in closed form (exactly the base colour when the
          * surface is plain Lambertian). */
         s->pdf = cos_i * INV_PI_F;
-        s->weight = diffuse_eval(b, cos_o, cos_i) * (PI_F / p_tech);
+        s->weight = diffuse_eval(b, cos_o, cos_i, dir_alpha(b, wo), dir_alpha(b, s->wi)) * (PI_F / p_tech);
         if (!has_layer(b)) s->weight = b->base * (b->dielectric / p_tech);
         return true;
     }
@@ -743,6 +825,16 @@ Bsdf surface_bsdf(SCENE_PARAMS, const Surface* s) {
         if (HAS_TEXTURES && m->sheen_roughness_tex >= 0)
             sr *= texture_rgba(textures, texels, m->sheen_roughness_tex, s->uv).w;
         b.sheen_r = fmax(sr, SHEEN_MIN_ROUGHNESS);
+    }
+    b.ta = s->ta;
+    b.alpha_t = b.alpha;
+    if (HAS_ANISOTROPY && m->anisotropy_strength > 0.0f) { /* anisotropyTexture's B scales the strength */
+        float st = m->anisotropy_strength;
+        if (HAS_TEXTURES && m->anisotropy_tex >= 0) st *= texture_rgba(textures, texels, m->anisotropy_tex, s->uv).z;
+        if (st > 0.0f) {
+            b.alpha = fmax(b.alpha, 1e-3f); /* a lobe of no width across would be singular */
+            b.alpha_t = b.alpha + (1.0f - b.alpha) * st * st;
+        }
     }
     b.irid = HAS_IRIDESCENCE ? m->iridescence : 0.0f;
     b.irid_ior = m->iridescence_ior;

@@ -88,6 +88,37 @@ float3 ggx_sample(float3 n, float3 wo, float3 f0, float alpha, float u1, float u
     return fresnel_schlick(f0, dot(*wi, h)) * (ggx_g2(cos_o, cos_i, alpha) / ggx_g1(cos_o, alpha));
 }
 
+/* ---- anisotropic GGX (KHR_materials_anisotropy), in the local frame (t, b, n) of the lobe:
+ * alpha_x along t, alpha_y along b (Heitz 2014, Eqs. 80 and 86; Heitz 2018 for the sampling). */
+
+/* D(h) for h in the local frame (h.z = n.h > 0). */
+float ggx_d_aniso(float3 h, float ax, float ay) {
+    float x = h.x / ax, y = h.y / ay, t = x * x + y * y + h.z * h.z;
+    return 1.0f / (PI_F * ax * ay * t * t);
+}
+
+/* Smith's Lambda for direction v in the local frame. */
+float ggx_lambda_aniso(float3 v, float ax, float ay) {
+    float z2 = fmax(v.z * v.z, 1e-12f);
+    return 0.5f * (-1.0f + sqrt(1.0f + (ax * ax * v.x * v.x + ay * ay * v.y * v.y) / z2));
+}
+
+/* A microfacet normal by the visible normals seen from v (local frame), returned in the local
+ * frame: ggx_sample_h with a stretch of (ax, ay). */
+float3 ggx_sample_h_aniso(float3 v, float ax, float ay, float u1, float u2) {
+    float3 vh = normalize((float3)(ax * v.x, ay * v.y, v.z));
+    float lensq = vh.x * vh.x + vh.y * vh.y;
+    float3 T1 = lensq > 0.0f ? (float3)(-vh.y, vh.x, 0.0f) * rsqrt(lensq) : (float3)(1.0f, 0.0f, 0.0f);
+    float3 T2 = cross(vh, T1);
+    float r = sqrt(u1);
+    float2 c = unit_circle(u2);
+    float t1 = r * c.x, t2 = r * c.y;
+    float s = 0.5f * (1.0f + vh.z);
+    t2 = (1.0f - s) * sqrt(fmax(0.0f, 1.0f - t1 * t1)) + s * t2;
+    float3 nh = t1 * T1 + t2 * T2 + sqrt(fmax(0.0f, 1.0f - t1 * t1 - t2 * t2)) * vh;
+    return normalize((float3)(ax * nh.x, ay * nh.y, fmax(1e-6f, nh.z)));
+}
+
 /* D G2 / (4 cos_o cos_i): the GGX reflection lobe without its Fresnel factor, which the caller
  * takes at *cos_d = wi.h. Zero below the surface. */
 float ggx_reflection(float3 n, float3 wo, float3 wi, float alpha, float* cos_d) {

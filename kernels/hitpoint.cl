@@ -40,6 +40,8 @@ void store_hitpoint(__global HitPoint* hp, uint pixel, float3 p, float3 wo, floa
     hp->irid = HAS_IRIDESCENCE ? b->irid : 0.0f;
     hp->irid_ior = b->irid_ior;
     hp->irid_d = b->irid_d;
+    hp->t_oct = HAS_ANISOTROPY ? oct_encode(b->ta) : 0u;
+    hp->alpha_t = b->alpha_t;
     hp->pixel = pixel;
 }
 
@@ -68,6 +70,8 @@ Bsdf hitpoint_bsdf(__global const HitPoint* hp, float3 n) {
     b.irid = HAS_IRIDESCENCE ? hp->irid : 0.0f;
     b.irid_ior = hp->irid_ior;
     b.irid_d = hp->irid_d;
+    b.alpha_t = HAS_ANISOTROPY ? hp->alpha_t : b.alpha;
+    b.ta = HAS_ANISOTROPY && b.alpha_t != b.alpha ? oct_decode(hp->t_oct) : n;
     return b;
 }
 

@@ -31,7 +31,8 @@
     X(HAS_CLEARCOAT, clearcoat, "clearcoat")                                                                           \
     X(HAS_SHEEN, sheen, "sheen")                                                                                       \
     X(HAS_ORTHOGRAPHIC, orthographic, "orthographic camera")                                                           \
-    X(HAS_IRIDESCENCE, iridescence, "iridescence")
+    X(HAS_IRIDESCENCE, iridescence, "iridescence")                                                                     \
+    X(HAS_ANISOTROPY, anisotropy, "anisotropy")
 
 #ifdef __OPENCL_VERSION__
 
@@ -79,6 +80,9 @@
 #endif
 #ifndef HAS_EMISSION_SPREAD
 #define HAS_EMISSION_SPREAD 1
+#endif
+#ifndef HAS_ANISOTROPY
+#define HAS_ANISOTROPY 1
 #endif
 #ifndef HAS_IRIDESCENCE
 #define HAS_IRIDESCENCE 1

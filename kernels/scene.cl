@@ -25,6 +25,7 @@ typedef struct {
     float3 ns; /* shading normal, on the same side */
     float3 nl; /* the smooth normal: ns before the normal map (= ns without one), same side */
     float3 nc; /* KHR_materials_clearcoat: the coat's normal (its own map's, else nl), same side */
+    float3 ta; /* KHR_materials_anisotropy: the unit direction of the stretched GGX, across ns */
     float4 uv; /* xy: TEXCOORD_0, zw: TEXCOORD_1 (= TEXCOORD_0 when the scene has none) */
     uint material;
     uint prim;
@@ -81,6 +82,37 @@ float4 triangle_uv(SCENE_PARAMS, uint prim, float b1, float b2) {
     return (float4)(t0, t1);
 }
 
+/* KHR_materials_anisotropy: the direction the GGX lobe stretches along, in the tangent plane of
+ * the shading normal n: the interpolated tangent frame's (t, b = cross(n, t) w) direction
+ * anisotropyTexture.rg * 2 - 1 (else (1, 0)), turned by anisotropyRotation from t towards b. A
+ * triangle without tangents (no TEXCOORD_0) takes an arbitrary frame about n. */
+float3 anisotropy_direction(SCENE_PARAMS, __global const Material* m, uint prim, float b1, float b2, float3 n,
+                            float4 uv) {
+    float4 t4 = tangents[3 * prim] * (1.0f - b1 - b2) + tangents[3 * prim + 1] * b1 + tangents[3 * prim + 2] * b2;
+    float3 t = t4.xyz - n * dot(n, t4.xyz), b;
+    float len = length(t);
+    if (len > 1e-12f && isfinite(len)) {
+        t /= len;
+        b = cross(n, t) * (t4.w < 0.0f ? -1.0f : 1.0f);
+    } else {
+        make_frame(n, &t, &b);
+    }
+    float2 d = (float2)(1.0f, 0.0f);
+    if (HAS_TEXTURES && m->anisotropy_tex >= 0) {
+        float2 c = texture_rgba(textures, texels, m->anisotropy_tex, uv).xy * 2.0f - 1.0f;
+        if (dot(c, c) > 1e-12f) d = normalize(c);
+    }
+    float cr = cos(m->anisotropy_rotation), sr = sin(m->anisotropy_rotation);
+    float3 a = t * (cr * d.x - sr * d.y) + b * (sr * d.x + cr * d.y);
+    a -= n * dot(n, a);
+    float l = length(a);
+    if (!(l > 1e-12f)) {
+        make_frame(n, &t, &b);
+        return t;
+    }
+    return a / l;
+}
+
 Surface make_surface(SCENE_PARAMS, float3 dir, const Hit* h) {
     Surface s;
     uint prim = h->prim;
@@ -121,6 +153,9 @@ Surface make_surface(SCENE_PARAMS, float3 dir, const Hit* h) {
     s.ns = ns;
     s.nl = HAS_NORMAL_MAPS ? nl : ns;
     s.nc = HAS_CLEARCOAT ? nc : s.nl;
+    s.ta = (float3)(0.0f);
+    if (HAS_ANISOTROPY && m->anisotropy_strength > 0.0f)
+        s.ta = anisotropy_direction(SCENE_ARGS, m, prim, b1, b2, ns, s.uv);
     return s;
 }
 

@@ -122,8 +122,12 @@ typedef struct {
     float iridescence_thickness[2]; /* iridescenceThicknessMinimum, -Maximum (nm) */
     i32 iridescence_tex;            /* iridescenceTexture (linear, R); -1 when none */
     i32 iridescence_thickness_tex;  /* iridescenceThicknessTexture (linear, G); -1: the maximum */
-    float pad_irid[2];
-} Material; /* 208 bytes */
+    /* KHR_materials_anisotropy (kernels/bsdf.cl): GGX stretched along a direction in the tangent plane */
+    float anisotropy_strength; /* anisotropyStrength; 0: isotropic */
+    float anisotropy_rotation; /* anisotropyRotation (radians, from the tangent towards the bitangent) */
+    i32 anisotropy_tex;        /* anisotropyTexture (linear: RG direction, B strength); -1 when none */
+    float pad_aniso[3];
+} Material; /* 224 bytes */
 
 /* Sampler bits of a texture. Wrap per axis (glTF sampler wrapS, wrapT): clamp s, clamp t, mirror
  * s, mirror t; none set is REPEAT. TEXTURE_NEAREST: magFilter NEAREST, the texel the coordinate
@@ -229,7 +233,9 @@ typedef struct {
     float irid;       /* KHR_materials_iridescence: the film's weight (0: none) */
     float irid_ior;   /* its index */
     float irid_d;     /* its thickness (nm) */
-} HitPoint;           /* 128 bytes */
+    u32 t_oct;        /* KHR_materials_anisotropy: the direction of alpha_t, octahedral */
+    float alpha_t;    /* GGX alpha along it (= alpha when isotropic) */
+} HitPoint;           /* 136 bytes */
 
 #define HITPOINT_NONE 0xffffffffu
 

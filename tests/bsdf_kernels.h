@@ -49,7 +49,7 @@ __kernel void ggx_sample_many(float nx, float ny, float nz, float ox, float oy, 
 }
 /* The whole model (kernels/bsdf.cl) from 15 parameters: base rgb, f0 rgb, f90, alpha, dielectric,
  * glass, metal, eta, thin, coat, coat alpha, sheen rgb, sheen roughness, iridescence weight,
- * film index, thickness; every normal is n. */
+ * film index, thickness, alpha_t (along make_frame's t); every normal is n. */
 Bsdf test_bsdf(__global const float* p, float3 n) {
     Bsdf b;
     b.ns = n;
@@ -74,6 +74,10 @@ Bsdf test_bsdf(__global const float* p, float3 n) {
     b.irid = p[19];
     b.irid_ior = p[20];
     b.irid_d = p[21];
+    b.alpha_t = p[22];
+    float3 t, bt;
+    make_frame(n, &t, &bt);
+    b.ta = t;
     return b;
 }
 /* bsdf_eval (rgb) and bsdf_pdf at (wo, wi[i]) over the lobes in mask. */
@@ -200,11 +204,31 @@ struct Params {
     D3 sheen{0, 0, 0};                             // KHR_materials_sheen's colour
     double sheen_r = 1;                            // and roughness (at least SHEEN_MIN_ROUGHNESS)
     double irid = 0, irid_ior = 1.3, irid_d = 400; // KHR_materials_iridescence
+    double alpha_t = -1;                           // KHR_materials_anisotropy: alpha along t (-1: alpha)
     std::vector<float> pack() const {
-        return {float(base.x),    float(base.y), float(base.z),     float(f0.x),    float(f0.y),    float(f0.z),
-                float(f90),       float(alpha),  float(dielectric), float(glass),   float(metal),   float(eta),
-                thin ? 1.f : 0.f, float(coat),   float(coat_alpha), float(sheen.x), float(sheen.y), float(sheen.z),
-                float(sheen_r),   float(irid),   float(irid_ior),   float(irid_d)};
+        return {float(base.x),
+                float(base.y),
+                float(base.z),
+                float(f0.x),
+                float(f0.y),
+                float(f0.z),
+                float(f90),
+                float(alpha),
+                float(dielectric),
+                float(glass),
+                float(metal),
+                float(eta),
+                thin ? 1.f : 0.f,
+                float(coat),
+                float(coat_alpha),
+                float(sheen.x),
+                float(sheen.y),
+                float(sheen.z),
+                float(sheen_r),
+                float(irid),
+                float(irid_ior),
+                float(irid_d),
+                float(alpha_t < 0 ? alpha : alpha_t)};
     }
     std::string name() const {
         return "base (" + std::to_string(base.x) + "," + std::to_string(base.y) + "," + std::to_string(base.z) +
@@ -214,7 +238,8 @@ struct Params {
                (coat > 0 ? " coat " + std::to_string(coat) + " alpha " + std::to_string(coat_alpha) : "") +
                (sheen.x + sheen.y + sheen.z > 0 ? " sheen " + std::to_string(sheen.x) + " r " + std::to_string(sheen_r)
                                                 : "") +
-               (irid > 0 ? " iridescence " + std::to_string(irid) + " d " + std::to_string(irid_d) : "");
+               (irid > 0 ? " iridescence " + std::to_string(irid) + " d " + std::to_string(irid_d) : "") +
+               (alpha_t >= 0 ? " alpha_t " + std::to_string(alpha_t) : "");
     }
 };
 

@@ -98,13 +98,15 @@ TEST(Iridescence, SmoothFilmedPlateShowsTheFilmsReflectanceInEveryIntegrator) {
     for (const char* integrator : {"pt", "sppm", "vcm"}) {
         SCOPED_TRACE(integrator);
         std::string d = make_temp_dir("film"), out;
-        ASSERT_EQ(run_clppm(data("film_plate.gltf") + " --width 8 --height 8 --passes 2 --quiet --no-png --integrator " +
-                                integrator + " -o " + d + "/i.exr",
+        ASSERT_EQ(run_clppm(data("film_plate.gltf") +
+                                " --width 8 --height 8 --passes 2 --quiet --no-png --integrator " + integrator +
+                                " -o " + d + "/i.exr",
                             &out),
                   0)
             << out;
         Image img = read_exr(d + "/i.exr");
         for (size_t i = 0; i < img.rgb.size(); ++i)
-            ASSERT_NEAR(img.rgb[i], want[i % 3], 2e-3 * want[i % 3] + 1e-4) << "pixel " << i / 3 << " channel " << i % 3;
+            ASSERT_NEAR(img.rgb[i], want[i % 3], 2e-3 * want[i % 3] + 1e-4)
+                << "pixel " << i / 3 << " channel " << i % 3;
     }
 }

@@ -37,6 +37,7 @@ inline uint32_t add_material(Scene& s, float r, float g, float b, float emission
     m.clearcoat_tex = m.clearcoat_roughness_tex = m.clearcoat_normal_tex = -1;
     m.sheen_color_tex = m.sheen_roughness_tex = -1;
     m.iridescence_tex = m.iridescence_thickness_tex = -1;
+    m.anisotropy_tex = -1;
     m.flags = double_sided ? MATERIAL_FLAG_DOUBLE_SIDED : 0u;
     s.materials.push_back(m);
     return uint32_t(s.materials.size() - 1);

@@ -21,7 +21,9 @@ CLPPM_CHECK_SIZE(BvhTriBlock, 40 * BVH_TRI_BLOCK);
 CLPPM_CHECK_OFFSET(BvhTriBlock, prim, 36 * BVH_TRI_BLOCK);
 static_assert(BVH_WIDTH == 4 || BVH_WIDTH == 8, "bvh_traverse.cl has float4 and float8 node tests");
 
-CLPPM_CHECK_SIZE(Material, 208);
+CLPPM_CHECK_SIZE(Material, 224);
+CLPPM_CHECK_OFFSET(Material, anisotropy_strength, 200);
+CLPPM_CHECK_OFFSET(Material, anisotropy_tex, 208);
 CLPPM_CHECK_OFFSET(Material, iridescence, 176);
 CLPPM_CHECK_OFFSET(Material, iridescence_thickness_tex, 196);
 CLPPM_CHECK_OFFSET(Material, sheen_color, 152);
@@ -64,7 +66,8 @@ CLPPM_CHECK_OFFSET(SceneInfo, max_bounces, 40);
 CLPPM_CHECK_OFFSET(SceneInfo, vertex_colors, 44);
 CLPPM_CHECK_OFFSET(SceneInfo, texcoord1, 48);
 
-CLPPM_CHECK_SIZE(HitPoint, 128);
+CLPPM_CHECK_SIZE(HitPoint, 136);
+CLPPM_CHECK_OFFSET(HitPoint, t_oct, 128);
 CLPPM_CHECK_OFFSET(HitPoint, irid, 116);
 CLPPM_CHECK_OFFSET(HitPoint, sheen, 100);
 CLPPM_CHECK_OFFSET(HitPoint, coat, 88);

@@ -37,6 +37,11 @@ SceneFeatures scene_features(const Scene& scene, const DeviceScene& ds) {
         if (m.iridescence > 0.f && ((dielectric > 0.f && m.specular_color[3] > 0.f) || m.metallic > 0.f))
             f.iridescence = true;
         if (m.iridescence > 0.f && (m.iridescence_tex >= 0 || m.iridescence_thickness_tex >= 0)) f.textures = true;
+        // The lobes it stretches: the layer, the metal, rough glass.
+        if (m.anisotropy_strength > 0.f && (dielectric > 0.f || m.metallic > 0.f || m.transmission > 0.f)) {
+            f.anisotropy = true;
+            if (m.anisotropy_tex >= 0) f.textures = true;
+        }
         if (sheen && (m.sheen_color_tex >= 0 || m.sheen_roughness_tex >= 0)) f.textures = true;
         if (m.clearcoat > 0.f && (m.clearcoat_tex >= 0 || m.clearcoat_roughness_tex >= 0)) f.textures = true;
         if (m.clearcoat > 0.f && m.clearcoat_normal_tex >= 0 && !scene.tangents.empty())

@@ -854,6 +854,25 @@ def iridescence():
     b.write_embedded(out("film_textured.gltf"))
 
 
+def anisotropy():
+    """KHR_materials_anisotropy: a textured plate with strength, rotation and a direction texture,
+    for the loader (tangents are generated for it), in a white world."""
+    b = GltfBuilder("clppm tests/data/make_test_gltf.py")
+    png = png_rgba([[(255, 128, 255, 255)] * 2] * 2)
+    b.doc["images"] = [{"uri": "data:image/png;base64," + base64.b64encode(png).decode("ascii")}]
+    b.doc["textures"] = [{"source": 0}]
+    ext = {"anisotropyStrength": 0.6, "anisotropyRotation": 0.5, "anisotropyTexture": {"index": 0}}
+    plate = b.material("plate", (0.8, 0.8, 0.8), metallic=1.0, roughness=0.3,
+                       extensions={"KHR_materials_anisotropy": ext})
+    p = b.primitive([(-1, -1, 0), (1, -1, 0), (1, 1, 0), (-1, 1, 0)], [0, 1, 2, 0, 2, 3], [(0, 0, 1)] * 4,
+                    material=plate)
+    p["attributes"]["TEXCOORD_0"] = b.accessor([0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 1.0], FLOAT, "VEC2", ARRAY_BUFFER)
+    b.scene([b.node(name="plate", mesh=b.mesh([p])),
+             b.node(name="camera", camera=b.camera(0.6), translation=[0.0, 0.0, 3.0])])
+    b.world(color=(1.0, 1.0, 1.0))
+    b.write_embedded(out("aniso_plate.gltf"))
+
+
 def reference_scenes():
     """Scenes with images from an independent renderer (tests/references/make_references.py,
     Mitsuba 3): a glass block on a floor before a wall, a red box half behind it, under a 1 x 1
@@ -1129,7 +1148,7 @@ def main():
                  materials, texture, lights, cameras, quantized, sparse, strips_fans, gpu_instancing, emissive_texture,
                  normal_maps, vertex_colors, alpha_modes,
                  texture_transform, uv1_plates, volumes, skinned,
-                 specular_textures, unlit, clearcoat, sheen, iridescence, camera_clipping, reference_scenes, environment_scenes, spread_light, errors):
+                 specular_textures, unlit, clearcoat, sheen, iridescence, anisotropy, camera_clipping, reference_scenes, environment_scenes, spread_light, errors):
         make()
 
 

@@ -54,6 +54,7 @@ dev::Material default_material() {
     m.clearcoat_normal_scale = 1.f;
     m.sheen_color_tex = m.sheen_roughness_tex = -1;
     m.iridescence_tex = m.iridescence_thickness_tex = -1;
+    m.anisotropy_tex = -1;
     return m;
 }
 
@@ -134,6 +135,7 @@ dev::Material MaterialConverter::convert_material(int index) {
     convert_clearcoat(g, label, m);
     convert_sheen(g, label, m);
     convert_iridescence(g, label, m);
+    convert_anisotropy(g, label, m);
     if (g.doubleSided) m.flags |= MATERIAL_FLAG_DOUBLE_SIDED;
     if (g.extensions.count("KHR_materials_unlit")) convert_unlit(m);
     return m;
@@ -155,6 +157,8 @@ void MaterialConverter::convert_unlit(dev::Material& m) {
     m.sheen_color_tex = m.sheen_roughness_tex = -1;
     m.iridescence = 0.f;
     m.iridescence_tex = m.iridescence_thickness_tex = -1;
+    m.anisotropy_strength = 0.f;
+    m.anisotropy_tex = -1;
     for (float& a : m.attenuation) a = 0.f;
     m.flags &= ~MATERIAL_FLAG_THIN_WALLED;
 }
@@ -242,6 +246,23 @@ void MaterialConverter::convert_iridescence(const tinygltf::Material& g, const s
     if (!(m.iridescence > 0.f)) return;
     m.iridescence_tex = extension_texture(g, ext, "iridescenceTexture", label, false);
     m.iridescence_thickness_tex = extension_texture(g, ext, "iridescenceThicknessTexture", label, false);
+}
+
+// KHR_materials_anisotropy: anisotropyStrength times anisotropyTexture's B stretches the GGX lobes
+// to alpha_t = alpha + (1 - alpha) strength^2 along the texture's RG direction in the tangent frame
+// (default +t), turned by anisotropyRotation (kernels/scene.cl anisotropy_direction).
+void MaterialConverter::convert_anisotropy(const tinygltf::Material& g, const std::string& label, dev::Material& m) {
+    m.anisotropy_tex = -1;
+    auto it = g.extensions.find("KHR_materials_anisotropy");
+    if (it == g.extensions.end() || !it->second.IsObject()) return;
+    const char* ext = "KHR_materials_anisotropy";
+    m.anisotropy_strength = std::clamp(
+        finite_factor(extension_number(g.extensions, ext, "anisotropyStrength", 0.0), "anisotropyStrength", label), 0.f,
+        1.f);
+    m.anisotropy_rotation =
+        finite_factor(extension_number(g.extensions, ext, "anisotropyRotation", 0.0), "anisotropyRotation", label);
+    if (!(m.anisotropy_strength > 0.f)) return;
+    m.anisotropy_tex = extension_texture(g, ext, "anisotropyTexture", label, false);
 }
 
 // A textureInfo inside a material extension (tinygltf leaves those as JSON values): -1 without it.

@@ -10,9 +10,9 @@
 namespace clppm::gltf {
 
 namespace {
-// A material whose shading reads tangents: a normal map, or a clearcoat's own.
+// A material whose shading reads tangents: a normal map, a clearcoat's own, or anisotropy.
 bool normal_mapped(const dev::Material& m) {
-    return m.normal_tex >= 0 || (m.clearcoat > 0.f && m.clearcoat_normal_tex >= 0);
+    return m.normal_tex >= 0 || (m.clearcoat > 0.f && m.clearcoat_normal_tex >= 0) || m.anisotropy_strength > 0.f;
 }
 } // namespace
 
