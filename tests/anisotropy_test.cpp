@@ -36,8 +36,9 @@ TEST(Anisotropy, StretchedPlateRendersAlikeInPtAndSppm) {
     int k = 0;
     for (const char* integrator : {"pt", "sppm"}) {
         std::string d = make_temp_dir("aniso"), out;
-        ASSERT_EQ(run_clppm(data("aniso_plate.gltf") + " --width 16 --height 16 --passes 64 --quiet --no-png "
-                                                       "--integrator " +
+        ASSERT_EQ(run_clppm(data("aniso_plate.gltf") +
+                                " --width 16 --height 16 --passes 64 --quiet --no-png "
+                                "--integrator " +
                                 integrator + " -o " + d + "/i.exr",
                             &out),
                   0)
