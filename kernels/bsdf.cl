@@ -471,6 +471,16 @@ typedef struct {
     float diffuse, layer, glass, metal, metal_ms, coat, sheen, total;
 } LobeWeights;
 
+/* Scales the weights of the lobes under a layer (the sheen's too: the coat lies over it). */
+void lobe_weights_under(LobeWeights* w, float rest) {
+    w->diffuse *= rest;
+    w->layer *= rest;
+    w->glass *= rest;
+    w->metal *= rest;
+    w->metal_ms *= rest;
+    w->sheen *= rest;
+}
+
 LobeWeights lobe_weights(const Bsdf* b, float3 wo, uint mask) {
     float cos_o = dot(b->ns, wo);
     LobeWeights w;
@@ -492,23 +502,12 @@ LobeWeights lobe_weights(const Bsdf* b, float3 wo, uint mask) {
     }
     if (has_sheen(b)) { /* the sheen's albedo at wo, and what it leaves of the rest */
         float e = max3(b->sheen) * fmin(1.0f, sheen_albedo_at(b, cos_o));
-        float rest = 1.0f - e;
-        w.diffuse *= rest;
-        w.layer *= rest;
-        w.glass *= rest;
-        w.metal *= rest;
-        w.metal_ms *= rest;
+        lobe_weights_under(&w, 1.0f - e);
         if (mask & LOBE_SHEEN) w.sheen = e;
     }
     if (has_coat(b)) { /* the coat's albedo at wo, and what it leaves of the rest */
         float e = b->coat * coat_albedo(b, dot(b->nc, wo));
-        float rest = 1.0f - e;
-        w.diffuse *= rest;
-        w.layer *= rest;
-        w.glass *= rest;
-        w.metal *= rest;
-        w.metal_ms *= rest;
-        w.sheen *= rest;
+        lobe_weights_under(&w, 1.0f - e);
         if (mask & LOBE_COAT) w.coat = e;
     }
     w.total = w.diffuse + w.layer + w.glass + w.metal + w.metal_ms + w.coat + w.sheen;

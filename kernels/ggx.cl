@@ -57,14 +57,10 @@ float ggx_pdf(float3 n, float3 wo, float3 wi, float alpha) {
     return ggx_g1(cos_o, alpha) * ggx_d(dot(n, h), alpha) / (4.0f * cos_o);
 }
 
-/* A microfacet normal h sampled by the visible normals seen from wo (Heitz 2018, listing 1:
- * stretch, sample the projected hemisphere, unstretch); its density over wi = reflect(wo, h)
- * is ggx_pdf. */
-float3 ggx_sample_h(float3 n, float3 wo, float alpha, float u1, float u2) {
-    float3 t, b;
-    make_frame(n, &t, &b);
-    float3 v = (float3)(dot(wo, t), dot(wo, b), dot(wo, n));
-    float3 vh = normalize((float3)(alpha * v.x, alpha * v.y, v.z));
+/* A microfacet normal by the visible normals seen from v, in the local frame (t, b, n) of the
+ * lobe, stretched by alpha_x along t and alpha_y along b (Heitz 2018, listing 1). */
+float3 ggx_sample_h_aniso(float3 v, float ax, float ay, float u1, float u2) {
+    float3 vh = normalize((float3)(ax * v.x, ay * v.y, v.z));
     float lensq = vh.x * vh.x + vh.y * vh.y;
     float3 T1 = lensq > 0.0f ? (float3)(-vh.y, vh.x, 0.0f) * rsqrt(lensq) : (float3)(1.0f, 0.0f, 0.0f);
     float3 T2 = cross(vh, T1);
@@ -74,7 +70,16 @@ float3 ggx_sample_h(float3 n, float3 wo, float alpha, float u1, float u2) {
     float s = 0.5f * (1.0f + vh.z);
     t2 = (1.0f - s) * sqrt(fmax(0.0f, 1.0f - t1 * t1)) + s * t2;
     float3 nh = t1 * T1 + t2 * T2 + sqrt(fmax(0.0f, 1.0f - t1 * t1 - t2 * t2)) * vh;
-    float3 hl = normalize((float3)(alpha * nh.x, alpha * nh.y, fmax(1e-6f, nh.z)));
+    return normalize((float3)(ax * nh.x, ay * nh.y, fmax(1e-6f, nh.z)));
+}
+
+/* A microfacet normal h sampled by the visible normals seen from wo (Heitz 2018, listing 1:
+ * stretch, sample the projected hemisphere, unstretch); its density over wi = reflect(wo, h)
+ * is ggx_pdf. */
+float3 ggx_sample_h(float3 n, float3 wo, float alpha, float u1, float u2) {
+    float3 t, b;
+    make_frame(n, &t, &b);
+    float3 hl = ggx_sample_h_aniso((float3)(dot(wo, t), dot(wo, b), dot(wo, n)), alpha, alpha, u1, u2);
     return t * hl.x + b * hl.y + n * hl.z;
 }
 
@@ -101,22 +106,6 @@ float ggx_d_aniso(float3 h, float ax, float ay) {
 float ggx_lambda_aniso(float3 v, float ax, float ay) {
     float z2 = fmax(v.z * v.z, 1e-12f);
     return 0.5f * (-1.0f + sqrt(1.0f + (ax * ax * v.x * v.x + ay * ay * v.y * v.y) / z2));
-}
-
-/* A microfacet normal by the visible normals seen from v (local frame), returned in the local
- * frame: ggx_sample_h with a stretch of (ax, ay). */
-float3 ggx_sample_h_aniso(float3 v, float ax, float ay, float u1, float u2) {
-    float3 vh = normalize((float3)(ax * v.x, ay * v.y, v.z));
-    float lensq = vh.x * vh.x + vh.y * vh.y;
-    float3 T1 = lensq > 0.0f ? (float3)(-vh.y, vh.x, 0.0f) * rsqrt(lensq) : (float3)(1.0f, 0.0f, 0.0f);
-    float3 T2 = cross(vh, T1);
-    float r = sqrt(u1);
-    float2 c = unit_circle(u2);
-    float t1 = r * c.x, t2 = r * c.y;
-    float s = 0.5f * (1.0f + vh.z);
-    t2 = (1.0f - s) * sqrt(fmax(0.0f, 1.0f - t1 * t1)) + s * t2;
-    float3 nh = t1 * T1 + t2 * T2 + sqrt(fmax(0.0f, 1.0f - t1 * t1 - t2 * t2)) * vh;
-    return normalize((float3)(ax * nh.x, ay * nh.y, fmax(1e-6f, nh.z)));
 }
 
 /* D G2 / (4 cos_o cos_i): the GGX reflection lobe without its Fresnel factor, which the caller
