@@ -9,7 +9,6 @@
 #include <cmath>
 
 #include "ggx_albedo.h"
-#include "io/image_io.h"
 #include "scene/gltf/gltf_load.h"
 #include "test_util.h"
 
@@ -19,17 +18,6 @@ using namespace clppm::test;
 namespace {
 
 std::string data(const char* name) { return std::string(CLPPM_TEST_DATA) + "/" + name; }
-
-double mean_green(const char* file, const char* integrator, int passes) {
-    std::string d = make_temp_dir("coat"), out;
-    const std::string args = data(file) + " --width 16 --height 16 --passes " + std::to_string(passes) +
-                             " --quiet --no-png --integrator " + integrator + " -o " + d + "/i.exr";
-    EXPECT_EQ(run_clppm(args, &out), 0) << out;
-    Image img = read_exr(d + "/i.exr");
-    double sum = 0;
-    for (size_t i = 1; i < img.rgb.size(); i += 3) sum += img.rgb[i];
-    return sum / double(img.rgb.size() / 3);
-}
 
 } // namespace
 
@@ -54,7 +42,7 @@ TEST(Clearcoat, SmoothCoatShowsSchlicksF0InEveryIntegrator) {
     for (const char* integrator : {"pt", "sppm", "ppm", "vcm", "bpt"}) {
         SCOPED_TRACE(integrator);
         // Views within 3 degrees of the normal: (1 - cos)^5 below 1e-12.
-        EXPECT_NEAR(mean_green("coat_plate.gltf", integrator, 2), 0.04, 1e-5);
+        EXPECT_NEAR(render_test_scene_mean("coat_plate.gltf", integrator, 2, 200000), 0.04, 1e-5);
     }
 }
 
@@ -71,6 +59,6 @@ TEST(Clearcoat, RoughCoatShowsTheLayersAlbedo) {
     ASSERT_LT(want, 0.05);
     for (const char* integrator : {"pt", "sppm"}) {
         SCOPED_TRACE(integrator);
-        EXPECT_NEAR(mean_green("coat_rough_plate.gltf", integrator, 256), want, 0.02 * want);
+        EXPECT_NEAR(render_test_scene_mean("coat_rough_plate.gltf", integrator, 256, 200000), want, 0.02 * want);
     }
 }

@@ -5,7 +5,6 @@
 // path tracer and in SPPM (where the sheen is gathered at the hit points).
 #include <gtest/gtest.h>
 
-#include "io/image_io.h"
 #include "scene/gltf/gltf_load.h"
 #include "sheen_albedo.h"
 #include "test_util.h"
@@ -16,17 +15,6 @@ using namespace clppm::test;
 namespace {
 
 std::string data(const char* name) { return std::string(CLPPM_TEST_DATA) + "/" + name; }
-
-double mean_green(const char* file, const char* integrator, int passes) {
-    std::string d = make_temp_dir("sheen"), out;
-    const std::string args = data(file) + " --width 16 --height 16 --passes " + std::to_string(passes) +
-                             " --quiet --no-png --integrator " + integrator + " -o " + d + "/i.exr";
-    EXPECT_EQ(run_clppm(args, &out), 0) << out;
-    Image img = read_exr(d + "/i.exr");
-    double sum = 0;
-    for (size_t i = 1; i < img.rgb.size(); i += 3) sum += img.rgb[i];
-    return sum / double(img.rgb.size() / 3);
-}
 
 } // namespace
 
@@ -52,6 +40,6 @@ TEST(Sheen, BlackPlateShowsTheSheensAlbedo) {
     ASSERT_GT(want, 0.1);
     for (const char* integrator : {"pt", "sppm"}) {
         SCOPED_TRACE(integrator);
-        EXPECT_NEAR(mean_green("sheen_plate.gltf", integrator, 256), want, 0.02 * want);
+        EXPECT_NEAR(render_test_scene_mean("sheen_plate.gltf", integrator, 256, 200000), want, 0.02 * want);
     }
 }
