@@ -85,7 +85,7 @@ TEST(Iridescence, LoadsFactorsAndTextures) {
     EXPECT_GE(m.iridescence_tex, 0);
     EXPECT_GE(m.iridescence_thickness_tex, 0);
     EXPECT_TRUE(s.warnings.empty()) << s.warnings[0];
-    const dev::Material& d = load_gltf(data("film_plate.gltf")).materials[0];
+    const dev::Material d = load_gltf(data("film_plate.gltf")).materials[0]; // a copy: the scene is a temporary
     EXPECT_FLOAT_EQ(d.iridescence_ior, 1.3f) << "the extension's defaults";
     EXPECT_FLOAT_EQ(d.iridescence_thickness[0], 100.f);
     EXPECT_EQ(d.iridescence_thickness_tex, -1);
