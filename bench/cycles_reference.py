@@ -4,7 +4,8 @@ CI, not a dependency): the file imported by Blender's own glTF importer, seen th
 camera or, without one, through clppm's default view (from +Z at the bounding sphere's distance
 r / sin(0.4) x 1.05, vertical field of view 0.8 rad), lit by the file's lights and by a world of
 colour (1, 1, 1) at the given strength (clppm's default environment; 0 for none), the file's
-punctual lights taken one for one as clppm takes them. Box pixel
+punctual lights taken one for one as clppm takes them; the material extensions Blender's importer
+does not read are set by hand (patch_unimported_extensions). Box pixel
 filter, as clppm's uniform jitter; 16 bounces of every kind; no clamping. Writes linear EXR.
 
     python3 -m venv /tmp/bpyenv && /tmp/bpyenv/bin/pip install bpy
@@ -12,11 +13,62 @@ filter, as clppm's uniform jitter; 16 bounces of every kind; no clamping. Writes
         [--world 1.0]
 """
 import argparse
+import json
 import math
+import struct
 import sys
 
 import bpy
 from mathutils import Vector
+
+
+def gltf_json(path):
+    """The glTF's JSON, from a .gltf or a .glb's first chunk."""
+    with open(path, "rb") as f:
+        data = f.read()
+    if data[:4] == b"glTF":
+        n = struct.unpack_from("<I", data, 12)[0]
+        return json.loads(data[20:20 + n])
+    return json.loads(data)
+
+
+def patch_unimported_extensions(path):
+    """Two material extensions Blender 5.0's importer does not read, set by hand on the material
+    it made, as Cycles models them: KHR_materials_iridescence as the Principled BSDF's thin film
+    (thickness iridescenceThicknessMaximum, index iridescenceIor; only a factor of 1 without
+    textures is exact), and KHR_materials_diffuse_transmission as a Mix Shader of the Principled
+    BSDF and a Translucent BSDF of the transmission colour by diffuseTransmissionFactor (exact for
+    a material without a specular layer, specularFactor 0; otherwise the layer is mixed down too)."""
+    doc = gltf_json(path)
+    for i, m in enumerate(doc.get("materials", [])):
+        ext = m.get("extensions", {})
+        irid = ext.get("KHR_materials_iridescence")
+        dt = ext.get("KHR_materials_diffuse_transmission")
+        if not irid and not dt:
+            continue
+        mat = bpy.data.materials.get(m.get("name", "Material_%d" % i))
+        if mat is None or not mat.use_nodes:
+            print("warning: no Blender material for glTF material", i)
+            continue
+        nodes, links = mat.node_tree.nodes, mat.node_tree.links
+        pbr = next(n for n in nodes if n.type == "BSDF_PRINCIPLED")
+        if irid:
+            if irid.get("iridescenceFactor", 0.0) != 1.0 or "iridescenceTexture" in irid:
+                print("warning: iridescence factor other than 1 mapped as 1")
+            pbr.inputs["Thin Film Thickness"].default_value = irid.get("iridescenceThicknessMaximum", 400.0)
+            pbr.inputs["Thin Film IOR"].default_value = irid.get("iridescenceIor", 1.3)
+        if dt:
+            if ext.get("KHR_materials_specular", {}).get("specularFactor", 1.0) != 0.0:
+                print("warning: diffuse transmission under a specular layer mixes the layer down too")
+            out = next(n for n in nodes if n.type == "OUTPUT_MATERIAL")
+            tl = nodes.new("ShaderNodeBsdfTranslucent")
+            c = dt.get("diffuseTransmissionColorFactor", [1.0, 1.0, 1.0])
+            tl.inputs["Color"].default_value = (c[0], c[1], c[2], 1.0)
+            mix = nodes.new("ShaderNodeMixShader")
+            mix.inputs["Fac"].default_value = dt.get("diffuseTransmissionFactor", 0.0)
+            links.new(pbr.outputs["BSDF"], mix.inputs[1])
+            links.new(tl.outputs["BSDF"], mix.inputs[2])
+            links.new(mix.outputs["Shader"], out.inputs["Surface"])
 
 
 def main():
@@ -39,6 +91,7 @@ def main():
     shapes = {pb.custom_shape for o in scene.objects if o.type == "ARMATURE" for pb in o.pose.bones if pb.custom_shape}
     for o in shapes:
         bpy.data.objects.remove(o)
+    patch_unimported_extensions(a.scene)
     cams = [o for o in scene.objects if o.type == "CAMERA"]
     if cams:
         scene.camera = cams[0]

@@ -32,6 +32,12 @@
  *    lobe's directional albedo (kernels/sheen_albedo.h) and E' = min(E_s, 1): the extension's
  *    albedo scaling, with the lobe kept from exceeding albedo 1 at grazing angles (where the
  *    smoothest Charlie lobes reach 3.7) so that there is no gain. Sampled by the cosine.
+ *  - KHR_materials_diffuse_transmission: LOBE_DIFFUSE covers both sides. A part dt of it is
+ *    turned to the other side, diffuse_btdf = dt dt_colour / pi for wi below the surface, the rest
+ *    (1 - dt) base / pi above (the extension's mix); both carry the layer's coupling at |cos_i|,
+ *    (1 - E(|cos_o|))(1 - E(|cos_i|)) / (1 - E_avg), so the pair stays reciprocal and the albedo at
+ *    wo is ((1 - dt) base + dt dt_colour)(1 - E(cos_o)). Sampled by the cosine about -ns with
+ *    its own selection weight. The hit point gathers photons from either side (gather_faces).
  *  - KHR_materials_anisotropy: the GGX lobes of the layer, the metal and the glass stretch to
  *    alpha_t = alpha + (1 - alpha) s^2 along the direction ta (s the strength), alpha across it
  *    (the extension's mapping; Heitz 2014's anisotropic D and Smith Lambda, sampled by visible
@@ -97,6 +103,8 @@ typedef struct {
     float irid, irid_ior, irid_d;   /* KHR_materials_iridescence: weight (0: none), index, thickness (nm) */
     float3 ta;                      /* KHR_materials_anisotropy: the direction of alpha_t, across ns */
     float alpha_t;                  /* GGX alpha along ta; alpha (across) otherwise */
+    float3 translucent;             /* KHR_materials_diffuse_transmission: dt times its colour (0: none) */
+    float dt;                       /* and dt, the part of the diffuse lobe turned to the other side */
 } Bsdf;
 
 typedef struct {
@@ -377,9 +385,15 @@ bool glass_sample(const Bsdf* b, float3 wo, float u_in, float u1, float u2, floa
 
 bool has_layer(const Bsdf* b) { return HAS_SPECULAR_LAYER && b->dielectric > 0.0f && b->f90 > 0.0f; }
 
+/* KHR_materials_diffuse_transmission: part of the diffuse lobe reaches the other side. */
+bool has_translucent(const Bsdf* b) { return HAS_DIFFUSE_TRANSMISSION && b->dt > 0.0f; }
+
+/* The diffuse reflection's colour: the base, less the part turned to the other side. */
+float3 diffuse_reflect_color(const Bsdf* b) { return has_translucent(b) ? b->base * (1.0f - b->dt) : b->base; }
+
 /* Nothing but the Lambertian lobe (no layer, metal or glass): the fast paths below. */
 bool bsdf_plain_lambert(const Bsdf* b) {
-    if (has_coat(b) || has_sheen(b)) return false;
+    if (has_coat(b) || has_sheen(b) || has_translucent(b)) return false;
     if (HAS_METAL && b->metal > 0.0f) return false;
     if (HAS_GLASS && b->glass > 0.0f) return false;
     return !has_layer(b);
@@ -412,10 +426,11 @@ float3 film_layer_albedo(const Bsdf* b, float mu, float alpha) {
     return fmin(layer_film_fresnel(b, x) * (a * 1.03f), (float3)(1.0f));
 }
 
-/* The diffuse lobe: base / pi, scaled for the layer above it; al_o and al_i the tables' alpha
- * towards wo and wi (dir_alpha). */
-float3 diffuse_eval(const Bsdf* b, float cos_o, float cos_i, float al_o, float al_i) {
-    float3 c = b->base * (b->dielectric * INV_PI_F);
+/* The diffuse lobe of colour `color` (the reflection's or, with cos_i = |cos_i|, the transmission's):
+ * color / pi, scaled for the layer above it; al_o and al_i the tables' alpha towards wo and wi
+ * (dir_alpha). */
+float3 diffuse_lobe_eval(const Bsdf* b, float3 color, float cos_o, float cos_i, float al_o, float al_i) {
+    float3 c = color * (b->dielectric * INV_PI_F);
     if (!has_layer(b)) return c;
     float3 one = (float3)(1.0f);
     float3 rest = one - layer_albedo_avg(b);
@@ -425,6 +440,11 @@ float3 diffuse_eval(const Bsdf* b, float cos_o, float cos_i, float al_o, float a
     /* Under the film, channel by channel: min(1 - E_f(wo), 1 - E_f(wi)). */
     float3 e = fmax(film_layer_albedo(b, cos_o, al_o), film_layer_albedo(b, cos_i, al_i));
     return d + (c * fmax((float3)(0.0f), 1.0f - e) - d) * b->irid;
+}
+
+/* The diffuse reflection, wi above the surface. */
+float3 diffuse_eval(const Bsdf* b, float cos_o, float cos_i, float al_o, float al_i) {
+    return diffuse_lobe_eval(b, diffuse_reflect_color(b), cos_o, cos_i, al_o, al_i);
 }
 
 float3 metal_fresnel(const Bsdf* b, float cos_d) {
@@ -466,14 +486,16 @@ float3 metal_ms_eval(const Bsdf* b, float cos_o, float cos_i, float al_o, float 
 #define TECH_METAL_MS 4
 #define TECH_COAT 5
 #define TECH_SHEEN 6
+#define TECH_TRANSLUCENT 7
 
 typedef struct {
-    float diffuse, layer, glass, metal, metal_ms, coat, sheen, total;
+    float diffuse, layer, glass, metal, metal_ms, coat, sheen, translucent, total;
 } LobeWeights;
 
 /* Scales the weights of the lobes under a layer (the sheen's too: the coat lies over it). */
 void lobe_weights_under(LobeWeights* w, float rest) {
     w->diffuse *= rest;
+    w->translucent *= rest;
     w->layer *= rest;
     w->glass *= rest;
     w->metal *= rest;
@@ -484,10 +506,11 @@ void lobe_weights_under(LobeWeights* w, float rest) {
 LobeWeights lobe_weights(const Bsdf* b, float3 wo, uint mask) {
     float cos_o = dot(b->ns, wo);
     LobeWeights w;
-    w.diffuse = w.layer = w.glass = w.metal = w.metal_ms = w.coat = w.sheen = 0.0f;
+    w.diffuse = w.layer = w.glass = w.metal = w.metal_ms = w.coat = w.sheen = w.translucent = 0.0f;
     float al_o = dir_alpha(b, wo);
     float3 e = has_layer(b) ? layer_albedo(b, cos_o, al_o) : (float3)(0.0f);
-    if (mask & LOBE_DIFFUSE) w.diffuse = b->dielectric * mean3(b->base * (1.0f - e));
+    if (mask & LOBE_DIFFUSE) w.diffuse = b->dielectric * mean3(diffuse_reflect_color(b) * (1.0f - e));
+    if (has_translucent(b) && (mask & LOBE_DIFFUSE)) w.translucent = b->dielectric * mean3(b->translucent * (1.0f - e));
     if (HAS_SPECULAR_LAYER && (mask & LOBE_SPECULAR)) w.layer = b->dielectric * mean3(e);
     if (HAS_GLASS && (mask & LOBE_GLASS)) w.glass = b->glass;
     if (HAS_METAL && (mask & LOBE_METAL) && b->metal > 0.0f) {
@@ -510,7 +533,7 @@ LobeWeights lobe_weights(const Bsdf* b, float3 wo, uint mask) {
         lobe_weights_under(&w, 1.0f - e);
         if (mask & LOBE_COAT) w.coat = e;
     }
-    w.total = w.diffuse + w.layer + w.glass + w.metal + w.metal_ms + w.coat + w.sheen;
+    w.total = w.diffuse + w.layer + w.glass + w.metal + w.metal_ms + w.coat + w.sheen + w.translucent;
     return w;
 }
 
@@ -531,6 +554,8 @@ float3 bsdf_eval_under(const Bsdf* b, float3 wo, float3 wi, uint mask) {
         float pdf;
         f = glass_eval(b, wo, wi, &pdf) * b->glass;
     }
+    if (has_translucent(b) && (mask & LOBE_DIFFUSE) && cos_o > 0.0f && cos_i < 0.0f)
+        return f + diffuse_lobe_eval(b, b->translucent, cos_o, -cos_i, dir_alpha(b, wo), dir_alpha(b, wi));
     if (cos_o <= 0.0f || cos_i <= 0.0f) return f;
     if (bsdf_plain_lambert(b)) return (mask & LOBE_DIFFUSE) ? b->base * (b->dielectric * INV_PI_F) : (float3)(0.0f);
     if (mask & LOBE_DIFFUSE) f += diffuse_eval(b, cos_o, cos_i, dir_alpha(b, wo), dir_alpha(b, wi));
@@ -584,6 +609,7 @@ float bsdf_pdf_weighted(const Bsdf* b, float3 wo, float3 wi, const LobeWeights* 
         glass_eval(b, wo, wi, &p);
         p *= w->glass;
     }
+    if (cos_i < 0.0f && w->translucent > 0.0f) p += w->translucent * -cos_i * INV_PI_F;
     if (cos_i <= 0.0f) return p / w->total;
     if (w->coat > 0.0f && !coat_is_mirror(b)) p += w->coat * ggx_pdf(b->nc, wo, wi, b->coat_alpha);
     p += (w->diffuse + w->metal_ms + w->sheen) * cos_i * INV_PI_F;
@@ -643,6 +669,7 @@ bool bsdf_sample_lobes(const Bsdf* b, float3 wo, uint mask, float u_lobe, float 
     CLPPM_PICK(metal_ms, TECH_METAL_MS)
     CLPPM_PICK(coat, TECH_COAT)
     CLPPM_PICK(sheen, TECH_SHEEN)
+    CLPPM_PICK(translucent, TECH_TRANSLUCENT)
 #undef CLPPM_PICK
     if (!found) acc -= wt; /* u rounded past the end: the last technique */
     float u_in = clamp((u - acc) / wt, 0.0f, 0.99999994f);
@@ -679,6 +706,16 @@ bool bsdf_sample_lobes(const Bsdf* b, float3 wo, uint mask, float u_lobe, float 
         s->weight = (float3)(b->coat * (COAT_F0 + (1.0f - COAT_F0) * pow5(1.0f - cos_c)) / p_tech);
         return true;
     }
+    if (HAS_DIFFUSE_TRANSMISSION && tech == TECH_TRANSLUCENT) { /* the cosine about -ns */
+        s->wi = sample_cosine_hemisphere(-b->ns, u1, u2);
+        float cos_t = dot(b->ns, s->wi);
+        if (cos_t >= 0.0f || dot(s->wi, b->ng) >= 0.0f) return false;
+        s->below = true;
+        s->pdf = bsdf_pdf_weighted(b, wo, s->wi, &w);
+        if (!(s->pdf > 0.0f)) return false;
+        s->weight = bsdf_eval(b, wo, s->wi, mask) * (-cos_t / s->pdf);
+        return true;
+    }
     if (rough_glass) {
         if (!glass_sample(b, wo, u_in, u1, u2, &s->wi, &s->below)) return false;
         if (s->below) { /* transmission: only the glass lobe reaches below */
@@ -700,7 +737,8 @@ bool bsdf_sample_lobes(const Bsdf* b, float3 wo, uint mask, float u_lobe, float 
     }
     float cos_i = dot(b->ns, s->wi);
     if (cos_i <= 0.0f || dot(s->wi, b->ng) <= 0.0f) return false;
-    if (!HAS_NON_DIFFUSE || (!has_coat(b) && !has_sheen(b) && ((mask & ~LOBE_DIFFUSE) == 0u || total == w.diffuse))) {
+    if (!HAS_NON_DIFFUSE || (!has_coat(b) && !has_sheen(b) && !has_translucent(b) &&
+                             ((mask & ~LOBE_DIFFUSE) == 0u || total == w.diffuse))) {
         /* Only the diffuse lobe: f cos / pdf in closed form (exactly the base colour when the
          * surface is plain Lambertian). */
         s->pdf = cos_i * INV_PI_F;
@@ -735,16 +773,21 @@ float bsdf_pdf_rev(const Bsdf* b, float3 wo, float3 wi, uint mask) {
 /* Whether a lobe other than a delta one exists here: what a connection or a merge can evaluate. */
 bool bsdf_has_nondelta(const Bsdf* b) {
     if ((has_coat(b) && !coat_is_mirror(b)) || has_sheen(b)) return true;
-    if (b->dielectric > 0.0f && max3(b->base) > 0.0f) return true;
+    if (b->dielectric > 0.0f && (max3(b->base) > 0.0f || (has_translucent(b) && max3(b->translucent) > 0.0f)))
+        return true;
     if (!bsdf_is_mirror(b) && (has_layer(b) || (HAS_METAL && b->metal > 0.0f))) return true;
     return HAS_ROUGH_GLASS && b->glass > 0.0f && glass_is_rough(b);
 }
 
 /* Whether light can pass between the surface and unit direction wi for the lobes in mask: above
- * both normals, or below both through rough glass (a light sample or a connection). */
+ * both normals, or below both through rough glass or diffuse transmission (a light sample or a
+ * connection). */
 bool bsdf_connects(const Bsdf* b, float3 wi, uint mask) {
-    if (dot(wi, b->ns) < 0.0f)
-        return HAS_ROUGH_GLASS && (mask & LOBE_GLASS) && b->glass > 0.0f && glass_is_rough(b) && dot(wi, b->ng) < 0.0f;
+    if (dot(wi, b->ns) < 0.0f) {
+        bool through = (HAS_ROUGH_GLASS && (mask & LOBE_GLASS) && b->glass > 0.0f && glass_is_rough(b)) ||
+                       (has_translucent(b) && (mask & LOBE_DIFFUSE) && b->dielectric > 0.0f);
+        return through && dot(wi, b->ng) < 0.0f;
+    }
     return dot(wi, b->ns) > 0.0f && dot(wi, b->ng) > 0.0f;
 }
 
@@ -762,7 +805,7 @@ uint bsdf_gathered(const Bsdf* b) {
 
 /* Whether the surface has a lobe hit points keep (photons are stored there). */
 bool bsdf_has_gathered(const Bsdf* b) {
-    if ((has_coat(b) && b->coat_alpha >= GLOSSY_HITPOINT_ALPHA) || has_sheen(b)) return true;
+    if ((has_coat(b) && b->coat_alpha >= GLOSSY_HITPOINT_ALPHA) || has_sheen(b) || has_translucent(b)) return true;
     if (b->dielectric > 0.0f && (max3(b->base) > 0.0f || has_layer(b))) return true;
     return HAS_METAL && b->metal > 0.0f && b->alpha >= GLOSSY_HITPOINT_ALPHA;
 }
@@ -845,7 +888,17 @@ Bsdf surface_bsdf(SCENE_PARAMS, const Surface* s) {
             b.irid_d = m->iridescence_thickness[0] + (m->iridescence_thickness[1] - m->iridescence_thickness[0]) * g;
         }
     }
+    b.dt = HAS_DIFFUSE_TRANSMISSION ? m->diffuse_transmission : 0.0f;
+    b.translucent = (float3)(0.0f);
+    if (HAS_DIFFUSE_TRANSMISSION && b.dt > 0.0f) { /* diffuseTransmissionTexture's A, the colour texture's RGB */
+        if (HAS_TEXTURES && m->diffuse_transmission_tex >= 0)
+            b.dt *= texture_rgba(textures, texels, m->diffuse_transmission_tex, s->uv).w;
+        b.translucent = load3g(m->diffuse_transmission_color) * b.dt;
+        if (HAS_TEXTURES && m->diffuse_transmission_color_tex >= 0)
+            b.translucent *= texture_lookup(SCENE_ARGS, m->diffuse_transmission_color_tex, s->uv);
+    }
     if (surface_is_unlit(SCENE_ARGS, s)) {
+        b.dt = 0.0f;
         b.dielectric = b.glass = b.metal = b.coat = 0.0f;
         b.sheen = (float3)(0.0f);
     }

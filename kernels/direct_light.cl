@@ -18,10 +18,11 @@ __kernel void direct_light(SCENE_PARAMS, ulong seed, ulong pass, __global const 
     float dist, pdf;
     if (!sample_light(SCENE_ARGS, x, &rng, &wi, &dist, &contrib, &pdf)) return;
     float cos_x = dot(wi, n);
-    if (cos_x <= 0.0f || dot(wi, ng) <= 0.0f) return;
-    float3 org = offset_origin(SCENE_ARGS, x, ng);
+    /* From below only through diffuse transmission (bsdf_connects). */
+    if (!bsdf_connects(&brdf.b, wi, brdf.lobes)) return;
+    float3 org = offset_origin(SCENE_ARGS, x, cos_x < 0.0f ? -ng : ng);
     if (trace_occluded(SCENE_ARGS, org, wi, dist)) return;
-    float3 L = load3g(hp->weight) * hitpoint_brdf(&brdf, wi) * contrib * cos_x;
+    float3 L = load3g(hp->weight) * hitpoint_brdf(&brdf, wi) * contrib * fabs(cos_x);
     stats[i].direct[0] += L.x;
     stats[i].direct[1] += L.y;
     stats[i].direct[2] += L.z;

@@ -34,7 +34,7 @@ __kernel void error_gather(__constant GridInfo* g, __global const Photon* sorted
         /* The path throughput folded into the luminance weights: one scalar sum per hit point. */
         float3 wy = (float3)(hp->weight[0] * (float)ERROR_LUMINANCE_R, hp->weight[1] * (float)ERROR_LUMINANCE_G,
                              hp->weight[2] * (float)ERROR_LUMINANCE_B);
-        GATHER_FOR_EACH_PHOTON(g, sorted, starts, x, n, r2, {
+        GATHER_FOR_EACH_PHOTON(g, sorted, starts, x, n, brdf.both_sides, r2, {
             float3 f = hitpoint_brdf(&brdf, wi);
             float y = dot(wy, f * load3g(ph->flux));
             acc += convert_long_rte((double)(y * (2.0f * d2 / r2 - 1.0f)) * FLUX_FIXED_SCALE);

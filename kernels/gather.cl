@@ -1,7 +1,8 @@
 /* gather.cl: each hit point collects this pass's photons within its radius R(x) from the grid
  * cells its sphere overlaps (Hachisuka et al. 2008, Sec. 4.2: M(x) and Phi_M). One work item
  * writes one hit point: no atomics. Each photon is weighted by the BRDF at the hit point. PPPM passes one global radius instead (global_r2 > 0). Photons arriving from behind the surface, or lying on a
- * surface that faces the other way, are rejected. */
+ * surface that faces the other way, are rejected, unless the hit point transmits diffusely
+ * (gather_faces). */
 #include "gather_common.cl"
 
 __kernel void gather(__constant GridInfo* g, __global const Photon* sorted, __global const uint* starts,
@@ -23,7 +24,7 @@ __kernel void gather(__constant GridInfo* g, __global const Photon* sorted, __gl
     float r2 = global_r2 > 0.0f ? global_r2 : (float)stats[i].r2;
     long acc0 = 0, acc1 = 0, acc2 = 0;
     uint m = 0;
-    GATHER_FOR_EACH_PHOTON(g, sorted, starts, x, n, r2, {
+    GATHER_FOR_EACH_PHOTON(g, sorted, starts, x, n, brdf.both_sides, r2, {
         /* tau_M += f(x, w_p, w_o) Phi_p (Eq. 9); the path throughput is applied later. */
         float3 f = hitpoint_brdf(&brdf, wi);
         acc0 += convert_long_rte((double)(f.x * ph->flux[0]) * FLUX_FIXED_SCALE);

@@ -21,10 +21,16 @@ bool grid_within(__constant GridInfo* g, __global const GRID_ELEM* ph, float3 x,
 }
 
 /* The gather's acceptance beyond grid_within: arriving from the front of a hit point with shading
- * normal n, and lying on a surface that faces the same way. Returns the incoming direction in *wi. */
-bool gather_faces(__global const GRID_ELEM* ph, float3 n, float3* wi) {
+ * normal n, and lying on a surface that faces the same way. A hit point that transmits diffusely
+ * (both_sides, KHR_materials_diffuse_transmission) also takes photons that arrived from behind,
+ * on a surface that faces the other way: the back of the same surface. Returns the incoming
+ * direction in *wi. */
+bool gather_faces(__global const GRID_ELEM* ph, float3 n, bool both_sides, float3* wi) {
     *wi = oct_decode(ph->wi_oct);
-    if (dot(n, *wi) <= 0.0f) return false;
+    bool front = dot(n, *wi) > 0.0f;
+    if (HAS_DIFFUSE_TRANSMISSION && both_sides && !front)
+        return dot(n, *wi) < 0.0f && dot(n, oct_decode(ph->normal_oct)) < 0.0f;
+    if (!front) return false;
     return dot(n, oct_decode(ph->normal_oct)) > 0.0f;
 }
 
@@ -56,12 +62,12 @@ bool gather_faces(__global const GRID_ELEM* ph, float3 n, float3* wi) {
                 }                                                                                                      \
     } while (0)
 
-/* GRID_FOR_EACH_NEAR with the gather's acceptance (gather_faces) for a hit point with normal n;
- * `wi` (the photon's incoming direction) is in scope as well. */
-#define GATHER_FOR_EACH_PHOTON(g_, sorted_, starts_, x_, n_, r2_, ...)                                                 \
+/* GRID_FOR_EACH_NEAR with the gather's acceptance (gather_faces) for a hit point with normal n that
+ * takes photons from both sides or not; `wi` (the photon's incoming direction) is in scope as well. */
+#define GATHER_FOR_EACH_PHOTON(g_, sorted_, starts_, x_, n_, both_, r2_, ...)                                          \
     GRID_FOR_EACH_NEAR(g_, sorted_, starts_, x_, r2_, {                                                                \
         float3 wi;                                                                                                     \
-        if (!gather_faces(ph, n_, &wi)) continue;                                                                      \
+        if (!gather_faces(ph, n_, both_, &wi)) continue;                                                               \
         __VA_ARGS__                                                                                                    \
     })
 

@@ -42,6 +42,10 @@ void store_hitpoint(__global HitPoint* hp, uint pixel, float3 p, float3 wo, floa
     hp->irid_d = b->irid_d;
     hp->t_oct = HAS_ANISOTROPY ? oct_encode(b->ta) : 0u;
     hp->alpha_t = b->alpha_t;
+    hp->translucent[0] = HAS_DIFFUSE_TRANSMISSION ? b->translucent.x : 0.0f;
+    hp->translucent[1] = HAS_DIFFUSE_TRANSMISSION ? b->translucent.y : 0.0f;
+    hp->translucent[2] = HAS_DIFFUSE_TRANSMISSION ? b->translucent.z : 0.0f;
+    hp->dt = HAS_DIFFUSE_TRANSMISSION ? b->dt : 0.0f;
     hp->pixel = pixel;
 }
 
@@ -72,6 +76,8 @@ Bsdf hitpoint_bsdf(__global const HitPoint* hp, float3 n) {
     b.irid_d = hp->irid_d;
     b.alpha_t = HAS_ANISOTROPY ? hp->alpha_t : b.alpha;
     b.ta = HAS_ANISOTROPY && b.alpha_t != b.alpha ? oct_decode(hp->t_oct) : n;
+    b.dt = HAS_DIFFUSE_TRANSMISSION ? hp->dt : 0.0f;
+    b.translucent = HAS_DIFFUSE_TRANSMISSION ? load3g(hp->translucent) : (float3)(0.0f);
     return b;
 }
 
@@ -83,6 +89,7 @@ typedef struct {
     float3 wo;
     uint lobes;
     bool lambert;
+    bool both_sides; /* transmits diffusely: photons from behind count too (gather_faces) */
     float3 f_lambert;
 } HitBrdf;
 
@@ -92,11 +99,13 @@ HitBrdf hitpoint_brdf_make(__global const HitPoint* hp, float3 n) {
     h.wo = HAS_NON_DIFFUSE ? oct_decode(hp->wo_oct) : n; /* Lambertian ignores wo */
     h.lobes = bsdf_gathered(&h.b);
     h.lambert = bsdf_plain_lambert(&h.b);
+    h.both_sides = has_translucent(&h.b);
     h.f_lambert = h.b.base * (h.b.dielectric * INV_PI_F);
     return h;
 }
 
-/* f(wo, wi) at the hit point over the lobes it keeps; zero for light from below the surface. */
+/* f(wo, wi) at the hit point over the lobes it keeps; zero for light from below the surface unless
+ * it transmits diffusely. */
 float3 hitpoint_brdf(const HitBrdf* h, float3 wi) {
     if (h->lambert) return dot(h->b.ns, wi) > 0.0f && bsdf_smooth_side(&h->b, wi) ? h->f_lambert : (float3)(0.0f);
     return bsdf_eval(&h->b, h->wo, wi, h->lobes);

@@ -32,7 +32,8 @@
     X(HAS_SHEEN, sheen, "sheen")                                                                                       \
     X(HAS_ORTHOGRAPHIC, orthographic, "orthographic camera")                                                           \
     X(HAS_IRIDESCENCE, iridescence, "iridescence")                                                                     \
-    X(HAS_ANISOTROPY, anisotropy, "anisotropy")
+    X(HAS_ANISOTROPY, anisotropy, "anisotropy")                                                                        \
+    X(HAS_DIFFUSE_TRANSMISSION, diffuse_transmission, "diffuse transmission")
 
 #ifdef __OPENCL_VERSION__
 
@@ -81,6 +82,9 @@
 #ifndef HAS_EMISSION_SPREAD
 #define HAS_EMISSION_SPREAD 1
 #endif
+#ifndef HAS_DIFFUSE_TRANSMISSION
+#define HAS_DIFFUSE_TRANSMISSION 1
+#endif
 #ifndef HAS_ANISOTROPY
 #define HAS_ANISOTROPY 1
 #endif
@@ -109,7 +113,8 @@ enum { CLPPM_FEATURES_WITH_DEFAULTS = 0 CLPPM_KERNEL_FEATURES(CLPPM_FEATURE_TERM
 #undef CLPPM_FEATURE_TERM
 
 /* Any surface that is not Lambertian. */
-#define HAS_NON_DIFFUSE (HAS_SPECULAR_LAYER || HAS_METAL || HAS_GLASS || HAS_CLEARCOAT || HAS_SHEEN)
+#define HAS_NON_DIFFUSE                                                                                                \
+    (HAS_SPECULAR_LAYER || HAS_METAL || HAS_GLASS || HAS_CLEARCOAT || HAS_SHEEN || HAS_DIFFUSE_TRANSMISSION)
 
 #endif /* __OPENCL_VERSION__ */
 

@@ -126,8 +126,13 @@ typedef struct {
     float anisotropy_strength; /* anisotropyStrength; 0: isotropic */
     float anisotropy_rotation; /* anisotropyRotation (radians, from the tangent towards the bitangent) */
     i32 anisotropy_tex;        /* anisotropyTexture (linear: RG direction, B strength); -1 when none */
-    float pad_aniso[3];
-} Material; /* 224 bytes */
+    /* KHR_materials_diffuse_transmission (kernels/bsdf.cl): part of the diffuse lobe turned to the other side */
+    float diffuse_transmission;          /* diffuseTransmissionFactor; 0: none */
+    i32 diffuse_transmission_tex;        /* diffuseTransmissionTexture (linear, A); -1 when none */
+    i32 diffuse_transmission_color_tex;  /* diffuseTransmissionColorTexture (sRGB, RGB); -1 when none */
+    float diffuse_transmission_color[3]; /* diffuseTransmissionColorFactor (linear RGB) */
+    float pad_dt;
+} Material; /* 240 bytes */
 
 /* Sampler bits of a texture. Wrap per axis (glTF sampler wrapS, wrapT): clamp s, clamp t, mirror
  * s, mirror t; none set is REPEAT. TEXTURE_NEAREST: magFilter NEAREST, the texel the coordinate
@@ -215,27 +220,29 @@ typedef struct {
     float footprint; /* pixel footprint at the hit, world units (initial radius heuristic) */
     /* The material there, as kernels/bsdf.cl's Bsdf holds it: the lobes the gather evaluates are
      * the diffuse one and, when alpha >= GLOSSY_HITPOINT_ALPHA, the specular and metal ones. */
-    float color[3];   /* base colour */
-    float alpha;      /* GGX alpha = roughness^2 */
-    float f0[3];      /* the dielectric layer's Schlick F0 */
-    float f90;        /* and its F90 (KHR_materials_specular specularFactor) */
-    float dielectric; /* weight of the dielectric base: (1 - metallic)(1 - transmission) */
-    float metal;      /* weight of the conductor: metallic */
-    u32 normal_oct;   /* shading normal on the side the eye path arrives from, octahedral 2x16 */
-    u32 ng_oct;       /* geometric normal, same side (shadow-ray offsets) */
-    u32 wo_oct;       /* unit direction back along the eye path */
-    u32 nl_oct;       /* smooth normal (before any normal map), same side */
-    float coat;       /* KHR_materials_clearcoat: the coat's weight (0: none) */
-    float coat_alpha; /* its GGX alpha */
-    u32 nc_oct;       /* its normal, same side */
-    float sheen[3];   /* KHR_materials_sheen: the sheen colour (0: none) */
-    float sheen_r;    /* and roughness */
-    float irid;       /* KHR_materials_iridescence: the film's weight (0: none) */
-    float irid_ior;   /* its index */
-    float irid_d;     /* its thickness (nm) */
-    u32 t_oct;        /* KHR_materials_anisotropy: the direction of alpha_t, octahedral */
-    float alpha_t;    /* GGX alpha along it (= alpha when isotropic) */
-} HitPoint;           /* 136 bytes */
+    float color[3];       /* base colour */
+    float alpha;          /* GGX alpha = roughness^2 */
+    float f0[3];          /* the dielectric layer's Schlick F0 */
+    float f90;            /* and its F90 (KHR_materials_specular specularFactor) */
+    float dielectric;     /* weight of the dielectric base: (1 - metallic)(1 - transmission) */
+    float metal;          /* weight of the conductor: metallic */
+    u32 normal_oct;       /* shading normal on the side the eye path arrives from, octahedral 2x16 */
+    u32 ng_oct;           /* geometric normal, same side (shadow-ray offsets) */
+    u32 wo_oct;           /* unit direction back along the eye path */
+    u32 nl_oct;           /* smooth normal (before any normal map), same side */
+    float coat;           /* KHR_materials_clearcoat: the coat's weight (0: none) */
+    float coat_alpha;     /* its GGX alpha */
+    u32 nc_oct;           /* its normal, same side */
+    float sheen[3];       /* KHR_materials_sheen: the sheen colour (0: none) */
+    float sheen_r;        /* and roughness */
+    float irid;           /* KHR_materials_iridescence: the film's weight (0: none) */
+    float irid_ior;       /* its index */
+    float irid_d;         /* its thickness (nm) */
+    u32 t_oct;            /* KHR_materials_anisotropy: the direction of alpha_t, octahedral */
+    float alpha_t;        /* GGX alpha along it (= alpha when isotropic) */
+    float translucent[3]; /* KHR_materials_diffuse_transmission: its colour times its weight (0: none) */
+    float dt;             /* and that weight, which the diffuse reflection loses */
+} HitPoint;               /* 152 bytes */
 
 #define HITPOINT_NONE 0xffffffffu
 

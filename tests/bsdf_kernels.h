@@ -49,7 +49,8 @@ __kernel void ggx_sample_many(float nx, float ny, float nz, float ox, float oy, 
 }
 /* The whole model (kernels/bsdf.cl) from 15 parameters: base rgb, f0 rgb, f90, alpha, dielectric,
  * glass, metal, eta, thin, coat, coat alpha, sheen rgb, sheen roughness, iridescence weight,
- * film index, thickness, alpha_t (along make_frame's t); every normal is n. */
+ * film index, thickness, alpha_t (along make_frame's t), diffuse transmission dt and dt times its
+ * colour; every normal is n. */
 Bsdf test_bsdf(__global const float* p, float3 n) {
     Bsdf b;
     b.ns = n;
@@ -75,6 +76,8 @@ Bsdf test_bsdf(__global const float* p, float3 n) {
     b.irid_ior = p[20];
     b.irid_d = p[21];
     b.alpha_t = p[22];
+    b.dt = p[23];
+    b.translucent = (float3)(p[24], p[25], p[26]);
     float3 t, bt;
     make_frame(n, &t, &bt);
     b.ta = t;
@@ -205,6 +208,8 @@ struct Params {
     double sheen_r = 1;                            // and roughness (at least SHEEN_MIN_ROUGHNESS)
     double irid = 0, irid_ior = 1.3, irid_d = 400; // KHR_materials_iridescence
     double alpha_t = -1;                           // KHR_materials_anisotropy: alpha along t (-1: alpha)
+    double dt = 0;                                 // KHR_materials_diffuse_transmission's weight
+    D3 dt_color{1, 1, 1};                          // and colour
     std::vector<float> pack() const {
         return {float(base.x),
                 float(base.y),
@@ -228,7 +233,11 @@ struct Params {
                 float(irid),
                 float(irid_ior),
                 float(irid_d),
-                float(alpha_t < 0 ? alpha : alpha_t)};
+                float(alpha_t < 0 ? alpha : alpha_t),
+                float(dt),
+                float(dt * dt_color.x),
+                float(dt * dt_color.y),
+                float(dt * dt_color.z)};
     }
     std::string name() const {
         return "base (" + std::to_string(base.x) + "," + std::to_string(base.y) + "," + std::to_string(base.z) +
@@ -239,7 +248,8 @@ struct Params {
                (sheen.x + sheen.y + sheen.z > 0 ? " sheen " + std::to_string(sheen.x) + " r " + std::to_string(sheen_r)
                                                 : "") +
                (irid > 0 ? " iridescence " + std::to_string(irid) + " d " + std::to_string(irid_d) : "") +
-               (alpha_t >= 0 ? " alpha_t " + std::to_string(alpha_t) : "");
+               (alpha_t >= 0 ? " alpha_t " + std::to_string(alpha_t) : "") +
+               (dt > 0 ? " diffuse transmission " + std::to_string(dt) : "");
     }
 };
 

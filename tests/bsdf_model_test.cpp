@@ -84,7 +84,8 @@ double ref_under(const Params& p, D3 n, D3 wo, D3 wi, unsigned mask, int c) {
     double glass = 0;
     if ((mask & kGlass) && p.glass > 0 && !mirror && (p.thin || std::fabs(p.eta - 1) > 1e-3))
         glass = p.glass * ref_rough_glass(n, wo, wi, p.alpha, p.eta, p.thin, base);
-    if (co <= 0 || ci <= 0) return glass;
+    const bool translucent = p.dt > 0 && (mask & kDiffuse) && co > 0 && ci < 0;
+    if (!translucent && (co <= 0 || ci <= 0)) return glass;
     auto E = [&](double mu, double a) {
         return mirror ? f0 + (f90 - f0) * std::pow(1 - mu, 5)
                       : f0 * table(ggx_albedo_a, mu, a) + (f90 - f0) * table(ggx_albedo_b, mu, a);
@@ -99,8 +100,12 @@ double ref_under(const Params& p, D3 n, D3 wo, D3 wi, unsigned mask, int c) {
         return r;
     };
     double f = glass;
+    // KHR_materials_diffuse_transmission: (1 - dt) base above, dt dt_colour below, both coupled to
+    // the layer at |cos_i|.
+    const double dcolor = translucent ? p.dt * comp(p.dt_color, c) : (1 - p.dt) * base;
+    if (translucent) ci = -ci;
     if (mask & kDiffuse) {
-        const double c0 = p.dielectric * base / M_PI;
+        const double c0 = p.dielectric * dcolor / M_PI;
         double d = c0;
         if (p.dielectric > 0 && f90 > 0) {
             d *= 1 - e_avg > 1e-6 ? (1 - E(co, al_o)) * (1 - E(ci, al_i)) / (1 - e_avg) : 0;
@@ -116,7 +121,7 @@ double ref_under(const Params& p, D3 n, D3 wo, D3 wi, unsigned mask, int c) {
         }
         f += d;
     }
-    if (mirror) return f;
+    if (mirror || translucent) return f;
     D3 h = normalized(wo + wi);
     double dg = ref_d(dot(n, h), p.alpha) / (1 + ref_lambda(co, p.alpha) + ref_lambda(ci, p.alpha)) / (4 * co * ci);
     if (aniso) { // Heitz 2014, Eqs. 80 and 86, in the frame (t, cross(n, t), n)
@@ -221,6 +226,11 @@ Params sheened(Params p, D3 sheen, double r) {
     return p;
 }
 
+Params translucent(Params p, double dt, D3 color) {
+    p.dt = dt, p.dt_color = color;
+    return p;
+}
+
 Params glass(double alpha, double eta, bool thin = false) {
     Params p;
     p.alpha = alpha, p.base = {0.9, 0.8, 0.6}, p.dielectric = 0, p.glass = 1, p.eta = eta, p.thin = thin;
@@ -228,30 +238,36 @@ Params glass(double alpha, double eta, bool thin = false) {
 }
 
 const std::vector<Params>& cases() {
-    static const std::vector<Params> c = {dielectric(0.05),
-                                          dielectric(0.25),
-                                          dielectric(1.0),
-                                          metal(0.05),
-                                          metal(0.3),
-                                          metal(1.0),
-                                          mixed(0.1),
-                                          mixed(0.6),
-                                          glass(0.1, 1.5),
-                                          glass(0.5, 1 / 1.5),
-                                          glass(0.3, 1.5, true),
-                                          coated(dielectric(0.5), 1.0, 0.05),
-                                          coated(metal(0.3), 0.7, 0.3),
-                                          coated(glass(0.3, 1.5), 0.5, 0.2),
-                                          coated(dielectric(0.2), 0.8, 1.0),
-                                          sheened(dielectric(0.6), {0.9, 0.5, 0.2}, 0.5),
-                                          sheened(metal(0.4), {1, 1, 1}, 0.2),
-                                          coated(sheened(dielectric(0.7), {0.6, 0.6, 0.9}, 1.0), 0.6, 0.1),
-                                          filmed(dielectric(0.3), 1.0, 350),
-                                          filmed(metal(0.2), 0.7, 500, 1.8),
-                                          filmed(mixed(0.5), 0.5, 250),
-                                          stretched(dielectric(0.05), 0.4),
-                                          stretched(metal(0.1), 0.7),
-                                          stretched(filmed(metal(0.2), 0.6, 300), 0.5)};
+    static const std::vector<Params> c = {
+        dielectric(0.05),
+        dielectric(0.25),
+        dielectric(1.0),
+        metal(0.05),
+        metal(0.3),
+        metal(1.0),
+        mixed(0.1),
+        mixed(0.6),
+        glass(0.1, 1.5),
+        glass(0.5, 1 / 1.5),
+        glass(0.3, 1.5, true),
+        coated(dielectric(0.5), 1.0, 0.05),
+        coated(metal(0.3), 0.7, 0.3),
+        coated(glass(0.3, 1.5), 0.5, 0.2),
+        coated(dielectric(0.2), 0.8, 1.0),
+        sheened(dielectric(0.6), {0.9, 0.5, 0.2}, 0.5),
+        sheened(metal(0.4), {1, 1, 1}, 0.2),
+        coated(sheened(dielectric(0.7), {0.6, 0.6, 0.9}, 1.0), 0.6, 0.1),
+        filmed(dielectric(0.3), 1.0, 350),
+        filmed(metal(0.2), 0.7, 500, 1.8),
+        filmed(mixed(0.5), 0.5, 250),
+        stretched(dielectric(0.05), 0.4),
+        stretched(metal(0.1), 0.7),
+        stretched(filmed(metal(0.2), 0.6, 300), 0.5),
+        translucent(dielectric(0.3), 0.4, {0.9, 0.6, 0.3}),
+        translucent(dielectric(0.01), 1.0, {0.5, 0.9, 0.7}),
+        translucent(mixed(0.4), 0.7, {1, 1, 1}),
+        coated(sheened(translucent(dielectric(0.5), 0.5, {0.3, 0.8, 0.4}), {0.5, 0.5, 0.5}, 0.6), 0.7, 0.2),
+        translucent(filmed(dielectric(0.2), 0.8, 400), 0.6, {1, 0.5, 0.5})};
     return c;
 }
 
@@ -295,10 +311,13 @@ TEST(BsdfModel, EvalIsReciprocal) {
             std::vector<float> fwd = model_eval(p, n, wo, dirs, kAll);
             for (size_t b = 0; b < 64; ++b) {
                 D3 wi = at3(dirs, b);
-                if (dot(wi, n) <= 1e-3) continue;
+                // Diffuse transmission: light from below, seen from below (the normal turned over;
+                // rough glass's refraction is reciprocal only with the index inverted as well).
+                const bool through = p.dt > 0 && p.glass == 0 && dot(wi, n) < -1e-3;
+                if (dot(wi, n) <= 1e-3 && !through) continue;
                 std::vector<float> one;
                 push3(one, wo);
-                std::vector<float> back = model_eval(p, n, wi, one, kAll);
+                std::vector<float> back = model_eval(p, through ? -1.0 * n : n, wi, one, kAll);
                 for (int c = 0; c < 3; ++c)
                     ASSERT_NEAR(fwd[4 * b + c], back[c], 2e-3 * std::fabs(back[c]) + 1e-7)
                         << p.name() << " pair " << a << "," << b << " channel " << c;
@@ -390,7 +409,9 @@ TEST(BsdfModel, WhiteFurnaceWithoutGain) {
     const size_t m = 400000;
     for (double alpha : {0.0, 0.01, 0.05, 0.2, 0.5, 1.0})
         for (double cos_o : {1.0, 0.7, 0.3, 0.05}) {
-            std::vector<Params> white = {dielectric(alpha, {1, 1, 1}), metal(alpha, {1, 1, 1})};
+            std::vector<Params> white = {dielectric(alpha, {1, 1, 1}), metal(alpha, {1, 1, 1}),
+                                         translucent(dielectric(alpha, {1, 1, 1}), 0.5, {1, 1, 1}),
+                                         translucent(dielectric(alpha, {0, 0, 0}), 1.0, {1, 1, 1})};
             Params colored = mixed(alpha);
             colored.base = {1, 1, 1};
             for (const Params& p : white) {
@@ -449,6 +470,58 @@ TEST(BsdfModel, WhiteFurnaceWithoutGain) {
                 const double mean = sum / m, se = std::sqrt(std::max(0.0, sum2 / m - mean * mean) / m);
                 EXPECT_LE(mean, 1 + 4 * se + 2e-3) << colored.name() << " channel " << c;
             }
+        }
+}
+
+// Diffuse transmission's half below the surface: the histogram of the samples drawn through it,
+// mirrored up through the tangent plane, against bsdf_pdf at the mirrored cells' directions
+// (chi-square as above; what is drawn above goes to the extra cell).
+TEST(BsdfModel, TranslucentSamplesMatchPdfBelow) {
+    const D3 n = float_normal();
+    const int nu = 16, nphi = 32;
+    const std::vector<Params> ps = {translucent(dielectric(0.3), 0.4, {0.9, 0.6, 0.3}),
+                                    translucent(mixed(0.4), 0.7, {1, 1, 1}),
+                                    coated(translucent(dielectric(0.5), 0.5, {0.3, 0.8, 0.4}), 0.7, 0.2)};
+    const double level = sidak(1e-3, int(ps.size() * 3));
+    for (const Params& p : ps)
+        for (double cos_o : kViews) {
+            SCOPED_TRACE(p.name() + " cos_o " + std::to_string(cos_o));
+            D3 wo = view(cos_o);
+            // The cells about the mirror image of wo, whose u grid is cosine-like far from it.
+            HalfVectorGrid grid(n, wo, 0.5);
+            Quadrature q = half_vector_quadrature(grid, 4 * nu, 4 * nphi);
+            std::vector<float> below;
+            for (size_t i = 0; i < q.weight.size(); ++i) {
+                D3 w = at3(q.wi, i);
+                push3(below, w - (2 * dot(w, n)) * n);
+            }
+            std::vector<float> v = model_eval(p, n, wo, below, kAll);
+            const size_t m = 200000;
+            std::vector<double> expected(nu * nphi + 1, 0), observed(nu * nphi + 1, 0);
+            for (size_t i = 0; i < q.weight.size(); ++i) {
+                int c = q.cell[i], bu = (c / (4 * nphi)) / 4, bp = (c % (4 * nphi)) / 4;
+                expected[bu * nphi + bp] += m * v[4 * i + 3] * q.weight[i];
+            }
+            double inside = 0;
+            for (int k = 0; k < nu * nphi; ++k) inside += expected[k];
+            expected[nu * nphi] = std::max(0.0, m - inside);
+            ASSERT_GT(inside, 0.05 * m); // the lobe below is sampled at all
+            std::vector<float> s = model_sample(p, n, wo, m, kAll, 300 + uint64_t(cos_o * 10));
+            for (size_t i = 0; i < m; ++i) {
+                int flags = int(s[8 * i + 7]);
+                if (!(flags & 1) || (flags & 2) || !(flags & 4)) {
+                    observed[nu * nphi] += 1;
+                    continue;
+                }
+                D3 w{s[8 * i], s[8 * i + 1], s[8 * i + 2]};
+                double u, phi;
+                grid.coords(w - (2 * dot(w, n)) * n, &u, &phi);
+                int bu = std::min(nu - 1, int(u * nu)), bp = std::min(nphi - 1, int(phi / (2 * M_PI) * nphi));
+                observed[bu * nphi + bp] += 1;
+            }
+            Chi2Result c = chi2_test(observed, expected);
+            EXPECT_TRUE(c.error.empty()) << c.error;
+            EXPECT_GT(c.p_value, level) << "chi2 " << c.chi2 << " dof " << c.dof;
         }
 }
 

@@ -66,6 +66,22 @@ double render_test_scene_mean(const std::string& file, const std::string& integr
     return mean_radiance(read_exr(d + "/i.exr"));
 }
 
+std::array<double, 3> render_test_scene_channels(const std::string& file, const std::string& integrator, int passes,
+                                                 int photons, int width, int height) {
+    std::string d = make_temp_dir("scene_channels"), out;
+    const std::string args = std::string(CLPPM_TEST_DATA) + "/" + file + " --width " + std::to_string(width) +
+                             " --height " + std::to_string(height) + " --passes " + std::to_string(passes) +
+                             " --photons " + std::to_string(photons) + " --quiet --no-png --integrator " + integrator +
+                             " -o " + d + "/i.exr";
+    EXPECT_EQ(run_clppm(args, &out), 0) << out;
+    EXPECT_EQ(out.find("warning"), std::string::npos) << out;
+    Image img = read_exr(d + "/i.exr");
+    std::array<double, 3> m{0, 0, 0};
+    for (size_t i = 0; i < img.rgb.size(); ++i) m[i % 3] += img.rgb[i];
+    for (double& v : m) v /= double(img.rgb.size() / 3);
+    return m;
+}
+
 void expect_scenes_render_alike(const std::string& file, const std::string& reference, double tolerance, int passes,
                                 int photons) {
     for (const char* integrator : {"sppm", "pt"}) {

@@ -1,5 +1,6 @@
 // Helpers shared by the tests: the PoCL device, temporary directories, running the clppm binary.
 #pragma once
+#include <array>
 #include <string>
 
 #include "device/device.h"
@@ -30,6 +31,10 @@ int run_clppm(const std::string& args, std::string* output);
 // run is a test failure. The material and geometry tests compare such means of scene pairs.
 double render_test_scene_mean(const std::string& file, const std::string& integrator, int passes = 6,
                               int photons = 50000);
+
+// The same per channel, at width x height.
+std::array<double, 3> render_test_scene_channels(const std::string& file, const std::string& integrator, int passes,
+                                                 int photons = 50000, int width = 16, int height = 16);
 
 // For SPPM and the path tracer: the means of tests/data/<file> and <reference> (rendered as
 // render_test_scene_mean does) agree within `tolerance`, relative.

@@ -22,16 +22,9 @@ namespace {
 
 std::string data(const char* name) { return std::string(CLPPM_TEST_DATA) + "/" + name; }
 
+// Channel means at 16x16 with the default 200000 photons per pass.
 std::array<double, 3> channel_means(const std::string& file, const char* integrator, int passes = 4) {
-    std::string d = make_temp_dir("volume"), out;
-    const std::string args = data(file.c_str()) + " --width 16 --height 16 --passes " + std::to_string(passes) +
-                             " --quiet --no-png --integrator " + integrator + " -o " + d + "/i.exr";
-    EXPECT_EQ(run_clppm(args, &out), 0) << out;
-    Image img = read_exr(d + "/i.exr");
-    std::array<double, 3> m{0, 0, 0};
-    for (size_t i = 0; i < img.rgb.size(); ++i) m[i % 3] += img.rgb[i];
-    for (double& v : m) v /= double(img.rgb.size() / 3);
-    return m;
+    return render_test_scene_channels(file, integrator, passes, 200000);
 }
 
 } // namespace

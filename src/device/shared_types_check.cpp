@@ -21,7 +21,9 @@ CLPPM_CHECK_SIZE(BvhTriBlock, 40 * BVH_TRI_BLOCK);
 CLPPM_CHECK_OFFSET(BvhTriBlock, prim, 36 * BVH_TRI_BLOCK);
 static_assert(BVH_WIDTH == 4 || BVH_WIDTH == 8, "bvh_traverse.cl has float4 and float8 node tests");
 
-CLPPM_CHECK_SIZE(Material, 224);
+CLPPM_CHECK_SIZE(Material, 240);
+CLPPM_CHECK_OFFSET(Material, diffuse_transmission, 212);
+CLPPM_CHECK_OFFSET(Material, diffuse_transmission_color, 224);
 CLPPM_CHECK_OFFSET(Material, anisotropy_strength, 200);
 CLPPM_CHECK_OFFSET(Material, anisotropy_tex, 208);
 CLPPM_CHECK_OFFSET(Material, iridescence, 176);
@@ -66,7 +68,9 @@ CLPPM_CHECK_OFFSET(SceneInfo, max_bounces, 40);
 CLPPM_CHECK_OFFSET(SceneInfo, vertex_colors, 44);
 CLPPM_CHECK_OFFSET(SceneInfo, texcoord1, 48);
 
-CLPPM_CHECK_SIZE(HitPoint, 136);
+CLPPM_CHECK_SIZE(HitPoint, 152);
+CLPPM_CHECK_OFFSET(HitPoint, translucent, 136);
+CLPPM_CHECK_OFFSET(HitPoint, dt, 148);
 CLPPM_CHECK_OFFSET(HitPoint, t_oct, 128);
 CLPPM_CHECK_OFFSET(HitPoint, irid, 116);
 CLPPM_CHECK_OFFSET(HitPoint, sheen, 100);

@@ -25,7 +25,13 @@ SceneFeatures scene_features(const Scene& scene, const DeviceScene& ds) {
         if (m.base_color_tex >= 0 || m.metallic_roughness_tex >= 0 || m.emissive_tex >= 0) f.textures = true;
         if (m.normal_tex >= 0 && !scene.tangents.empty()) f.textures = f.normal_maps = true;
         if (m.alpha_mode != ALPHA_OPAQUE) f.alpha = true;
-        if (m.transmission > 0.f && (m.attenuation[0] > 0.f || m.attenuation[1] > 0.f || m.attenuation[2] > 0.f))
+        // Diffuse transmission acts on the dielectric base only.
+        const bool translucent = m.diffuse_transmission > 0.f && metallic_min < 1.f && transmission_min < 1.f;
+        if (translucent) f.diffuse_transmission = true;
+        if (translucent && (m.diffuse_transmission_tex >= 0 || m.diffuse_transmission_color_tex >= 0))
+            f.textures = true;
+        if ((m.transmission > 0.f || translucent) &&
+            (m.attenuation[0] > 0.f || m.attenuation[1] > 0.f || m.attenuation[2] > 0.f))
             f.volume = true;
         if (m.transmission_tex >= 0 || m.specular_tex >= 0 || m.specular_color_tex >= 0) f.textures = true;
         if (m.emission_spread > 0.f) f.emission_spread = true;

@@ -786,6 +786,58 @@ def sheen():
     b.write_embedded(out("sheen_textured.gltf"))
 
 
+def diffuse_transmission():
+    """KHR_materials_diffuse_transmission. dt_plate_*.gltf: a plate facing the camera (views within
+    3 degrees of the normal) in a uniform white world of radiance 1, which lights both of its
+    sides: it shows (1 - dt) base + dt colour under no layer, and E + (1 - E)((1 - dt) base + dt
+    colour) under a smooth layer (E = 0.04 head-on). dt_full: dt 1, colour (1, 0.5, 0.25), black
+    base, no layer; dt_half: dt 0.5, base 0.2 and that colour, no layer; dt_layer: dt_half under
+    the default specular layer at roughness 0. dt_box_*.gltf: a closed box 0.5 thick, dt 1,
+    between the camera and a point light, lit only through it: dt_box_volume absorbs inside
+    (attenuationColor (0.5, 0.25, 1) at distance 0.5), dt_box_clear does not. dt_textured.gltf:
+    factors and textures, for the loader."""
+    color = [1.0, 0.5, 0.25]
+    for name, dt, base, spec, rough in (("dt_full_plate.gltf", 1.0, 0.0, 0.0, 1.0),
+                                        ("dt_half_plate.gltf", 0.5, 0.2, 0.0, 1.0),
+                                        ("dt_layer_plate.gltf", 0.5, 0.2, None, 0.0)):
+        b = GltfBuilder("clppm tests/data/make_test_gltf.py")
+        ext = {"KHR_materials_diffuse_transmission": {"diffuseTransmissionFactor": dt,
+                                                      "diffuseTransmissionColorFactor": color}}
+        plate = b.material("plate", (base, base, base), roughness=rough, specular=spec, extensions=ext)
+        p = b.primitive([(-1, -1, 0), (1, -1, 0), (1, 1, 0), (-1, 1, 0)], [0, 1, 2, 0, 2, 3], [(0, 0, 1)] * 4,
+                        material=plate)
+        b.scene([b.node(name="plate", mesh=b.mesh([p])),
+                 b.node(name="camera", camera=b.camera(0.1), translation=[0.0, 0.0, 3.0])])
+        b.world(color=(1.0, 1.0, 1.0))
+        b.write_embedded(out(name))
+    for name, absorb in (("dt_box_volume.gltf", True), ("dt_box_clear.gltf", False)):
+        b = GltfBuilder("clppm tests/data/make_test_gltf.py")
+        ext = {"KHR_materials_diffuse_transmission": {"diffuseTransmissionFactor": 1.0},
+               "KHR_materials_volume": {"thicknessFactor": 0.5}}
+        if absorb:
+            ext["KHR_materials_volume"].update({"attenuationDistance": 0.5, "attenuationColor": [0.5, 0.25, 1.0]})
+        box = b.material("box", (0.0, 0.0, 0.0), specular=0.0, extensions=ext)
+        slab = box_primitive(b, (-3.0, -3.0, -0.25), (3.0, 3.0, 0.25), box)
+        lamp = b.light({"name": "lamp", "type": "point", "intensity": 10.0})
+        b.scene([b.node(name="box", mesh=b.mesh([slab])),
+                 b.node(name="camera", camera=b.camera(0.3), translation=[0.0, 0.0, 2.0]),
+                 b.node(name="lamp", light=lamp, translation=[0.0, 0.0, -1.0])])
+        b.world(color=(0.0, 0.0, 0.0))
+        b.write_embedded(out(name))
+    b = GltfBuilder("clppm tests/data/make_test_gltf.py")
+    png = png_rgba([[(128, 64, 0, 128)] * 2] * 2)
+    b.doc["images"] = [{"uri": "data:image/png;base64," + base64.b64encode(png).decode("ascii")}]
+    b.doc["textures"] = [{"source": 0}]
+    ext = {"diffuseTransmissionFactor": 0.75, "diffuseTransmissionTexture": {"index": 0},
+           "diffuseTransmissionColorFactor": [0.5, 0.25, 1.0], "diffuseTransmissionColorTexture": {"index": 0}}
+    plate = b.material("plate", (0.5, 0.5, 0.5), extensions={"KHR_materials_diffuse_transmission": ext})
+    p = b.primitive([(-1, -1, 0), (1, -1, 0), (1, 1, 0), (-1, 1, 0)], [0, 1, 2, 0, 2, 3], [(0, 0, 1)] * 4,
+                    material=plate)
+    p["attributes"]["TEXCOORD_0"] = b.accessor([0.0, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 1.0], FLOAT, "VEC2", ARRAY_BUFFER)
+    b.scene([b.node(name="plate", mesh=b.mesh([p]))])
+    b.write_embedded(out("dt_textured.gltf"))
+
+
 def camera_clipping():
     """Cameras. ortho_square*.gltf: an unlit square (0.2, 0.5, 0.8) of side 1 at the origin, seen
     by an orthographic camera of xmag = ymag = 1 from 5 and from 50 along +z, in a white world:
@@ -1148,7 +1200,8 @@ def main():
                  materials, texture, lights, cameras, quantized, sparse, strips_fans, gpu_instancing, emissive_texture,
                  normal_maps, vertex_colors, alpha_modes,
                  texture_transform, uv1_plates, volumes, skinned,
-                 specular_textures, unlit, clearcoat, sheen, iridescence, anisotropy, camera_clipping, reference_scenes, environment_scenes, spread_light, errors):
+                 specular_textures, unlit, clearcoat, sheen, iridescence, anisotropy, diffuse_transmission,
+                 camera_clipping, reference_scenes, environment_scenes, spread_light, errors):
         make()
 
 

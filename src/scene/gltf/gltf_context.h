@@ -31,16 +31,25 @@ constexpr uint64_t kMaxExpandedAccessorBytes = uint64_t(1) << 30;
 constexpr double kPi = 3.14159265358979323846;
 
 // Each is read as its specification says (README, "glTF support").
-inline const std::set<std::string> kSupportedExtensions = {
-    "KHR_lights_punctual",        "KHR_materials_emissive_strength",
-    "KHR_materials_transmission", "KHR_materials_ior",
-    "KHR_materials_specular",     "KHR_mesh_quantization",
-    "EXT_mesh_gpu_instancing",    "KHR_draco_mesh_compression",
-    "EXT_texture_webp",           "KHR_texture_transform",
-    "KHR_materials_volume",       "KHR_materials_variants",
-    "KHR_materials_unlit",        "KHR_materials_clearcoat",
-    "KHR_materials_sheen",        "KHR_materials_iridescence",
-    "KHR_materials_anisotropy",   "KHR_materials_pbrSpecularGlossiness"};
+inline const std::set<std::string> kSupportedExtensions = {"KHR_lights_punctual",
+                                                           "KHR_materials_emissive_strength",
+                                                           "KHR_materials_transmission",
+                                                           "KHR_materials_ior",
+                                                           "KHR_materials_specular",
+                                                           "KHR_mesh_quantization",
+                                                           "EXT_mesh_gpu_instancing",
+                                                           "KHR_draco_mesh_compression",
+                                                           "EXT_texture_webp",
+                                                           "KHR_texture_transform",
+                                                           "KHR_materials_volume",
+                                                           "KHR_materials_variants",
+                                                           "KHR_materials_unlit",
+                                                           "KHR_materials_clearcoat",
+                                                           "KHR_materials_sheen",
+                                                           "KHR_materials_iridescence",
+                                                           "KHR_materials_anisotropy",
+                                                           "KHR_materials_pbrSpecularGlossiness",
+                                                           "KHR_materials_diffuse_transmission"};
 
 // Error messages are one line: tinygltf and nlohmann texts are joined with "; ".
 std::string one_line(const std::string& text);

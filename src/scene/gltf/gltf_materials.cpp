@@ -55,6 +55,8 @@ dev::Material default_material() {
     m.sheen_color_tex = m.sheen_roughness_tex = -1;
     m.iridescence_tex = m.iridescence_thickness_tex = -1;
     m.anisotropy_tex = -1;
+    m.diffuse_transmission_tex = m.diffuse_transmission_color_tex = -1;
+    for (int c = 0; c < 3; ++c) m.diffuse_transmission_color[c] = 1.f;
     return m;
 }
 
@@ -136,6 +138,7 @@ dev::Material MaterialConverter::convert_material(int index) {
     convert_sheen(g, label, m);
     convert_iridescence(g, label, m);
     convert_anisotropy(g, label, m);
+    convert_diffuse_transmission(g, label, m);
     if (g.doubleSided) m.flags |= MATERIAL_FLAG_DOUBLE_SIDED;
     if (g.extensions.count("KHR_materials_unlit")) convert_unlit(m);
     return m;
@@ -159,6 +162,8 @@ void MaterialConverter::convert_unlit(dev::Material& m) {
     m.iridescence_tex = m.iridescence_thickness_tex = -1;
     m.anisotropy_strength = 0.f;
     m.anisotropy_tex = -1;
+    m.diffuse_transmission = 0.f;
+    m.diffuse_transmission_tex = m.diffuse_transmission_color_tex = -1;
     for (float& a : m.attenuation) a = 0.f;
     m.flags &= ~MATERIAL_FLAG_THIN_WALLED;
 }
@@ -263,6 +268,39 @@ void MaterialConverter::convert_anisotropy(const tinygltf::Material& g, const st
         finite_factor(extension_number(g.extensions, ext, "anisotropyRotation", 0.0), "anisotropyRotation", label);
     if (!(m.anisotropy_strength > 0.f)) return;
     m.anisotropy_tex = extension_texture(g, ext, "anisotropyTexture", label, false);
+}
+
+// KHR_materials_diffuse_transmission: diffuseTransmissionFactor times diffuseTransmissionTexture's A
+// turns that part of the dielectric's diffuse lobe to the other side of the surface, with colour
+// diffuseTransmissionColorFactor times diffuseTransmissionColorTexture (sRGB). Thin unless
+// KHR_materials_volume gives the mesh a thickness, whose absorption then applies inside
+// (kernels/bsdf.cl).
+void MaterialConverter::convert_diffuse_transmission(const tinygltf::Material& g, const std::string& label,
+                                                     dev::Material& m) {
+    m.diffuse_transmission = 0.f;
+    m.diffuse_transmission_tex = m.diffuse_transmission_color_tex = -1;
+    for (int c = 0; c < 3; ++c) m.diffuse_transmission_color[c] = 1.f;
+    const char* ext = "KHR_materials_diffuse_transmission";
+    auto it = g.extensions.find(ext);
+    if (it == g.extensions.end() || !it->second.IsObject()) return;
+    const tinygltf::Value& v = it->second;
+    m.diffuse_transmission =
+        std::clamp(finite_factor(extension_number(g.extensions, ext, "diffuseTransmissionFactor", 0.0),
+                                 "diffuseTransmissionFactor", label),
+                   0.f, 1.f);
+    if (v.Has("diffuseTransmissionColorFactor")) {
+        const tinygltf::Value& c = v.Get("diffuseTransmissionColorFactor");
+        if (!c.IsArray() || c.ArrayLen() != 3)
+            ctx_.fail(label + " diffuseTransmissionColorFactor must have 3 components");
+        for (int k = 0; k < 3; ++k) {
+            if (!c.Get(k).IsNumber()) ctx_.fail(label + " diffuseTransmissionColorFactor must have 3 numbers");
+            m.diffuse_transmission_color[k] = std::clamp(
+                finite_factor(c.Get(k).GetNumberAsDouble(), "diffuseTransmissionColorFactor", label), 0.f, 1.f);
+        }
+    }
+    if (!(m.diffuse_transmission > 0.f)) return;
+    m.diffuse_transmission_tex = extension_texture(g, ext, "diffuseTransmissionTexture", label, false);
+    m.diffuse_transmission_color_tex = extension_texture(g, ext, "diffuseTransmissionColorTexture", label, true);
 }
 
 // A textureInfo inside a material extension (tinygltf leaves those as JSON values): -1 without it.
