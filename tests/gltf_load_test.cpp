@@ -712,5 +712,27 @@ TEST(GltfSkin, SkinnedVerticesFollowTheirJoints) {
     EXPECT_TRUE(s.warnings.empty()) << s.warnings[0];
 }
 
+// The pose a viewer opens a file in: the start of the first animation (make_test_gltf.py
+// animated() gives the expected corners).
+TEST(GltfAnimation, NodesStandAtTheFirstAnimationsStart) {
+    Scene s = load_gltf(data("animated.gltf"));
+    ASSERT_EQ(s.num_triangles(), 1u);
+    const double want[3][3] = {{1, 2, 3}, {3, 2, 3}, {1, 4, 3}};
+    for (int k = 0; k < 3; ++k) {
+        EXPECT_NEAR(s.positions[size_t(k)].x, want[k][0], 1e-6) << "corner " << k;
+        EXPECT_NEAR(s.positions[size_t(k)].y, want[k][1], 1e-6) << "corner " << k;
+        EXPECT_NEAR(s.positions[size_t(k)].z, want[k][2], 1e-6) << "corner " << k;
+    }
+    EXPECT_TRUE(s.warnings.empty()) << s.warnings[0];
+    try {
+        load_gltf(data("animated_bad.gltf"));
+        FAIL() << "a VEC2 translation output loaded";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("animation 0 channel 0: translation output must be a VEC3"),
+                  std::string::npos)
+            << e.what();
+    }
+}
+
 } // namespace
 } // namespace clppm

@@ -196,6 +196,31 @@ def skinned():
     b.write_embedded(out("skinned.gltf"))
 
 
+def animated():
+    """The pose at the start of the first animation (src/scene/gltf/gltf_animation_pose.h). The
+    triangle's node rests at (5, 0, 0); animation 0 moves it LINEAR from (1, 2, 3) at t = 0.5 to
+    (9, 9, 9) at t = 1, and scales it CUBICSPLINE by (2, 2, 2) at its first keyframe (in-tangents
+    and out-tangents of 7 that must not be read); animation 1, never applied, moves it to (-4, 0,
+    0). The corners land at 2 TRI + (1, 2, 3). animated_bad.gltf: a translation output of VEC2."""
+    b = GltfBuilder("clppm tests/data/make_test_gltf.py")
+    tri = b.node(name="tri", mesh=b.mesh([b.primitive(TRI, [0, 1, 2], TRI_N)]), translation=[5.0, 0.0, 0.0])
+    b.scene([tri])
+    times = b.accessor([0.5, 1.0], FLOAT, "SCALAR", minmax=True)
+    moves = b.accessor([1.0, 2.0, 3.0, 9.0, 9.0, 9.0], FLOAT, "VEC3")
+    scales = b.accessor([7.0] * 3 + [2.0] * 3 + [7.0] * 3 + [7.0] * 3 + [3.0] * 3 + [7.0] * 3, FLOAT, "VEC3")
+    other = b.accessor([-4.0, 0.0, 0.0, -4.0, 0.0, 0.0], FLOAT, "VEC3")
+    b.doc["animations"] = [
+        {"name": "first", "samplers": [{"input": times, "output": moves},
+                                       {"input": times, "output": scales, "interpolation": "CUBICSPLINE"}],
+         "channels": [{"sampler": 0, "target": {"node": tri, "path": "translation"}},
+                      {"sampler": 1, "target": {"node": tri, "path": "scale"}}]},
+        {"name": "second", "samplers": [{"input": times, "output": other}],
+         "channels": [{"sampler": 0, "target": {"node": tri, "path": "translation"}}]}]
+    b.write_embedded(out("animated.gltf"))
+    b.doc["animations"][0]["samplers"][0]["output"] = b.accessor([1.0, 2.0, 3.0, 4.0], FLOAT, "VEC2")
+    b.write_embedded(out("animated_bad.gltf"))
+
+
 def materials():
     """One triangle per material (z = material index) and one without a material."""
     b = GltfBuilder("clppm tests/data/make_test_gltf.py")
@@ -1199,7 +1224,7 @@ def main():
     for make in (hierarchy, index_types, byte_stride, containers, no_normals, degenerate, mirror, metallic_roughness,
                  materials, texture, lights, cameras, quantized, sparse, strips_fans, gpu_instancing, emissive_texture,
                  normal_maps, vertex_colors, alpha_modes,
-                 texture_transform, uv1_plates, volumes, skinned,
+                 texture_transform, uv1_plates, volumes, skinned, animated,
                  specular_textures, unlit, clearcoat, sheen, iridescence, anisotropy, diffuse_transmission,
                  camera_clipping, reference_scenes, environment_scenes, spread_light, errors):
         make()

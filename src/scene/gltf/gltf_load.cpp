@@ -1,11 +1,13 @@
 // glTF 2.0 -> Scene. Three stages: a guarded pre-scan of the raw JSON (nesting depth, required
 // extensions, URIs, image buffer views: the checks tinygltf does not make before it touches
 // memory or the file system), parsing with tinygltf behind file-system callbacks that stay inside
-// the scene's directory, decoding Draco-compressed primitives, then flattening the node hierarchy into world-space triangles.
+// the scene's directory, decoding Draco-compressed primitives, posing the nodes at the start of the
+// first animation, then flattening the node hierarchy into world-space triangles.
 #include "scene/gltf/gltf_load.h"
 
 #include <filesystem>
 
+#include "scene/gltf/gltf_animation_pose.h"
 #include "scene/gltf/gltf_context.h"
 #include "scene/gltf/gltf_draco.h"
 #include "scene/gltf/gltf_files.h"
@@ -32,6 +34,7 @@ Scene load_bytes(const std::vector<unsigned char>& bytes, const std::string& bas
     tinygltf::Model model = parse_model(bytes, base, ctx);
     decode_draco_primitives(model, ctx);
     apply_material_variant(model, variant, ctx, scene);
+    apply_animation_start(model, ctx);
     if (const int n = convert_specular_glossiness(model, ctx))
         ctx.warn(std::to_string(n) +
                  " material(s) in KHR_materials_pbrSpecularGlossiness (archived) converted to "

@@ -1,7 +1,7 @@
 // glTF skins (glTF 2.0 Sec. 3.7.3): a skinned mesh is drawn where its joints put it, at
 // sum_k w_k J_k v with J_k = global(joint_k) x inverseBindMatrix_k, for the joints and weights of
 // JOINTS_n / WEIGHTS_n; the transform of the node the mesh hangs on is not applied. clppm renders
-// the pose the file's node transforms give (there is no animation).
+// the pose the node transforms give, at the start of the first animation (gltf_animation_pose.h).
 #pragma once
 #include <string>
 #include <vector>
