@@ -4,6 +4,8 @@
 // shadows it). tests/data/unlit_panel.gltf and unlit_dark.gltf (tests/data/make_test_gltf.py).
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "io/image_io.h"
 #include "scene/gltf/gltf_load.h"
 #include "test_util.h"
@@ -59,5 +61,29 @@ TEST(Unlit, ShowsTheBaseColourAndLightsNothing) {
                     wall += px(lit, x, y, c);
                 }
         EXPECT_GT(wall, 1.0) << "the wall is lit by the point light";
+    }
+}
+
+TEST(Unlit, RendersWithNothingButUnlitSurfaces) {
+    // No lights and a black world: the unlit panel is still seen, in its colour, by every
+    // integrator; the wall is black. (A scene with nothing unlit and no light stays refused:
+    // cli_test.cpp.)
+    const float shown[3] = {0.2f, 0.25f, 0.8f};
+    for (const char* integrator : {"pt", "sppm", "pppm", "ppm", "vcm", "bpt"}) {
+        SCOPED_TRACE(integrator);
+        Image img = render("unlit_alone.gltf", integrator);
+        for (int y = 0; y < 32; ++y)
+            for (int x = 0; x < 32; ++x)
+                for (int c = 0; c < 3; ++c) {
+                    const bool panel = y >= 6 && y < 26 && x >= 1 && x < 12;
+                    const float v = px(img, x, y, c);
+                    ASSERT_TRUE(std::isfinite(v)) << x << "," << y;
+                    if (panel) {
+                        ASSERT_NEAR(v, shown[c], 1e-5f) << x << "," << y << " channel " << c;
+                    }
+                    if (x >= 16) {
+                        ASSERT_EQ(v, 0.f) << x << "," << y << ": nothing lights the wall";
+                    }
+                }
     }
 }

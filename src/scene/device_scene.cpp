@@ -316,7 +316,15 @@ DeviceScene upload_scene(const DeviceContext& dc, Scene& scene, const SceneSetti
             dropped.push_back(e.source + " (black)");
         }
     }
-    if (ds.lights.empty()) {
+    // A scene whose only light is what unlit surfaces show (KHR_materials_unlit) renders without
+    // lights: they show their colour to the camera, and nothing else is lit.
+    bool unlit = false;
+    for (const dev::TriShading& t : scene.shading)
+        if (t.material < scene.materials.size() && (scene.materials[t.material].flags & MATERIAL_FLAG_UNLIT)) {
+            unlit = true;
+            break;
+        }
+    if (ds.lights.empty() && !unlit) {
         std::string why;
         for (const std::string& d : dropped) why += (why.empty() ? "; dropped: " : ", ") + d;
         throw Error(scene.source +

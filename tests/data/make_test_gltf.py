@@ -733,8 +733,10 @@ def unlit():
     """KHR_materials_unlit: a wall (diffuse 0.8, no specular layer) at z = -1 facing the camera
     and, before its left half at z = 0, an unlit panel of base colour (0.2, 0.5, 0.8) times a
     COLOR_0 of (1, 0.5, 1); a point light at (1, 0, 1) lights the wall, and the panel shadows part
-    of it. unlit_dark.gltf: the same panel with base colour 0. A black world."""
-    for name, color in (("unlit_panel.gltf", (0.2, 0.5, 0.8)), ("unlit_dark.gltf", (0.0, 0.0, 0.0))):
+    of it. unlit_dark.gltf: the same panel with base colour 0. unlit_alone.gltf: the panel without
+    the lamp, nothing but the unlit panel to see. A black world."""
+    for name, color in (("unlit_panel.gltf", (0.2, 0.5, 0.8)), ("unlit_dark.gltf", (0.0, 0.0, 0.0)),
+                        ("unlit_alone.gltf", (0.2, 0.5, 0.8))):
         b = GltfBuilder("clppm tests/data/make_test_gltf.py")
         wall = b.material("wall", (0.8, 0.8, 0.8), specular=0.0)
         panel = b.material("panel", color, metallic=1.0, roughness=0.0, extensions={"KHR_materials_unlit": {}})
@@ -743,10 +745,14 @@ def unlit():
         p = b.primitive([(-2, -1, 0), (-0.2, -1, 0), (-0.2, 1, 0), (-2, 1, 0)], [0, 1, 2, 0, 2, 3],
                         [(0, 0, 1)] * 4, material=panel)
         p["attributes"]["COLOR_0"] = b.accessor([1.0, 0.5, 1.0] * 4, FLOAT, "VEC3", ARRAY_BUFFER)
-        lamp = b.light({"name": "lamp", "type": "point", "intensity": 4.0})
-        b.scene([b.node(name="scene", mesh=b.mesh([w, p])),
-                 b.node(name="lamp", light=lamp, translation=[1.0, 0.0, 1.0]),
-                 b.node(name="camera", camera=b.camera(0.8), translation=[0.0, 0.0, 3.0])])
+        lamp = b.light({"name": "lamp", "type": "point", "intensity": 4.0}) if name != "unlit_alone.gltf" else None
+        nodes = [b.node(name="scene", mesh=b.mesh([w, p]))]
+        if lamp is not None:
+            nodes.append(b.node(name="lamp", light=lamp, translation=[1.0, 0.0, 1.0]))
+        nodes.append(b.node(name="camera", camera=b.camera(0.8), translation=[0.0, 0.0, 3.0]))
+        b.scene(nodes)
+        if lamp is None:
+            b.world(color=(0.0, 0.0, 0.0))
         b.write_embedded(out(name))
 
 
