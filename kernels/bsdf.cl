@@ -41,7 +41,9 @@
  *  - KHR_materials_anisotropy: the GGX lobes of the layer, the metal and the glass stretch to
  *    alpha_t = alpha + (1 - alpha) s^2 along the direction ta (s the strength), alpha across it
  *    (the extension's mapping; Heitz 2014's anisotropic D and Smith Lambda, sampled by visible
- *    normals); the albedo tables are read at sqrt(alpha_t alpha).
+ *    normals); the coupled diffuse reads the albedo tables at the smaller alpha, and a stretched
+ *    metal's multiple scattering takes its albedo from kernels/ggx_aniso_albedo.h, an upper
+ *    bound over (cos, azimuth, alpha, stretch) (metal_ms_eval).
  *  - KHR_materials_iridescence: a thin film of weight irid on the specular layer and the metal,
  *    whose Fresnel becomes (1 - irid) Schlick + irid F_film (kernels/iridescence.cl; for the
  *    layer F_film over the layer's F0, times its F90). Under the film the diffuse lobe is scaled,
@@ -65,6 +67,7 @@
 #include "ggx.cl"
 #include "iridescence.cl"
 #include "ggx_albedo.h"
+#include "ggx_aniso_albedo.h"
 #include "sheen_albedo.h"
 
 /* Reflection lobes at least this rough (GGX alpha = roughness^2) get hit points and are gathered
@@ -465,11 +468,57 @@ float3 metal_ms_color(const Bsdf* b, float a_avg) {
     return c + (g * g * a_avg / (1.0f - g * (1.0f - a_avg)) - c) * b->irid;
 }
 
-float3 metal_ms_eval(const Bsdf* b, float cos_o, float cos_i, float al_o, float al_i) {
-    /* None for an anisotropic lobe: at grazing views its single scattering keeps more than any
-     * isotropic table says (up to 4% more than at its smaller alpha), so giving back what the
-     * table says is lost would gain energy. */
-    if (has_aniso(b)) return (float3)(0.0f);
+/* The stretched lobe's fractional indices in kernels/ggx_aniso_albedo.h: alpha (across) by
+ * roughness, the stretch t = (alpha_t - alpha) / (1 - alpha). */
+float aniso_row(const Bsdf* b) {
+    return clamp(sqrt(b->alpha) * (float)(GGX_ANISO_ALPHA - 1), 0.0f, (float)(GGX_ANISO_ALPHA - 1));
+}
+float aniso_stretch(const Bsdf* b) {
+    float t = b->alpha < 1.0f ? (b->alpha_t - b->alpha) / (1.0f - b->alpha) : 0.0f;
+    return clamp(t * (float)(GGX_ANISO_T - 1), 0.0f, (float)(GGX_ANISO_T - 1));
+}
+
+/* E(v) of the stretched metal lobe (F = 1), from above: the table holds an upper bound of the
+ * albedo over (cos, azimuth from ta, alpha, stretch), multilinear in all four. */
+float aniso_albedo(const Bsdf* b, float3 v) {
+    float3 l = mf_local(b, v);
+    float x = sqrt(clamp(l.z, 0.0f, 1.0f)) * (float)(GGX_ANISO_MU - 1); /* rows dense at grazing */
+    float y = atan2(fabs(l.y), fabs(l.x)) * (2.0f * INV_PI_F) * (float)(GGX_ANISO_PHI - 1);
+    y = clamp(y, 0.0f, (float)(GGX_ANISO_PHI - 1));
+    float z = aniso_row(b), w = aniso_stretch(b);
+    int i = min((int)x, GGX_ANISO_MU - 2), j = min((int)y, GGX_ANISO_PHI - 2);
+    int k = min((int)z, GGX_ANISO_ALPHA - 2), m = min((int)w, GGX_ANISO_T - 2);
+    float fx = x - (float)i, fy = y - (float)j, fz = z - (float)k, fw = w - (float)m;
+    float e = 0.0f;
+    for (int c = 0; c < 16; ++c) {
+        int di = c & 1, dj = (c >> 1) & 1, dk = (c >> 2) & 1, dm = (c >> 3) & 1;
+        float wt = (di ? fx : 1.0f - fx) * (dj ? fy : 1.0f - fy) * (dk ? fz : 1.0f - fz) * (dm ? fw : 1.0f - fw);
+        e += wt *
+             ggx_aniso_albedo[(((m + dm) * GGX_ANISO_ALPHA + k + dk) * GGX_ANISO_PHI + j + dj) * GGX_ANISO_MU + i + di];
+    }
+    return fmin(e, 1.0f);
+}
+
+/* The cosine-weighted mean of that bound over the hemisphere. */
+float aniso_albedo_avg(const Bsdf* b) {
+    float z = aniso_row(b), w = aniso_stretch(b);
+    int k = min((int)z, GGX_ANISO_ALPHA - 2), m = min((int)w, GGX_ANISO_T - 2);
+    float fz = z - (float)k, fw = w - (float)m;
+    __constant float* r0 = ggx_aniso_albedo_avg + m * GGX_ANISO_ALPHA + k;
+    __constant float* r1 = r0 + GGX_ANISO_ALPHA;
+    float a = r0[0] + (r0[1] - r0[0]) * fz, c = r1[0] + (r1[1] - r1[0]) * fz;
+    return a + (c - a) * fw;
+}
+
+float3 metal_ms_eval(const Bsdf* b, float3 wo, float3 wi, float cos_o, float cos_i, float al_o, float al_i) {
+    /* A stretched lobe: Kulla-Conty on the upper bound of its albedo (kernels/ggx_aniso_albedo.h),
+     * which gives back what the lobe loses, a little less, never more. */
+    if (has_aniso(b)) {
+        float a_avg = aniso_albedo_avg(b);
+        if (!(1.0f - a_avg > 1e-6f)) return (float3)(0.0f);
+        float s = (1.0f - aniso_albedo(b, wo)) * (1.0f - aniso_albedo(b, wi));
+        return metal_ms_color(b, a_avg) * (b->metal * s * INV_PI_F / (1.0f - a_avg));
+    }
     float a_avg = ggx_avg(b, ggx_albedo_a_avg);
     if (!(1.0f - a_avg > 1e-6f)) return (float3)(0.0f);
     float s = (1.0f - ggx_table(ggx_albedo_a, cos_o, al_o)) * (1.0f - ggx_table(ggx_albedo_a, cos_i, al_i));
@@ -517,10 +566,13 @@ LobeWeights lobe_weights(const Bsdf* b, float3 wo, uint mask) {
         bool mirror = bsdf_is_mirror(b);
         float a_o = mirror ? 1.0f : ggx_table(ggx_albedo_a, cos_o, al_o);
         w.metal = b->metal * mean3(metal_fresnel(b, cos_o)) * a_o;
-        if (!mirror) {
+        if (!mirror && has_aniso(b)) {
+            float a_avg = aniso_albedo_avg(b);
+            if (1.0f - a_avg > 1e-6f)
+                w.metal_ms = b->metal * mean3(metal_ms_color(b, a_avg)) * (1.0f - aniso_albedo(b, wo));
+        } else if (!mirror) {
             float a_avg = ggx_avg(b, ggx_albedo_a_avg);
-            if (1.0f - a_avg > 1e-6f && !has_aniso(b))
-                w.metal_ms = b->metal * mean3(metal_ms_color(b, a_avg)) * (1.0f - a_o);
+            if (1.0f - a_avg > 1e-6f) w.metal_ms = b->metal * mean3(metal_ms_color(b, a_avg)) * (1.0f - a_o);
         }
     }
     if (has_sheen(b)) { /* the sheen's albedo at wo, and what it leaves of the rest */
@@ -570,12 +622,12 @@ float3 bsdf_eval_under(const Bsdf* b, float3 wo, float3 wi, uint mask) {
             if (layer) f += (b->f0 + (b->f90 - b->f0) * s5) * (b->dielectric * g);
             if (metal)
                 f += (b->base + (1.0f - b->base) * s5) * (b->metal * g) +
-                     metal_ms_eval(b, cos_o, cos_i, dir_alpha(b, wo), dir_alpha(b, wi));
+                     metal_ms_eval(b, wo, wi, cos_o, cos_i, dir_alpha(b, wo), dir_alpha(b, wi));
         } else {
             if (layer) f += layer_fresnel(b, cos_d) * (b->dielectric * g);
             if (metal)
                 f += metal_fresnel(b, cos_d) * (b->metal * g) +
-                     metal_ms_eval(b, cos_o, cos_i, dir_alpha(b, wo), dir_alpha(b, wi));
+                     metal_ms_eval(b, wo, wi, cos_o, cos_i, dir_alpha(b, wo), dir_alpha(b, wi));
         }
     }
     return f;
