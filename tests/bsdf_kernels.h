@@ -2,6 +2,7 @@
 // kernels/bsdf.cl, ggx.cl and hitpoint.cl, the harness that builds them once per test program,
 // and the views and normals both tests use.
 #pragma once
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <string>
@@ -446,6 +447,22 @@ inline Quadrature half_vector_quadrature(const HalfVectorGrid& g, int nu, int np
         for (int j = 0; j < nphi; ++j)
             quadrature_cell(g, i * du, (i + 1) * du, j * dp, (j + 1) * dp, depth, i * nphi + j, q);
     return q;
+}
+
+// The expected counts of m samples in the nu x nphi bins of a chi-square test: each quadrature
+// cell of q (sub x sub of them per bin) adds m pdf weight to its bin, pdf[stride i + offset] the
+// density at q.wi[i]; the extra last bin expects what the bins leave of m.
+inline std::vector<double> expected_bin_counts(const Quadrature& q, const std::vector<float>& pdf, size_t stride,
+                                               size_t offset, int nu, int nphi, int sub, size_t m) {
+    std::vector<double> expected(size_t(nu * nphi) + 1, 0);
+    for (size_t i = 0; i < q.weight.size(); ++i) {
+        const int c = q.cell[i], bu = (c / (sub * nphi)) / sub, bp = (c % (sub * nphi)) / sub;
+        expected[size_t(bu * nphi + bp)] += double(m) * pdf[stride * i + offset] * q.weight[i];
+    }
+    double inside = 0;
+    for (int k = 0; k < nu * nphi; ++k) inside += expected[size_t(k)];
+    expected[size_t(nu * nphi)] = std::max(0.0, double(m) - inside);
+    return expected;
 }
 
 } // namespace clppm::test::bsdf

@@ -145,14 +145,8 @@ TEST(Ggx, SampleMatchesPdfChiSquare) {
             Quadrature q = half_vector_quadrature(grid, 2 * nu, 2 * nphi); // 2 x 2 quadrature cells per bin
             std::vector<float> v = device_eval_pdf(n, wo, 1.0, alpha, q.wi);
             const size_t m = 300000;
-            std::vector<double> expected(nu * nphi + 1, 0), observed(nu * nphi + 1, 0);
-            for (size_t i = 0; i < q.weight.size(); ++i) {
-                int c = q.cell[i], bu = (c / (2 * nphi)) / 2, bp = (c % (2 * nphi)) / 2;
-                expected[bu * nphi + bp] += m * v[2 * i + 1] * q.weight[i];
-            }
-            double inside = 0;
-            for (int k = 0; k < nu * nphi; ++k) inside += expected[k];
-            expected[nu * nphi] = std::max(0.0, m - inside);
+            std::vector<double> expected = expected_bin_counts(q, v, 2, 1, nu, nphi, 2, m);
+            std::vector<double> observed(nu * nphi + 1, 0);
             std::vector<float> s =
                 device_samples(n, wo, 1.0, alpha, uniforms(2 * m, 32 + uint64_t(alpha * 100 + cos_o * 10)));
             for (size_t i = 0; i < m; ++i) {

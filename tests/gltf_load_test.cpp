@@ -697,17 +697,22 @@ TEST(GltfShippedScenes, CausticSpotAimsAtTheGlassSphere) {
     EXPECT_TRUE(has_glass(s));
 }
 
+// The corners of a one-triangle scene, within 1e-6.
+void expect_corners(const Scene& s, const double (&want)[3][3]) {
+    for (int k = 0; k < 3; ++k) {
+        EXPECT_NEAR(s.positions[size_t(k)].x, want[k][0], 1e-6) << "corner " << k;
+        EXPECT_NEAR(s.positions[size_t(k)].y, want[k][1], 1e-6) << "corner " << k;
+        EXPECT_NEAR(s.positions[size_t(k)].z, want[k][2], 1e-6) << "corner " << k;
+    }
+}
+
 // Skins (glTF 2.0 Sec. 3.7.3): each corner at the blend of its joints' matrices, the mesh node's
 // own transform ignored (make_test_gltf.py skinned() gives the expected corners).
 TEST(GltfSkin, SkinnedVerticesFollowTheirJoints) {
     Scene s = load_gltf(data("skinned.gltf"));
     ASSERT_EQ(s.num_triangles(), 1u);
     const double want[3][3] = {{0, 1, 0}, {1, 0, 0}, {0, 1.5, 0}};
-    for (int k = 0; k < 3; ++k) {
-        EXPECT_NEAR(s.positions[size_t(k)].x, want[k][0], 1e-6) << "corner " << k;
-        EXPECT_NEAR(s.positions[size_t(k)].y, want[k][1], 1e-6) << "corner " << k;
-        EXPECT_NEAR(s.positions[size_t(k)].z, want[k][2], 1e-6) << "corner " << k;
-    }
+    expect_corners(s, want);
     expect_vec3(s.shading[0].n0, 0, 0, 1); // translations leave the normals
     EXPECT_TRUE(s.warnings.empty()) << s.warnings[0];
 }
@@ -718,11 +723,7 @@ TEST(GltfAnimation, NodesStandAtTheFirstAnimationsStart) {
     Scene s = load_gltf(data("animated.gltf"));
     ASSERT_EQ(s.num_triangles(), 1u);
     const double want[3][3] = {{1, 2, 3}, {3, 2, 3}, {1, 4, 3}};
-    for (int k = 0; k < 3; ++k) {
-        EXPECT_NEAR(s.positions[size_t(k)].x, want[k][0], 1e-6) << "corner " << k;
-        EXPECT_NEAR(s.positions[size_t(k)].y, want[k][1], 1e-6) << "corner " << k;
-        EXPECT_NEAR(s.positions[size_t(k)].z, want[k][2], 1e-6) << "corner " << k;
-    }
+    expect_corners(s, want);
     EXPECT_TRUE(s.warnings.empty()) << s.warnings[0];
     try {
         load_gltf(data("animated_bad.gltf"));

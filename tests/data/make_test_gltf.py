@@ -756,6 +756,19 @@ def unlit():
         b.write_embedded(out(name))
 
 
+def plate_in_white_world(name, **material):
+    """A 2 x 2 plate of the given material facing a camera of yfov 0.1 at distance 3 (views within
+    3 degrees of the normal), in a uniform white world of radiance 1, which lights both sides."""
+    b = GltfBuilder("clppm tests/data/make_test_gltf.py")
+    plate = b.material("plate", **material)
+    p = b.primitive([(-1, -1, 0), (1, -1, 0), (1, 1, 0), (-1, 1, 0)], [0, 1, 2, 0, 2, 3], [(0, 0, 1)] * 4,
+                    material=plate)
+    b.scene([b.node(name="plate", mesh=b.mesh([p])),
+             b.node(name="camera", camera=b.camera(0.1), translation=[0.0, 0.0, 3.0])])
+    b.world(color=(1.0, 1.0, 1.0))
+    b.write_embedded(out(name))
+
+
 def clearcoat():
     """KHR_materials_clearcoat: a plate facing the camera (yfov 0.1, so views within 3 degrees of
     the normal) of a black base without specular layer under a full coat, in a uniform white
@@ -764,16 +777,9 @@ def clearcoat():
     (clearcoatRoughnessFactor 0.5). coat_textured.gltf: factors and textures of every kind, for
     the loader."""
     for name, rough in (("coat_plate.gltf", 0.0), ("coat_rough_plate.gltf", 0.5)):
-        b = GltfBuilder("clppm tests/data/make_test_gltf.py")
-        plate = b.material("plate", (0.0, 0.0, 0.0), specular=0.0,
-                           extensions={"KHR_materials_clearcoat": {"clearcoatFactor": 1.0,
-                                                                   "clearcoatRoughnessFactor": rough}})
-        p = b.primitive([(-1, -1, 0), (1, -1, 0), (1, 1, 0), (-1, 1, 0)], [0, 1, 2, 0, 2, 3], [(0, 0, 1)] * 4,
-                        material=plate)
-        b.scene([b.node(name="plate", mesh=b.mesh([p])),
-                 b.node(name="camera", camera=b.camera(0.1), translation=[0.0, 0.0, 3.0])])
-        b.world(color=(1.0, 1.0, 1.0))
-        b.write_embedded(out(name))
+        plate_in_white_world(name, base_color=(0.0, 0.0, 0.0), specular=0.0,
+                             extensions={"KHR_materials_clearcoat": {"clearcoatFactor": 1.0,
+                                                                     "clearcoatRoughnessFactor": rough}})
     b = GltfBuilder("clppm tests/data/make_test_gltf.py")
     png = png_rgba([[(128, 64, 0, 255)] * 2] * 2)
     b.doc["images"] = [{"uri": "data:image/png;base64," + base64.b64encode(png).decode("ascii")}]
@@ -793,16 +799,9 @@ def sheen():
     black base without specular layer under a white sheen of roughness 1 in a uniform white world:
     it shows the sheen lobe's directional albedo (kernels/sheen_albedo.h). sheen_textured.gltf:
     factors and textures, for the loader."""
-    b = GltfBuilder("clppm tests/data/make_test_gltf.py")
-    plate = b.material("plate", (0.0, 0.0, 0.0), specular=0.0,
-                       extensions={"KHR_materials_sheen": {"sheenColorFactor": [1.0, 1.0, 1.0],
-                                                           "sheenRoughnessFactor": 1.0}})
-    p = b.primitive([(-1, -1, 0), (1, -1, 0), (1, 1, 0), (-1, 1, 0)], [0, 1, 2, 0, 2, 3], [(0, 0, 1)] * 4,
-                    material=plate)
-    b.scene([b.node(name="plate", mesh=b.mesh([p])),
-             b.node(name="camera", camera=b.camera(0.1), translation=[0.0, 0.0, 3.0])])
-    b.world(color=(1.0, 1.0, 1.0))
-    b.write_embedded(out("sheen_plate.gltf"))
+    plate_in_white_world("sheen_plate.gltf", base_color=(0.0, 0.0, 0.0), specular=0.0,
+                         extensions={"KHR_materials_sheen": {"sheenColorFactor": [1.0, 1.0, 1.0],
+                                                             "sheenRoughnessFactor": 1.0}})
     b = GltfBuilder("clppm tests/data/make_test_gltf.py")
     png = png_rgba([[(128, 64, 0, 128)] * 2] * 2)
     b.doc["images"] = [{"uri": "data:image/png;base64," + base64.b64encode(png).decode("ascii")}]
@@ -831,16 +830,9 @@ def diffuse_transmission():
     for name, dt, base, spec, rough in (("dt_full_plate.gltf", 1.0, 0.0, 0.0, 1.0),
                                         ("dt_half_plate.gltf", 0.5, 0.2, 0.0, 1.0),
                                         ("dt_layer_plate.gltf", 0.5, 0.2, None, 0.0)):
-        b = GltfBuilder("clppm tests/data/make_test_gltf.py")
         ext = {"KHR_materials_diffuse_transmission": {"diffuseTransmissionFactor": dt,
                                                       "diffuseTransmissionColorFactor": color}}
-        plate = b.material("plate", (base, base, base), roughness=rough, specular=spec, extensions=ext)
-        p = b.primitive([(-1, -1, 0), (1, -1, 0), (1, 1, 0), (-1, 1, 0)], [0, 1, 2, 0, 2, 3], [(0, 0, 1)] * 4,
-                        material=plate)
-        b.scene([b.node(name="plate", mesh=b.mesh([p])),
-                 b.node(name="camera", camera=b.camera(0.1), translation=[0.0, 0.0, 3.0])])
-        b.world(color=(1.0, 1.0, 1.0))
-        b.write_embedded(out(name))
+        plate_in_white_world(name, base_color=(base, base, base), roughness=rough, specular=spec, extensions=ext)
     for name, absorb in (("dt_box_volume.gltf", True), ("dt_box_clear.gltf", False)):
         b = GltfBuilder("clppm tests/data/make_test_gltf.py")
         ext = {"KHR_materials_diffuse_transmission": {"diffuseTransmissionFactor": 1.0},
