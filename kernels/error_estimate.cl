@@ -15,6 +15,7 @@
 #include "error_bound.cl"
 #include "gather_common.cl"
 #include "radiance_estimate.cl"
+#include "dispersion.cl"
 
 /* A second gather over this pass's grid, with gather's arguments and photons: per hit point the
  * sum over accepted photons of (2 rho^2 - 1) Y(w f Phi_p), rho = |x_p - x| / R, in fixed point
@@ -22,7 +23,7 @@
  * the pass's Laplacian estimate (error_update). One writer per hit point. */
 __kernel void error_gather(__constant GridInfo* g, __global const Photon* sorted, __global const uint* starts,
                            __global const HitPoint* hitpoints, __global const HitStats* stats, uint num_hitpoints,
-                           float global_r2, uint accumulate, __global long* out) {
+                           float global_r2, uint accumulate, __global long* out, ulong seed, ulong pass) {
     uint i = get_global_id(0);
     if (i >= num_hitpoints) return;
     __global const HitPoint* hp = &hitpoints[i];
@@ -34,9 +35,13 @@ __kernel void error_gather(__constant GridInfo* g, __global const Photon* sorted
         /* The path throughput folded into the luminance weights: one scalar sum per hit point. */
         float3 wy = (float3)(hp->weight[0] * (float)ERROR_LUMINANCE_R, hp->weight[1] * (float)ERROR_LUMINANCE_G,
                              hp->weight[2] * (float)ERROR_LUMINANCE_B);
+        const PassWavelength pw = pass_wavelength(seed, pass);
+        const bool hp_dispersed = hitpoint_dispersed(hp);
         GATHER_FOR_EACH_PHOTON(g, sorted, starts, x, n, brdf.both_sides, r2, {
             float3 f = hitpoint_brdf(&brdf, wi);
-            float y = dot(wy, f * load3g(ph->flux));
+            float3 phi = load3_dispersed(ph->flux);
+            if (HAS_DISPERSION) phi *= merge_dispersion(hp_dispersed, is_dispersed(ph->flux[0]), &pw);
+            float y = dot(wy, f * phi);
             acc += convert_long_rte((double)(y * (2.0f * d2 / r2 - 1.0f)) * FLUX_FIXED_SCALE);
         });
     }

@@ -17,6 +17,7 @@
 #include "bsdf.cl"
 #include "next_event.cl"
 #include "hitpoint.cl"
+#include "dispersion.cl"
 
 #ifndef EYE_SLOTS
 #define EYE_SLOTS PPM_EYE_SLOTS /* the host passes -DEYE_SLOTS=PPM_EYE_SLOTS or SPPM_EYE_SLOTS */
@@ -28,9 +29,10 @@ typedef struct {
     float3 org, dir, weight;
     float path_length;
     uint depth;
-    float pdf;  /* density the direction was sampled with (MIS against light sampling) */
-    bool delta; /* a camera ray or a delta lobe: emission found counts in full */
-    bool chain; /* every bounce from the camera delta: unlit surfaces are seen */
+    float pdf;      /* density the direction was sampled with (MIS against light sampling) */
+    bool delta;     /* a camera ray or a delta lobe: emission found counts in full */
+    bool chain;     /* every bounce from the camera delta: unlit surfaces are seen */
+    bool dispersed; /* the path has met a dispersive surface and carries W (dispersion.cl) */
 } EyeRay;
 
 /* One way an eye path can go on from a surface: a new ray, or a hit point here. */
@@ -144,6 +146,12 @@ __kernel void eye_pass(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong p
     stack[0].pdf = 0.0f;
     stack[0].delta = true;
     stack[0].chain = true;
+    stack[0].dispersed = false;
+    /* SPPM and PPPM: the pass's wavelength, which its photons share. PPM keeps its hit points for
+     * the whole render: each pixel's samples take wavelengths of their own, stratified over them
+     * (README.md, "Dispersion", says what that means for PPM). */
+    const PassWavelength pw =
+        EYE_SLOTS == 1 ? pass_wavelength(seed, pass) : pass_wavelength(splitmix64(seed ^ splitmix64(pixel)), s);
     top = 1;
     float3 emitted = (float3)(0.0f);
     __global HitPoint* out = &hitpoints[(size_t)i * EYE_SLOTS];
@@ -166,6 +174,7 @@ __kernel void eye_pass(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong p
         float plen = r.path_length + sf.t;
 
         Bsdf bsdf = surface_bsdf(SCENE_ARGS, &sf);
+        if (HAS_DISPERSION) disperse(SCENE_ARGS, &sf, &bsdf, &pw, &r.dispersed, &r.weight);
         /* The lobes the eye path samples through see the lights directly too (with MIS): no hit
          * point gathers their direct light, and a sampled ray never finds a punctual light. */
         if (!bsdf_plain_lambert(&bsdf) && (!bsdf_is_mirror(&bsdf) || (has_coat(&bsdf) && !coat_is_mirror(&bsdf)))) {
@@ -206,7 +215,8 @@ __kernel void eye_pass(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong p
             if (!take[k]) continue;
             Branch b = br[k];
             if (b.hitpoint) {
-                store_hitpoint(&out[stored++], pixel, sf.p, -r.dir, b.weight, &bsdf, camera_footprint(cam, plen));
+                store_hitpoint(&out[stored++], pixel, sf.p, -r.dir, b.weight, &bsdf,
+                               with_dispersed(camera_footprint(cam, plen), r.dispersed));
             } else {
                 EyeRay nr = {offset_origin(SCENE_ARGS, sf.p, b.below ? -sf.ng : sf.ng),
                              b.dir,
@@ -215,7 +225,8 @@ __kernel void eye_pass(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong p
                              r.depth + 1,
                              b.pdf,
                              b.delta,
-                             r.chain && b.delta};
+                             r.chain && b.delta,
+                             r.dispersed};
                 stack[top++] = nr;
             }
         }

@@ -4,10 +4,11 @@
  * surface that faces the other way, are rejected, unless the hit point transmits diffusely
  * (gather_faces). */
 #include "gather_common.cl"
+#include "dispersion.cl"
 
 __kernel void gather(__constant GridInfo* g, __global const Photon* sorted, __global const uint* starts,
                      __global const HitPoint* hitpoints, __global const HitStats* stats, uint num_hitpoints,
-                     float global_r2, uint accumulate, __global PassFlux* out) {
+                     float global_r2, uint accumulate, __global PassFlux* out, ulong seed, ulong pass) {
     uint i = get_global_id(0);
     if (i >= num_hitpoints) return;
     __global const HitPoint* hp = &hitpoints[i];
@@ -24,12 +25,16 @@ __kernel void gather(__constant GridInfo* g, __global const Photon* sorted, __gl
     float r2 = global_r2 > 0.0f ? global_r2 : (float)stats[i].r2;
     long acc0 = 0, acc1 = 0, acc2 = 0;
     uint m = 0;
+    const PassWavelength pw = pass_wavelength(seed, pass);
+    const bool hp_dispersed = hitpoint_dispersed(hp);
     GATHER_FOR_EACH_PHOTON(g, sorted, starts, x, n, brdf.both_sides, r2, {
         /* tau_M += f(x, w_p, w_o) Phi_p (Eq. 9); the path throughput is applied later. */
         float3 f = hitpoint_brdf(&brdf, wi);
-        acc0 += convert_long_rte((double)(f.x * ph->flux[0]) * FLUX_FIXED_SCALE);
-        acc1 += convert_long_rte((double)(f.y * ph->flux[1]) * FLUX_FIXED_SCALE);
-        acc2 += convert_long_rte((double)(f.z * ph->flux[2]) * FLUX_FIXED_SCALE);
+        float3 phi = load3_dispersed(ph->flux);
+        if (HAS_DISPERSION) phi *= merge_dispersion(hp_dispersed, is_dispersed(ph->flux[0]), &pw);
+        acc0 += convert_long_rte((double)(f.x * phi.x) * FLUX_FIXED_SCALE);
+        acc1 += convert_long_rte((double)(f.y * phi.y) * FLUX_FIXED_SCALE);
+        acc2 += convert_long_rte((double)(f.z * phi.z) * FLUX_FIXED_SCALE);
         ++m;
     });
     /* A pass traced in several photon batches adds them up: integer sums, so the result is the

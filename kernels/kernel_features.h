@@ -33,7 +33,8 @@
     X(HAS_ORTHOGRAPHIC, orthographic, "orthographic camera")                                                           \
     X(HAS_IRIDESCENCE, iridescence, "iridescence")                                                                     \
     X(HAS_ANISOTROPY, anisotropy, "anisotropy")                                                                        \
-    X(HAS_DIFFUSE_TRANSMISSION, diffuse_transmission, "diffuse transmission")
+    X(HAS_DIFFUSE_TRANSMISSION, diffuse_transmission, "diffuse transmission")                                          \
+    X(HAS_DISPERSION, dispersion, "dispersion")
 
 #ifdef __OPENCL_VERSION__
 
@@ -81,6 +82,9 @@
 #endif
 #ifndef HAS_EMISSION_SPREAD
 #define HAS_EMISSION_SPREAD 1
+#endif
+#ifndef HAS_DISPERSION
+#define HAS_DISPERSION 1
 #endif
 #ifndef HAS_DIFFUSE_TRANSMISSION
 #define HAS_DIFFUSE_TRANSMISSION 1

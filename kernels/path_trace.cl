@@ -9,6 +9,7 @@
 #include "next_event.cl"
 #include "pt_error.cl"
 #include "mean_film.cl"
+#include "dispersion.cl"
 
 __kernel void path_trace(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong pass, uint num_pixels,
                          __global double* accum) {
@@ -23,6 +24,8 @@ __kernel void path_trace(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong
     bool prev_delta = true; /* camera rays and delta lobes: emission found counts in full */
     bool chain = true;      /* every bounce so far delta: unlit surfaces are seen */
     float prev_pdf = 0.0f;
+    const PassWavelength pw = pass_wavelength(seed, pass);
+    bool dispersed = false; /* the path has met a dispersive surface and carries W (dispersion.cl) */
     for (uint depth = 0; depth < info->max_bounces; ++depth) {
         Hit hit;
         if (!trace_closest(SCENE_ARGS, org, dir, INFINITY, &hit)) {
@@ -38,6 +41,7 @@ __kernel void path_trace(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong
         }
         if (HAS_UNLIT && chain) L += beta * surface_unlit(SCENE_ARGS, &sf);
         Bsdf b = surface_bsdf(SCENE_ARGS, &sf);
+        if (HAS_DISPERSION) disperse(SCENE_ARGS, &sf, &b, &pw, &dispersed, &beta);
         float3 wo = -dir;
         L += beta * next_event(SCENE_ARGS, &b, sf.p, wo, LOBE_ALL, &rng);
         BsdfSample s;

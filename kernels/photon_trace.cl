@@ -7,9 +7,10 @@
 #include "rng.cl"
 #include "lights.cl"
 #include "bsdf.cl"
+#include "dispersion.cl"
 
 void store_photon(__global Photon* photons, uint capacity, volatile __global uint* counter, float3 p, float3 n,
-                  float3 flux, float3 wi) {
+                  float3 flux, float3 wi, bool dispersed) {
     uint slot = atomic_inc(counter);
     if (slot >= capacity) return; /* the host sees counter > capacity, grows the buffer, re-runs */
     __global Photon* ph = &photons[slot];
@@ -17,7 +18,7 @@ void store_photon(__global Photon* photons, uint capacity, volatile __global uin
     ph->pos[1] = p.y;
     ph->pos[2] = p.z;
     ph->normal_oct = oct_encode(n);
-    ph->flux[0] = flux.x;
+    ph->flux[0] = with_dispersed(flux.x, dispersed);
     ph->flux[1] = flux.y;
     ph->flux[2] = flux.z;
     ph->wi_oct = oct_encode(wi);
@@ -31,6 +32,8 @@ __kernel void photon_trace(SCENE_PARAMS, ulong seed, ulong pass, uint first_phot
     float3 org, dir, flux;
     emit_photon(SCENE_ARGS, &rng, &org, &dir, &flux);
     if (!(max3(flux) > 0.0f)) return;
+    const PassWavelength pw = pass_wavelength(seed, pass);
+    bool dispersed = false; /* the photon has met a dispersive surface and carries W (dispersion.cl) */
 
     for (uint bounce = 0; bounce < info->max_bounces; ++bounce) {
         Hit hit;
@@ -41,10 +44,11 @@ __kernel void photon_trace(SCENE_PARAMS, ulong seed, ulong pass, uint first_phot
             if (!(max3(flux) > 0.0f)) return;
         }
         Bsdf bsdf = surface_bsdf(SCENE_ARGS, &sf);
+        if (HAS_DISPERSION) disperse(SCENE_ARGS, &sf, &bsdf, &pw, &dispersed, &flux);
         float3 wo = -dir;
         /* Stored where the eye pass puts hit points: on surfaces with lobes the gather keeps. */
         if (!(skip_direct && bounce == 0) && bsdf_has_gathered(&bsdf))
-            store_photon(photons, capacity, counter, sf.p, sf.ns, flux, wo);
+            store_photon(photons, capacity, counter, sf.p, sf.ns, flux, wo, dispersed);
         /* The BSDF is reciprocal, so sampling it from the photon's side scatters flux correctly. */
         BsdfSample s;
         float u0 = rng_float(&rng), u1 = rng_float(&rng), u2 = rng_float(&rng);

@@ -131,7 +131,8 @@ typedef struct {
     i32 diffuse_transmission_tex;        /* diffuseTransmissionTexture (linear, A); -1 when none */
     i32 diffuse_transmission_color_tex;  /* diffuseTransmissionColorTexture (sRGB, RGB); -1 when none */
     float diffuse_transmission_color[3]; /* diffuseTransmissionColorFactor (linear RGB) */
-    float pad_dt;
+    /* KHR_materials_dispersion (kernels/dispersion.cl): 20 / Abbe number; 0: none */
+    float dispersion;
 } Material; /* 240 bytes */
 
 /* Sampler bits of a texture. Wrap per axis (glTF sampler wrapS, wrapT): clamp s, clamp t, mirror

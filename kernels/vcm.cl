@@ -27,6 +27,7 @@
 #include "vcm_mis.h"
 #include "gather_common.cl"
 #include "fixed_point.cl"
+#include "dispersion.cl"
 
 #define RNG_VCM_LIGHT_SAMPLE                                                                                           \
     7u /* the camera sub-path's light samples: a stream of their own, so that
@@ -112,6 +113,8 @@ __kernel void vcm_light(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong 
     const bool store = vcm_uses_connections(mode) || vcm_uses_merging(mode);
     const bool to_camera = vcm_uses_connections(mode) || mode == VCM_MODE_LT;
     float3 T = e.flux, org = e.org, dir = e.dir;
+    const PassWavelength pw = pass_wavelength(seed, pass);
+    bool dispersed = false; /* the sub-path has met a dispersive surface and carries W (dispersion.cl) */
     for (uint len = 1; len <= max_len; ++len) {
         Hit hit;
         if (!trace_closest(SCENE_ARGS, org, dir, INFINITY, &hit)) break;
@@ -123,6 +126,7 @@ __kernel void vcm_light(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong 
         float3 wo = -dir;
         vcm_on_hit(&m, sf.t * sf.t * dot(dir, dir) / area_scale, fabs(dot(sf.ns, wo)), len == 1 && !e.finite);
         Bsdf b = surface_bsdf(SCENE_ARGS, &sf);
+        if (HAS_DISPERSION) disperse(SCENE_ARGS, &sf, &b, &pw, &dispersed, &T);
         if (bsdf_has_nondelta(&b)) {
             if (store) {
                 uint slot = atomic_inc(counter);
@@ -132,7 +136,7 @@ __kernel void vcm_light(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong 
                     v->pos[1] = sf.p.y;
                     v->pos[2] = sf.p.z;
                     v->normal_oct = oct_encode(sf.ns);
-                    v->throughput[0] = T.x;
+                    v->throughput[0] = with_dispersed(T.x, dispersed);
                     v->throughput[1] = T.y;
                     v->throughput[2] = T.z;
                     v->wi_oct = oct_encode(wo);
@@ -192,7 +196,8 @@ float3 vcm_light_sample(SCENE_PARAMS, const Surface* sf, const Bsdf* b, float3 w
 /* s, t >= 2: the camera vertex at sf (BSDF b, wo, state m) joined to light vertex lv; the light
  * side's part, in units of total power per scene-relative area (SmallVCM ConnectVertices). */
 float3 vcm_connect(SCENE_PARAMS, const Surface* sf, const Bsdf* b, float3 wo, const VcmMis* m,
-                   __global const LightVertex* lv, float vm_factor, float area_scale) {
+                   __global const LightVertex* lv, float vm_factor, float area_scale, const PassWavelength* pw,
+                   bool dispersed) {
     float3 y = load3g(lv->pos);
     float3 d = y - sf->p;
     float dist2 = dot(d, d);
@@ -210,6 +215,7 @@ float3 vcm_connect(SCENE_PARAMS, const Surface* sf, const Bsdf* b, float3 wo, co
     h.prim = lv->prim;
     Surface sl = make_surface(SCENE_ARGS, -wi_l, &h);
     Bsdf bl = surface_bsdf(SCENE_ARGS, &sl);
+    if (HAS_DISPERSION) disperse_index(SCENE_ARGS, &sl, &bl, pw);
     if (!bsdf_connects(&bl, -w, LOBE_ALL)) return (float3)(0.0f);
     float3 f_l = bsdf_eval(&bl, wi_l, -w, LOBE_ALL);
     if (!(max3(f_l) > 0.0f)) return (float3)(0.0f);
@@ -223,8 +229,9 @@ float3 vcm_connect(SCENE_PARAMS, const Surface* sf, const Bsdf* b, float3 wo, co
         m, &ml, bsdf_pdf(b, wo, w, LOBE_ALL) * cos_l / dist2n, bsdf_pdf_rev(b, wo, w, LOBE_ALL),
         bsdf_pdf(&bl, wi_l, -w, LOBE_ALL) * cos_c / dist2n, bsdf_pdf_rev(&bl, wi_l, -w, LOBE_ALL), vm_factor);
     /* A segment inside a volume is inside it at both ends: absorbed once. */
-    float3 v = f_c * f_l * load3g(lv->throughput) * bsdf_segment_transmittance(b, w, sqrt(dist2)) *
+    float3 v = f_c * f_l * load3_dispersed(lv->throughput) * bsdf_segment_transmittance(b, w, sqrt(dist2)) *
                (weight * cos_c * cos_l / dist2n);
+    if (HAS_DISPERSION) v *= merge_dispersion(dispersed, is_dispersed(lv->throughput[0]), pw);
     if (!all(isfinite(v)) || !(max3(v) > 0.0f)) return (float3)(0.0f);
     if (!vcm_visible(SCENE_ARGS, sf->p, sf->ng, y, sl.ng, w)) return (float3)(0.0f);
     return v;
@@ -277,6 +284,8 @@ __kernel void vcm_camera(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong
     float3 L = (float3)(0.0f), Ll = (float3)(0.0f), beta = (float3)(1.0f);
     long acc0 = 0, acc1 = 0, acc2 = 0; /* merges, fixed point: independent of the grid's order */
     bool specular = true;
+    const PassWavelength pw = pass_wavelength(seed, pass);
+    bool dispersed = false; /* the sub-path has met a dispersive surface and carries W (dispersion.cl) */
     const bool connections = vcm_uses_connections(mode), merging = vcm_uses_merging(mode);
     const bool in_batch = p >= batch_first && p - batch_first < batch_count;
     const uint lv_last = connections && in_batch ? path_last[p - batch_first] : VCM_NO_VERTEX;
@@ -304,13 +313,14 @@ __kernel void vcm_camera(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong
         if (t >= max_len) break;
         wo = normalize(wo);
         Bsdf b = surface_bsdf(SCENE_ARGS, &sf);
+        if (HAS_DISPERSION) disperse(SCENE_ARGS, &sf, &b, &pw, &dispersed, &beta);
         if (bsdf_has_nondelta(&b)) {
             if (connections && first && t + 1 <= max_len)
                 L += beta * vcm_light_sample(SCENE_ARGS, &sf, &b, wo, &m, vm_factor, area_scale, &rng_ls);
             for (uint k = lv_last; k != VCM_NO_VERTEX; k = verts[k].prev) {
                 __global const LightVertex* lv = &verts[k];
                 if (lv->path_length + t + 1 > max_len) continue;
-                Ll += beta * vcm_connect(SCENE_ARGS, &sf, &b, wo, &m, lv, vm_factor, area_scale);
+                Ll += beta * vcm_connect(SCENE_ARGS, &sf, &b, wo, &m, lv, vm_factor, area_scale, &pw, dispersed);
             }
             if (merging) {
                 GRID_FOR_EACH_NEAR(g, sorted, starts, sf.p, r2, {
@@ -330,7 +340,8 @@ __kernel void vcm_camera(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong
                         w = vcm_weight_merge(&m, &ml, bsdf_pdf(&b, wo, wi, LOBE_ALL),
                                              bsdf_pdf_rev(&b, wo, wi, LOBE_ALL), vc_factor);
                     }
-                    float3 c = beta * f * load3g(ph->throughput) * w;
+                    float3 c = beta * f * load3_dispersed(ph->throughput) * w;
+                    if (HAS_DISPERSION) c *= merge_dispersion(dispersed, is_dispersed(ph->throughput[0]), &pw);
                     if (!all(isfinite(c))) continue;
                     acc0 += convert_long_sat_rte((double)c.x * FLUX_FIXED_SCALE);
                     acc1 += convert_long_sat_rte((double)c.y * FLUX_FIXED_SCALE);

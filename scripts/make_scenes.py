@@ -354,12 +354,12 @@ LIGHT_RADIANCE = 16.0  # emissiveFactor [1,1,1] * emissiveStrength
 CORNELL_CAMERA = {"translation": [0.0, 0.0, 3.9], "yfov": 0.68}
 
 
-def cornell_walls(b):
-    """Box [-1,1]^3 open at z = +1, normals into the box, and the ceiling light.
-    Returns the mesh indices (walls, light)."""
+def cornell_walls(b, left=RED, right=GREEN):
+    """Box [-1,1]^3 open at z = +1, normals into the box, and the ceiling light; the left and right
+    walls red and green unless said otherwise. Returns the mesh indices (walls, light)."""
     white = b.material("white", WHITE, specular=0.0)
-    red = b.material("red", RED, specular=0.0)
-    green = b.material("green", GREEN, specular=0.0)
+    red = b.material("red" if left == RED else "left", left, specular=0.0)
+    green = b.material("green" if right == GREEN else "right", right, specular=0.0)
     light = b.material("light", (0.78, 0.78, 0.78), specular=0.0, emissive=(1.0, 1.0, 1.0),
                        emissive_strength=LIGHT_RADIANCE)
     walls = [
@@ -409,6 +409,28 @@ def cornell_box(out_dir):
     b.scene(roots)
     b.write_embedded(os.path.join(out_dir, "cornell_box.gltf"))
     return 10 + 2 + 2 * len(idx) // 3
+
+
+def dispersion_box(out_dir, dispersion=2.0, name="dispersion_box.gltf"):
+    """The Cornell box all white, with the glass sphere of cornell_box.gltf alone, dispersive:
+    KHR_materials_dispersion 2 (Abbe number 10) on ior 1.5. Issue 37's target scene."""
+    b = GltfBuilder()
+    walls, light = cornell_walls(b, WHITE, WHITE)
+    ext = {"KHR_materials_dispersion": {"dispersion": dispersion}} if dispersion else None
+    glass = b.material("glass", (1.0, 1.0, 1.0), metallic=0.0, roughness=0.0, transmission=1.0, ior=1.5,
+                       thickness=1.0, extensions=ext)
+    pos, nrm, idx = uv_sphere(48, 32)
+    check_front_faces(pos, nrm, idx)
+    glass_mesh = b.mesh([b.primitive(pos, idx, nrm, material=glass)], "glass_sphere")
+    r = 0.33
+    b.scene([
+        b.node(name="walls", mesh=walls),
+        b.node(name="light", mesh=light),
+        b.node(name="glass_sphere", mesh=glass_mesh, translation=[0.42, -1 + r, 0.35], scale=[r, r, r]),
+        cornell_camera(b),
+    ])
+    b.write_embedded(os.path.join(out_dir, name))
+    return 10 + 2 + len(idx) // 3
 
 
 def caustic(out_dir):
@@ -559,7 +581,7 @@ def main():
         return
     out_dir = sys.argv[1] if len(sys.argv) > 1 else os.path.join(here, "..", "scenes")
     os.makedirs(out_dir, exist_ok=True)
-    for make in (cornell_box, caustic, furnace, plane_point_light, bunny_100k, doorway):
+    for make in (cornell_box, caustic, furnace, plane_point_light, bunny_100k, doorway, dispersion_box):
         print("%-20s %7d triangles" % (make.__name__, make(out_dir)))
 
 

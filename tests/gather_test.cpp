@@ -124,7 +124,7 @@ std::vector<dev::PassFlux> device_gather(const GatherCase& c) {
     scatter.setArg(4, sorted);
     gather.setArg(0, grid), gather.setArg(1, sorted), gather.setArg(2, starts), gather.setArg(3, hps);
     gather.setArg(4, stats), gather.setArg(5, cl_uint(c.hitpoints.size())), gather.setArg(6, cl_float(0));
-    gather.setArg(7, cl_uint(0)), gather.setArg(8, out);
+    gather.setArg(7, cl_uint(0)), gather.setArg(8, out), gather.setArg(9, cl_ulong(1)), gather.setArg(10, cl_ulong(1));
     dc.queue.enqueueNDRangeKernel(count, cl::NullRange, cl::NDRange(c.photons.size()));
     dc.queue.enqueueNDRangeKernel(scan, cl::NullRange, cl::NDRange(256), cl::NDRange(256));
     dc.queue.enqueueNDRangeKernel(scatter, cl::NullRange, cl::NDRange(c.photons.size()));

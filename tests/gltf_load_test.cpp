@@ -643,9 +643,10 @@ TEST(GltfShippedScenes, AllLoadWithTheDocumentedContents) {
         const char* file;
         size_t triangles, lights;
     };
-    for (const Expect& e : {Expect{"cornell_box.gltf", 5964, 0}, Expect{"caustic.gltf", 6020, 1},
-                            Expect{"furnace.gltf", 960, 0}, Expect{"plane_point_light.gltf", 2, 1},
-                            Expect{"bunny_100k.gltf", 101772, 0}, Expect{"doorway.gltf", 34, 0}}) {
+    for (const Expect& e :
+         {Expect{"cornell_box.gltf", 5964, 0}, Expect{"caustic.gltf", 6020, 1}, Expect{"furnace.gltf", 960, 0},
+          Expect{"plane_point_light.gltf", 2, 1}, Expect{"bunny_100k.gltf", 101772, 0}, Expect{"doorway.gltf", 34, 0},
+          Expect{"dispersion_box.gltf", 2988, 0}}) {
         SCOPED_TRACE(e.file);
         Scene s = load_gltf(scene_file(e.file));
         EXPECT_EQ(s.num_triangles(), e.triangles);

@@ -38,7 +38,8 @@ TEST(Specialization, SameImageAsGenericKernelsOnTheFeatureScenes) {
           "volume_slab.gltf",          "specular_texture.gltf", "ref_rough_glass.gltf",    "env_outdoor.gltf",
           "unlit_panel.gltf",          "coat_textured.gltf",    "coat_rough_plate.gltf",   "sheen_textured.gltf",
           "film_textured.gltf",        "film_plate.gltf",       "ortho_square.gltf",       "znear_clipped.gltf",
-          "aniso_plate.gltf",          "dt_textured.gltf",      "dt_box_volume.gltf"}) {
+          "aniso_plate.gltf",          "dt_textured.gltf",      "dt_box_volume.gltf",      "prism.gltf",
+          "prism_plain.gltf"}) {
         std::string d = make_temp_dir("spec_features"), out;
         const std::string args = std::string(CLPPM_TEST_DATA) + "/" + file +
                                  " --width 32 --height 24 --passes 2 --photons 20000 --quiet --no-png --integrator ppm";
@@ -67,6 +68,6 @@ TEST(Specialization, BuildOptionsRemoveWhatTheSceneDoesNotUse) {
         "-DHAS_VERTEX_COLORS=0 -DHAS_ALPHA=0 -DHAS_VOLUME=0 -DHAS_POINT_LIGHTS=0 -DHAS_SPOT_LIGHTS=0 "
         "-DHAS_DIRECTIONAL_LIGHTS=0 -DHAS_ENV_LIGHT=0 -DHAS_THIN_LENS=0 -DHAS_EMISSION_SPREAD=0 -DHAS_UNLIT=0 "
         "-DHAS_CLEARCOAT=0 -DHAS_SHEEN=0 -DHAS_ORTHOGRAPHIC=0 -DHAS_IRIDESCENCE=0 -DHAS_ANISOTROPY=0 "
-        "-DHAS_DIFFUSE_TRANSMISSION=0");
+        "-DHAS_DIFFUSE_TRANSMISSION=0 -DHAS_DISPERSION=0");
     EXPECT_EQ(feature_build_options(SceneFeatures::all()), "");
 }

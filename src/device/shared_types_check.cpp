@@ -24,6 +24,7 @@ static_assert(BVH_WIDTH == 4 || BVH_WIDTH == 8, "bvh_traverse.cl has float4 and 
 CLPPM_CHECK_SIZE(Material, 240);
 CLPPM_CHECK_OFFSET(Material, diffuse_transmission, 212);
 CLPPM_CHECK_OFFSET(Material, diffuse_transmission_color, 224);
+CLPPM_CHECK_OFFSET(Material, dispersion, 236);
 CLPPM_CHECK_OFFSET(Material, anisotropy_strength, 200);
 CLPPM_CHECK_OFFSET(Material, anisotropy_tex, 208);
 CLPPM_CHECK_OFFSET(Material, iridescence, 176);

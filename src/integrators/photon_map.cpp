@@ -38,7 +38,7 @@ void PhotonMap::run_pass(uint64_t pass, uint32_t first_photon, uint32_t count_ph
         first_photon, first_photon + count_photons, [&](uint32_t first, uint32_t count) { trace(pass, first, count); },
         [&](uint32_t, uint32_t, uint32_t stored) {
             build_grid(stored, typical_radius, max_radius);
-            gather(hitpoints, stats, n, global_r2, batches_ > 0, out);
+            gather(pass, hitpoints, stats, n, global_r2, batches_ > 0, out);
             stats_.photons_stored += stored;
             ++batches_;
         });
@@ -61,18 +61,21 @@ void PhotonMap::build_grid(uint32_t stored, double typical_radius, double max_ra
     grid_.build(trace_.records(), trace_.sorted(), stored, scene_.bounds_min, cell);
 }
 
-void PhotonMap::gather(const cl::Buffer& hitpoints, const cl::Buffer& stats, uint32_t n, float global_r2,
+void PhotonMap::gather(uint64_t pass, const cl::Buffer& hitpoints, const cl::Buffer& stats, uint32_t n, float global_r2,
                        bool accumulate, const cl::Buffer& out) {
     if (n == 0) return;
-    enqueue_gather(k_gather_, hitpoints, stats, n, global_r2, accumulate, out, "gather");
-    if (k_second_()) enqueue_gather(k_second_, hitpoints, stats, n, global_r2, accumulate, second_out_, second_phase_);
+    enqueue_gather(k_gather_, pass, hitpoints, stats, n, global_r2, accumulate, out, "gather");
+    if (k_second_())
+        enqueue_gather(k_second_, pass, hitpoints, stats, n, global_r2, accumulate, second_out_, second_phase_);
 }
 
-// gather and the second gather take the same arguments, each with its own output.
-void PhotonMap::enqueue_gather(cl::Kernel& kernel, const cl::Buffer& hitpoints, const cl::Buffer& stats, uint32_t n,
-                               float global_r2, bool accumulate, const cl::Buffer& out, const std::string& phase) {
+// gather and the second gather take the same arguments, each with its own output; the seed and
+// the pass give the pass's wavelength (kernels/dispersion.cl).
+void PhotonMap::enqueue_gather(cl::Kernel& kernel, uint64_t pass, const cl::Buffer& hitpoints, const cl::Buffer& stats,
+                               uint32_t n, float global_r2, bool accumulate, const cl::Buffer& out,
+                               const std::string& phase) {
     set_args(kernel, 0, grid_.info(), trace_.sorted(), grid_.starts(), hitpoints, stats, cl_uint(n),
-             cl_float(global_r2), cl_uint(accumulate ? 1 : 0), out);
+             cl_float(global_r2), cl_uint(accumulate ? 1 : 0), out, cl_ulong(settings_.seed), cl_ulong(pass));
     cl::Event ev;
     enqueue_1d(dc_.queue, kernel, n, &ev);
     add_event_time(stats_, phase, ev);

@@ -55,10 +55,10 @@ public:
 private:
     void trace(uint64_t pass, uint32_t first, uint32_t count);
     void build_grid(uint32_t stored, double typical_radius, double max_radius);
-    void gather(const cl::Buffer& hitpoints, const cl::Buffer& stats, uint32_t n, float global_r2, bool accumulate,
-                const cl::Buffer& out);
-    void enqueue_gather(cl::Kernel& kernel, const cl::Buffer& hitpoints, const cl::Buffer& stats, uint32_t n,
-                        float global_r2, bool accumulate, const cl::Buffer& out, const std::string& phase);
+    void gather(uint64_t pass, const cl::Buffer& hitpoints, const cl::Buffer& stats, uint32_t n, float global_r2,
+                bool accumulate, const cl::Buffer& out);
+    void enqueue_gather(cl::Kernel& kernel, uint64_t pass, const cl::Buffer& hitpoints, const cl::Buffer& stats,
+                        uint32_t n, float global_r2, bool accumulate, const cl::Buffer& out, const std::string& phase);
 
     const DeviceContext& dc_;
     const DeviceScene& scene_;

@@ -137,7 +137,7 @@ void PpmIntegrator::eye_pass() {
 
     std::vector<float> footprints;
     footprints.reserve(hitpoints.size());
-    for (const dev::HitPoint& hp : hitpoints) footprints.push_back(hp.footprint);
+    for (const dev::HitPoint& hp : hitpoints) footprints.push_back(std::fabs(hp.footprint));
     const double r0 =
         settings_.radius > 0 ? settings_.radius : initial_radius_heuristic(footprints, scene_.info.radius);
     stats_.initial_radius = stats_.mean_radius = r0;

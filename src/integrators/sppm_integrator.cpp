@@ -55,7 +55,7 @@ void SppmIntegrator::prepare() {
     dc_.queue.enqueueReadBuffer(hitpoints_, CL_TRUE, 0, n * sizeof(dev::HitPoint), hps.data());
     std::vector<float> footprints;
     for (const dev::HitPoint& hp : hps)
-        if (hp.pixel != HITPOINT_NONE) footprints.push_back(hp.footprint);
+        if (hp.pixel != HITPOINT_NONE) footprints.push_back(std::fabs(hp.footprint));
     const double r0 =
         settings_.radius > 0 ? settings_.radius : initial_radius_heuristic(footprints, scene_.info.radius);
     stats_.initial_radius = stats_.mean_radius = typical_radius_ = max_radius_ = r0;

@@ -33,6 +33,7 @@ SceneFeatures scene_features(const Scene& scene, const DeviceScene& ds) {
         if ((m.transmission > 0.f || translucent) &&
             (m.attenuation[0] > 0.f || m.attenuation[1] > 0.f || m.attenuation[2] > 0.f))
             f.volume = true;
+        if (m.dispersion > 0.f && m.transmission > 0.f && metallic_min < 1.f) f.dispersion = true;
         if (m.transmission_tex >= 0 || m.specular_tex >= 0 || m.specular_color_tex >= 0) f.textures = true;
         if (m.emission_spread > 0.f) f.emission_spread = true;
         if (m.flags & MATERIAL_FLAG_UNLIT) f.unlit = true;

@@ -17,7 +17,8 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 sys.dont_write_bytecode = True  # keep scripts/ free of __pycache__
 sys.path.insert(0, os.path.join(HERE, "..", "..", "scripts"))
 from make_scenes import (ARRAY_BUFFER, BYTE, FLOAT, SHORT, UBYTE, UINT, USHORT, GltfBuilder,  # noqa: E402
-                         quad, rounded, uv_sphere, write_text)
+                         add, check_front_faces, cross, dispersion_box, dot, look_rotation, normalize, quad, rounded, scale, sub,
+                         uv_sphere, write_text)
 
 NAN, INF = float("nan"), float("inf")
 TRI = [(0.0, 0.0, 0.0), (1.0, 0.0, 0.0), (0.0, 1.0, 0.0)]
@@ -1218,12 +1219,99 @@ def errors():
         f.write(glb[:len(glb) // 2])
 
 
+def dispersion():
+    """KHR_materials_dispersion. prism.gltf: an equilateral glass prism (ior 1.5, dispersion 2, so
+    Abbe number 10; a volume) whose section lies in the xy plane, apex (0, sqrt(3)/2), base from
+    (-0.5, 0) to (0.5, 0), extruded over z in [-0.5, 0.5]. A directional light travels along
+    PRISM_LIGHT (18.59 degrees above +x: minimum deviation for n = 1.5) through a 0.15 x 0.4 hole
+    in a black occluder (perpendicular to it, centred on the light's line through the left face's
+    middle) into the left face; the spectrum falls on a white Lambertian screen 1.6 x 0.8,
+    perpendicular to PRISM_EXIT (the light's direction turned down by the minimum deviation,
+    37.18 degrees) at 2 from the right face's middle, seen head-on by an orthographic camera
+    (xmag 0.8, ymag 0.4; its right is PRISM_EXIT x +z, up +z). tests/dispersion_test.cpp traces
+    each wavelength through the prism by Snell's law and compares where the colours fall.
+    prism_plain.gltf: the same without dispersion. dispersion_box_plain.gltf: scenes/dispersion_box.gltf
+    without its dispersion. dispersion_thin.gltf, dispersion_negative.gltf:
+    one triangle of thin-walled glass asking for dispersion, and one with a negative dispersion."""
+    h = math.sqrt(3.0) / 2.0
+    a, bl, c = (0.0, h), (-0.5, 0.0), (0.5, 0.0)
+    th_in = math.radians(18.59)
+    d = (math.cos(th_in), math.sin(th_in), 0.0)
+    th_out = th_in - math.radians(37.18)
+    e = (math.cos(th_out), math.sin(th_out), 0.0)
+    left_mid = ((a[0] + bl[0]) / 2, (a[1] + bl[1]) / 2, 0.0)
+    right_mid = ((a[0] + c[0]) / 2, (a[1] + c[1]) / 2, 0.0)
+    for name, disp in (("prism.gltf", 2.0), ("prism_plain.gltf", None)):
+        b = GltfBuilder("clppm tests/data/make_test_gltf.py")
+        ext = {"KHR_materials_volume": {"thicknessFactor": 1.0}}
+        if disp is not None:
+            ext["KHR_materials_dispersion"] = {"dispersion": disp}
+        glass = b.material("glass", (1.0, 1.0, 1.0), roughness=0.0, transmission=1.0, ior=1.5, extensions=ext)
+        black = b.material("black", (0.0, 0.0, 0.0), specular=0.0)
+        white = b.material("screen", (0.8, 0.8, 0.8), specular=0.0)
+        # The prism: three sides and two caps, each face its own vertices, normals outwards.
+        pos, nrm, idx = [], [], []
+
+        def face(corners, n):
+            base = len(pos)
+            pos.extend(corners)
+            nrm.extend([n] * len(corners))
+            for k in range(1, len(corners) - 1):
+                idx.extend([base, base + k, base + k + 1])
+        for p0, p1 in ((bl, c), (c, a), (a, bl)):
+            n = normalize((p1[1] - p0[1], -(p1[0] - p0[0]), 0.0))
+            face([(p0[0], p0[1], -0.5), (p1[0], p1[1], -0.5), (p1[0], p1[1], 0.5), (p0[0], p0[1], 0.5)], n)
+        face([(bl[0], bl[1], 0.5), (c[0], c[1], 0.5), (a[0], a[1], 0.5)], (0.0, 0.0, 1.0))
+        face([(bl[0], bl[1], -0.5), (a[0], a[1], -0.5), (c[0], c[1], -0.5)], (0.0, 0.0, -1.0))
+        check_front_faces(pos, nrm, idx)
+        prism = b.primitive(pos, idx, nrm, material=glass)
+        # The occluder: 5 x 5, perpendicular to the light, 0.6 before the left face, with the hole.
+        side = normalize(cross(d, (0.0, 0.0, 1.0)))
+        up = (0.0, 0.0, 1.0)
+        centre = sub(left_mid, scale(d, 0.6))
+        hw, hh, big = 0.075, 0.2, 2.5
+        occ = []
+        for (u0, u1, v0, v1) in ((-big, -hw, -big, big), (hw, big, -big, big), (-hw, hw, hh, big), (-hw, hw, -big, -hh)):
+            qc = add(centre, add(scale(side, (u0 + u1) / 2), scale(up, (v0 + v1) / 2)))
+            qp, qn, qi = quad(qc, scale(up, (v1 - v0) / 2), scale(side, (u1 - u0) / 2))
+            if dot(qn[0], d) > 0:  # face the light
+                qp = [qp[0], qp[3], qp[2], qp[1]]
+                qn = [scale(qn[0], -1.0)] * 4
+            occ.append(b.primitive(qp, qi, qn, material=black))
+        # The screen, facing the prism.
+        scentre = add(right_mid, scale(e, 2.0))
+        sright = normalize(cross(e, up))
+        sp, sn, si = quad(scentre, scale(sright, 0.8), scale(up, 0.4))
+        if dot(sn[0], e) > 0:
+            sp = [sp[0], sp[3], sp[2], sp[1]]
+            sn = [scale(sn[0], -1.0)] * 4
+        check_front_faces(sp, sn, si)
+        screen = b.primitive(sp, si, sn, material=white)
+        sun = b.light({"name": "sun", "type": "directional", "color": [1.0, 1.0, 1.0], "intensity": 10.0})
+        cam = b._append("cameras", {"type": "orthographic",
+                                    "orthographic": {"xmag": 0.8, "ymag": 0.4, "znear": 0.01, "zfar": 10.0}})
+        b.scene([b.node(name="prism", mesh=b.mesh([prism])), b.node(name="occluder", mesh=b.mesh(occ)),
+                 b.node(name="screen", mesh=b.mesh([screen])),
+                 b.node(name="sun", light=sun, rotation=look_rotation(d)),
+                 b.node(name="camera", camera=cam, translation=list(sub(scentre, scale(e, 1.0))),
+                        rotation=look_rotation(e, up))])
+        b.world(color=(0.0, 0.0, 0.0))
+        b.write_embedded(out(name))
+    # The dispersion box without its dispersion (scenes/dispersion_box.gltf is the other).
+    dispersion_box(os.path.dirname(out("x")), dispersion=None, name="dispersion_box_plain.gltf")
+    # For the loader: dispersion on a thin wall (no volume) and a negative one.
+    b = one_triangle(transmission=1.0, roughness=0.0, extensions={"KHR_materials_dispersion": {"dispersion": 1.0}})
+    b.write_embedded(out("dispersion_thin.gltf"))
+    b = one_triangle(transmission=1.0, thickness=1.0, extensions={"KHR_materials_dispersion": {"dispersion": -1.0}})
+    b.write_embedded(out("dispersion_negative.gltf"))
+
+
 def main():
     for make in (hierarchy, index_types, byte_stride, containers, no_normals, degenerate, mirror, metallic_roughness,
                  materials, texture, lights, cameras, quantized, sparse, strips_fans, gpu_instancing, emissive_texture,
                  normal_maps, vertex_colors, alpha_modes,
                  texture_transform, uv1_plates, volumes, skinned, animated,
-                 specular_textures, unlit, clearcoat, sheen, iridescence, anisotropy, diffuse_transmission,
+                 specular_textures, unlit, clearcoat, sheen, iridescence, anisotropy, diffuse_transmission, dispersion,
                  camera_clipping, reference_scenes, environment_scenes, spread_light, errors):
         make()
 

@@ -42,6 +42,7 @@ inline const std::set<std::string> kSupportedExtensions = {"KHR_lights_punctual"
                                                            "EXT_texture_webp",
                                                            "KHR_texture_transform",
                                                            "KHR_materials_volume",
+                                                           "KHR_materials_dispersion",
                                                            "KHR_materials_variants",
                                                            "KHR_materials_unlit",
                                                            "KHR_materials_clearcoat",

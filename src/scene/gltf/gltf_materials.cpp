@@ -139,6 +139,7 @@ dev::Material MaterialConverter::convert_material(int index) {
     convert_iridescence(g, label, m);
     convert_anisotropy(g, label, m);
     convert_diffuse_transmission(g, label, m);
+    convert_dispersion(g, label, m);
     if (g.doubleSided) m.flags |= MATERIAL_FLAG_DOUBLE_SIDED;
     if (g.extensions.count("KHR_materials_unlit")) convert_unlit(m);
     return m;
@@ -164,6 +165,7 @@ void MaterialConverter::convert_unlit(dev::Material& m) {
     m.anisotropy_tex = -1;
     m.diffuse_transmission = 0.f;
     m.diffuse_transmission_tex = m.diffuse_transmission_color_tex = -1;
+    m.dispersion = 0.f;
     for (float& a : m.attenuation) a = 0.f;
     m.flags &= ~MATERIAL_FLAG_THIN_WALLED;
 }
@@ -301,6 +303,25 @@ void MaterialConverter::convert_diffuse_transmission(const tinygltf::Material& g
     if (!(m.diffuse_transmission > 0.f)) return;
     m.diffuse_transmission_tex = extension_texture(g, ext, "diffuseTransmissionTexture", label, false);
     m.diffuse_transmission_color_tex = extension_texture(g, ext, "diffuseTransmissionColorTexture", label, true);
+}
+
+// KHR_materials_dispersion: dispersion = 20 / V_d (V_d the Abbe number) spreads the index of
+// refraction over the wavelength (kernels/dispersion.cl). The extension builds on
+// KHR_materials_volume: a thin-walled or opaque material does not bend light, and keeps its one
+// index (a note says so when the file asks for dispersion there).
+void MaterialConverter::convert_dispersion(const tinygltf::Material& g, const std::string& label, dev::Material& m) {
+    m.dispersion = 0.f;
+    const char* ext = "KHR_materials_dispersion";
+    if (!g.extensions.count(ext)) return;
+    const float d = finite_factor(extension_number(g.extensions, ext, "dispersion", 0.0), "dispersion", label);
+    if (d < 0.f) ctx_.fail(label + " KHR_materials_dispersion dispersion must be at least 0");
+    if (!(d > 0.f)) return;
+    if (!(m.transmission > 0.f) || (m.flags & MATERIAL_FLAG_THIN_WALLED)) {
+        ctx_.warn(label + " KHR_materials_dispersion has no effect without transmission through a volume "
+                          "(KHR_materials_volume thicknessFactor > 0)");
+        return;
+    }
+    m.dispersion = d;
 }
 
 // A textureInfo inside a material extension (tinygltf leaves those as JSON values): -1 without it.
