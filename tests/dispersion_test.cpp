@@ -366,3 +366,99 @@ TEST(DispersionBox, IntegratorsAgreeAndTheCausticShowsColouredFringes) {
         ASSERT_EQ(plain.rgb[i], plain.rgb[i + 2]) << "pixel " << i / 3;
     }
 }
+
+namespace {
+
+// tests/data/rainbow.gltf: the drop (unit sphere, ior 1.333, dispersion 2) under light along -z,
+// the screen at z = 3. Traces, in the meridional plane, rays uniform over the drop's disc (equal
+// flux each: b = sqrt(u)) for every wavelength: the reflection off the drop and the light leaving
+// after 1 to 3 reflections inside, with Fresnel's weights; each channel's flux-weighted mean
+// radius where they land on the screen, between r0 and r1. The smallest deviation of the
+// once-reflected ray of index n is returned too, for Descartes.
+struct Ray2 {
+    V2 p, d;
+};
+V2 reflect2(V2 d, V2 n) { return d - 2.0 * dot2(d, n) * n; }
+
+std::array<double, 3> predicted_bow_radii(double r0, double r1) {
+    std::array<double, 3> num{}, den{};
+    const int kB = 400;
+    for (int i = 0; i < WAVELENGTH_BINS; i += 2) {
+        const double lambda = WAVELENGTH_MIN + i;
+        const double n = closed_form_ior(1.333, 2.0, lambda);
+        for (int j = 0; j < kB; ++j) {
+            const double b = std::sqrt((j + 0.5) / kB);
+            const V2 p{b, std::sqrt(1.0 - b * b)}, d0{0.0, -1.0};
+            const double f = fresnel(p.y, 1.0, n);
+            std::vector<std::pair<double, Ray2>> out = {{f, {p, reflect2(d0, p)}}};
+            V2 d = refract2(d0, p, 1.0 / n), q = p;
+            double w = 1.0 - f;
+            for (int k = 0; k <= 3; ++k) {
+                q = q + (-2.0 * dot2(q, d)) * d; // the chord to the next point on the circle
+                const double fi = fresnel(std::fabs(dot2(d, q)), n, 1.0);
+                if (k >= 1) out.push_back({w * (1.0 - fi), {q, refract2(d, V2{-q.x, -q.y}, n)}});
+                w *= fi;
+                d = reflect2(d, q);
+            }
+            for (const auto& [weight, ray] : out) {
+                if (!(ray.d.y > 1e-9)) continue;
+                const double r = std::fabs(ray.p.x + (3.0 - ray.p.y) / ray.d.y * ray.d.x);
+                if (r < r0 || r > r1) continue;
+                for (int c = 0; c < 3; ++c) {
+                    const double wc = wavelength_weight[3 * i + c] * bin_probability(i) * weight;
+                    num[c] += wc * r;
+                    den[c] += wc;
+                }
+            }
+        }
+    }
+    return {num[0] / den[0], num[1] / den[1], num[2] / den[2]};
+}
+
+// The angle from the axis (degrees) of the once-reflected ray at its extreme over b: the bow.
+double bow_angle(double n) {
+    double best = 0;
+    for (int j = 1; j < 200000; ++j) {
+        const double b = j / 200000.0, ti = std::asin(b), tt = std::asin(b / n);
+        best = std::max(best, 4.0 * tt - 2.0 * ti);
+    }
+    return best * 180.0 / 3.14159265358979323846;
+}
+
+} // namespace
+
+// The drop's bow: Descartes' angle from the trace's own geometry, and on the screen each colour
+// channel's mean radius where an independent trace of Snell's and Fresnel's laws puts it (red
+// outside, violet inside), to a third of a pixel.
+TEST(Rainbow, BowFallsWhereDescartesAndSnellPutEachColour) {
+    // Descartes: cos i = sqrt((n^2 - 1) / 3), the bow at 4 r - 2 i (about 42 degrees for water).
+    for (double n : {1.331, 1.333, 1.344}) {
+        const double i = std::acos(std::sqrt((n * n - 1.0) / 3.0)), r = std::asin(std::sin(i) / n);
+        EXPECT_NEAR(bow_angle(n), (4.0 * r - 2.0 * i) * 180.0 / 3.14159265358979323846, 1e-3) << n;
+    }
+    EXPECT_NEAR(bow_angle(1.333), 42.0, 0.1);
+    const double r0 = 2.0, r1 = 4.9; // clear of the hole (its corners at 1.56) and the screen's edge
+    const std::array<double, 3> want = predicted_bow_radii(r0, r1);
+    EXPECT_GT(want[0] - want[2], 0.2) << "red outside violet";
+    const std::string d = make_temp_dir("rainbow");
+    std::string out;
+    ASSERT_EQ(run_clppm(std::string(CLPPM_TEST_DATA) + "/rainbow.gltf --integrator sppm --width 200 --height 200 " +
+                            "--passes 100 --photons 1000000 --quiet --no-png -o " + d + "/r.exr",
+                        &out),
+              0)
+        << out;
+    const Image img = read_exr(d + "/r.exr");
+    std::array<double, 3> num{}, den{};
+    for (int y = 0; y < img.height; ++y)
+        for (int x = 0; x < img.width; ++x) {
+            const double px = -5.0 + (x + 0.5) * 10.0 / img.width, py = -5.0 + (y + 0.5) * 10.0 / img.height;
+            const double r = std::hypot(px, py);
+            if (r < r0 || r > r1) continue;
+            for (int c = 0; c < 3; ++c) {
+                const double v = img.rgb[3 * (size_t(y) * img.width + x) + c];
+                num[c] += v * r;
+                den[c] += v;
+            }
+        }
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(num[c] / den[c], want[c], 0.015) << "channel " << c;
+}

@@ -1232,7 +1232,8 @@ def dispersion():
     each wavelength through the prism by Snell's law and compares where the colours fall.
     prism_plain.gltf: the same without dispersion. dispersion_box_plain.gltf: scenes/dispersion_box.gltf
     without its dispersion. dispersion_thin.gltf, dispersion_negative.gltf:
-    one triangle of thin-walled glass asking for dispersion, and one with a negative dispersion."""
+    one triangle of thin-walled glass asking for dispersion, and one with a negative dispersion.
+    rainbow.gltf: a dispersive water drop's bow on a screen (described where it is made)."""
     h = math.sqrt(3.0) / 2.0
     a, bl, c = (0.0, h), (-0.5, 0.0), (0.5, 0.0)
     th_in = math.radians(18.59)
@@ -1297,6 +1298,34 @@ def dispersion():
                         rotation=look_rotation(e, up))])
         b.world(color=(0.0, 0.0, 0.0))
         b.write_embedded(out(name))
+    # rainbow.gltf: a water drop (sphere of radius 1 at the origin, 128 x 96, ior 1.333,
+    # dispersion 2: Abbe number 10, a volume) under a directional light travelling along -z that
+    # reaches it through a 2.2 x 2.2 hole in a white Lambertian screen 10 x 10 at z = 3, facing the
+    # drop; an orthographic camera (xmag = ymag = 5) at z = 2.5 looks at the screen along +z. The
+    # light the drop sends back once reflected inside lands on the screen as a bow near Descartes'
+    # 42 degrees from the axis (tests/dispersion_test.cpp traces it).
+    b = GltfBuilder("clppm tests/data/make_test_gltf.py")
+    water = b.material("water", (1.0, 1.0, 1.0), roughness=0.0, transmission=1.0, ior=1.333,
+                       extensions={"KHR_materials_volume": {"thicknessFactor": 1.0},
+                                   "KHR_materials_dispersion": {"dispersion": 2.0}})
+    white = b.material("screen", (0.8, 0.8, 0.8), specular=0.0)
+    pos, nrm, idx = uv_sphere(128, 96)
+    check_front_faces(pos, nrm, idx)
+    drop = b.primitive(pos, idx, nrm, material=water)
+    quads = []
+    for (x0, x1, y0, y1) in ((-5.0, -1.1, -5.0, 5.0), (1.1, 5.0, -5.0, 5.0), (-1.1, 1.1, 1.1, 5.0),
+                             (-1.1, 1.1, -5.0, -1.1)):
+        qp, qn, qi = quad(((x0 + x1) / 2, (y0 + y1) / 2, 3.0), (0.0, (y1 - y0) / 2, 0.0), ((x1 - x0) / 2, 0.0, 0.0))
+        assert qn[0] == (0.0, 0.0, -1.0)
+        quads.append(b.primitive(qp, qi, qn, material=white))
+    sun = b.light({"name": "sun", "type": "directional", "color": [1.0, 1.0, 1.0], "intensity": 10.0})
+    cam = b._append("cameras", {"type": "orthographic",
+                                "orthographic": {"xmag": 5.0, "ymag": 5.0, "znear": 0.01, "zfar": 10.0}})
+    b.scene([b.node(name="drop", mesh=b.mesh([drop])), b.node(name="screen", mesh=b.mesh(quads)),
+             b.node(name="sun", light=sun),
+             b.node(name="camera", camera=cam, translation=[0.0, 0.0, 2.5], rotation=look_rotation((0.0, 0.0, 1.0)))])
+    b.world(color=(0.0, 0.0, 0.0))
+    b.write_embedded(out("rainbow.gltf"))
     # The dispersion box without its dispersion (scenes/dispersion_box.gltf is the other).
     dispersion_box(os.path.dirname(out("x")), dispersion=None, name="dispersion_box_plain.gltf")
     # For the loader: dispersion on a thin wall (no volume) and a negative one.
