@@ -29,9 +29,9 @@ float spot_falloff(__global const Light* L, float cos_theta) {
 
 /* A uniform point on an emissive triangle, its winding normal and the radiance it emits there
  * (the material's emission times its emissive texture). */
-float3 area_light_point(SCENE_PARAMS, __global const Light* L, Rng* rng, float3* n, float3* le) {
+float3 area_light_point(SCENE_PARAMS, __global const Light* L, float2 u, float3* n, float3* le) {
     float3 v0 = tris[3 * L->prim].xyz, e1 = tris[3 * L->prim + 1].xyz, e2 = tris[3 * L->prim + 2].xyz;
-    float2 b = sample_triangle(rng_float(rng), rng_float(rng));
+    float2 b = sample_triangle(u.x, u.y);
     *n = normalize(cross(e1, e2));
     *le = load3g(L->radiance);
     if (HAS_TEXTURES) {
@@ -94,7 +94,8 @@ void emit_light(SCENE_PARAMS, Rng* rng, LightEmission* e) {
     e->finite = true;
     if (HAS_AREA_LIGHTS && L->type == LIGHT_TRIANGLE) {
         float3 n;
-        float3 p = area_light_point(SCENE_ARGS, L, rng, &n, &rad);
+        float u0 = rng_float(rng), u1 = rng_float(rng);
+        float3 p = area_light_point(SCENE_ARGS, L, (float2)(u0, u1), &n, &rad);
         float sides = 1.0f;
         if (L->two_sided) {
             sides = 2.0f;
@@ -193,20 +194,26 @@ typedef struct {
     bool delta;
 } LightSample;
 
-/* Returns false when the sample contributes nothing. */
-bool sample_light_full(SCENE_PARAMS, float3 x, Rng* rng, LightSample* s) {
+/* Whether sampling light l takes a point (two uniforms) besides its pick. */
+bool light_takes_point(SCENE_PARAMS, uint l) {
+    uint type = lights[l].type;
+    if (HAS_AREA_LIGHTS && type == LIGHT_TRIANGLE) return true;
+    return HAS_ENV_LIGHT && type == LIGHT_ENVIRONMENT;
+}
+
+/* Light l sampled from x with the uniforms u (used by area lights and the environment). Returns
+ * false when the sample contributes nothing. */
+bool sample_chosen_light(SCENE_PARAMS, float3 x, uint l, float2 u, LightSample* s) {
     s->pdf_w = s->emission_pdf_w = 0.0f;
     s->cos_light = 1.0f;
     s->delta = true;
-    if (info->num_lights == 0) return false;
-    uint l = pick_light(SCENE_ARGS, rng_float(rng));
     __global const Light* L = &lights[l];
     float pick = light_pick_pdf(SCENE_ARGS, l);
     float3 rad = load3g(L->radiance);
     float disc_area = PI_F * info->radius * info->radius;
     if (HAS_AREA_LIGHTS && L->type == LIGHT_TRIANGLE) {
         float3 ny;
-        float3 y = area_light_point(SCENE_ARGS, L, rng, &ny, &rad);
+        float3 y = area_light_point(SCENE_ARGS, L, u, &ny, &rad);
         float3 d = y - x;
         float d2 = dot(d, d);
         if (!(d2 > 0.0f)) return false;
@@ -233,7 +240,7 @@ bool sample_light_full(SCENE_PARAMS, float3 x, Rng* rng, LightSample* s) {
     }
     if (HAS_ENV_LIGHT && L->type == LIGHT_ENVIRONMENT) {
         float pdf;
-        s->wi = env_sample(L, textures, light_cdf, rng_float(rng), rng_float(rng), &pdf);
+        s->wi = env_sample(L, textures, light_cdf, u.x, u.y, &pdf);
         if (!(pdf > 0.0f)) return false;
         s->dist = 4.0f * info->radius + length(x - load3c(info->center));
         s->contrib = env_radiance(L, textures, texels, s->wi) / (pick * pdf);
@@ -267,15 +274,44 @@ bool sample_light_full(SCENE_PARAMS, float3 x, Rng* rng, LightSample* s) {
     return true;
 }
 
-/* sample_light_full for the path tracer and the eye pass: pdf_out is 0 for lights no ray can
- * hit. */
+/* A light picked by u_pick in proportion to power, sampled with u. */
+bool sample_light_u(SCENE_PARAMS, float3 x, float u_pick, float2 u, LightSample* s) {
+    s->pdf_w = s->emission_pdf_w = 0.0f;
+    s->cos_light = 1.0f;
+    s->delta = true;
+    if (info->num_lights == 0) return false;
+    return sample_chosen_light(SCENE_ARGS, x, pick_light(SCENE_ARGS, u_pick), u, s);
+}
+
+/* The same from a random stream, which gives up the point's two numbers only to lights that take
+ * them. */
+bool sample_light_full(SCENE_PARAMS, float3 x, Rng* rng, LightSample* s) {
+    s->pdf_w = s->emission_pdf_w = 0.0f;
+    s->cos_light = 1.0f;
+    s->delta = true;
+    if (info->num_lights == 0) return false;
+    uint l = pick_light(SCENE_ARGS, rng_float(rng));
+    float2 u = (float2)(0.0f);
+    if (light_takes_point(SCENE_ARGS, l)) {
+        u.x = rng_float(rng);
+        u.y = rng_float(rng);
+    }
+    return sample_chosen_light(SCENE_ARGS, x, l, u, s);
+}
+
+/* What next-event estimation uses of a sample: pdf_out is 0 for lights no ray can hit. */
+void light_sample_out(const LightSample* s, float3* wi, float* dist, float3* contrib, float* pdf_out) {
+    *wi = s->wi;
+    *dist = s->dist;
+    *contrib = s->contrib;
+    *pdf_out = s->delta ? 0.0f : s->pdf_w;
+}
+
+/* sample_light_full for the path tracer and the eye pass. */
 bool sample_light(SCENE_PARAMS, float3 x, Rng* rng, float3* wi, float* dist, float3* contrib, float* pdf_out) {
     LightSample s;
     bool ok = sample_light_full(SCENE_ARGS, x, rng, &s);
-    *wi = s.wi;
-    *dist = s.dist;
-    *contrib = s.contrib;
-    *pdf_out = s.delta ? 0.0f : s.pdf_w;
+    light_sample_out(&s, wi, dist, contrib, pdf_out);
     return ok;
 }
 

@@ -15,11 +15,12 @@ float power_heuristic(float a, float b) {
     return a2 + b2 > 0.0f ? a2 / (a2 + b2) : 0.0f;
 }
 
-/* Light reflected towards wo by the lobes in mask, from one light sample. */
-float3 next_event(SCENE_PARAMS, const Bsdf* b, float3 p, float3 wo, uint mask, Rng* rng) {
+/* Light reflected towards wo by the lobes in mask, from the light sample s (ok: it contributes). */
+float3 next_event_from(SCENE_PARAMS, const Bsdf* b, float3 p, float3 wo, uint mask, bool ok, const LightSample* s) {
     float3 wi, contrib;
     float dist, light_pdf;
-    if (!sample_light(SCENE_ARGS, p, rng, &wi, &dist, &contrib, &light_pdf)) return (float3)(0.0f);
+    if (!ok) return (float3)(0.0f);
+    light_sample_out(s, &wi, &dist, &contrib, &light_pdf);
     float cos_x = dot(wi, b->ns);
     /* A light below the surface is seen only through rough glass. */
     bool through = cos_x < 0.0f;
@@ -30,6 +31,20 @@ float3 next_event(SCENE_PARAMS, const Bsdf* b, float3 p, float3 wo, uint mask, R
         return (float3)(0.0f);
     float mis = light_pdf > 0.0f ? power_heuristic(light_pdf, bsdf_pdf(b, wo, wi, mask)) : 1.0f;
     return f * contrib * bsdf_segment_transmittance(b, wi, dist) * (fabs(cos_x) * mis);
+}
+
+/* One light sample from a random stream. */
+float3 next_event(SCENE_PARAMS, const Bsdf* b, float3 p, float3 wo, uint mask, Rng* rng) {
+    LightSample s;
+    bool ok = sample_light_full(SCENE_ARGS, p, rng, &s);
+    return next_event_from(SCENE_ARGS, b, p, wo, mask, ok, &s);
+}
+
+/* One light sample from the uniforms u_pick (the light) and u (its point). */
+float3 next_event_u(SCENE_PARAMS, const Bsdf* b, float3 p, float3 wo, uint mask, float u_pick, float2 u) {
+    LightSample s;
+    bool ok = sample_light_u(SCENE_ARGS, p, u_pick, u, &s);
+    return next_event_from(SCENE_ARGS, b, p, wo, mask, ok, &s);
 }
 
 /* The MIS weight of emission found at surface sf by a ray along dir that was sampled with

@@ -3,21 +3,46 @@
  * diffuse scenes. At every vertex with non-delta lobes, one light sample (next-event
  * estimation) and the BSDF sample that continues the path both count emission, weighted by the
  * power heuristic (Veach 1997, Sec. 9.2); emission found after a delta lobe counts in full.
- * One sample per pixel per pass, accumulated in double. */
+ * One sample per pixel per pass, accumulated in double. Its numbers come from Owen-scrambled
+ * Sobol' points over the passes (sobol.cl; `--sampler sobol`, the default) or from independent
+ * random streams (`--sampler independent`). */
 #include "rng.cl"
+#include "sobol.cl"
 #include "camera.cl"
 #include "next_event.cl"
 #include "pt_error.cl"
 #include "mean_film.cl"
 #include "dispersion.cl"
 
+/* The path's numbers: a pixel's Sobol' points over the passes, or (built with
+ * -DPATH_SAMPLER_INDEPENDENT) an independent stream. */
+#ifdef PATH_SAMPLER_INDEPENDENT
+#define PATH_QMC 0
+typedef Rng PathSampler;
+float path_1d(PathSampler* s) { return rng_float(s); }
+float2 path_2d(PathSampler* s) {
+    float u0 = rng_float(s);
+    return (float2)(u0, rng_float(s));
+}
+#else
+#define PATH_QMC 1
+typedef Sobol PathSampler;
+float path_1d(PathSampler* s) { return sobol_1d(s); }
+float2 path_2d(PathSampler* s) { return sobol_2d(s); }
+#endif
+
 __kernel void path_trace(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong pass, uint num_pixels,
                          __global double* accum) {
     uint pixel = get_global_id(0);
     if (pixel >= num_pixels) return;
-    Rng rng = rng_make(seed, pass, pixel, RNG_PATH);
-    float2 off = pixel_sample_offset(0, 1, true, &rng);
-    float2 lens = (float2)(rng_float(&rng), rng_float(&rng));
+#if PATH_QMC
+    PathSampler ps = sobol_make(seed, pixel, pass - 1); /* passes count from 1: nets from index 0 */
+#else
+    PathSampler ps = rng_make(seed, pass, pixel, RNG_PATH);
+#endif
+    float2 off = path_2d(&ps);
+    off = (float2)(filter_warp(off.x), filter_warp(off.y));
+    float2 lens = path_2d(&ps);
     float3 org, dir;
     camera_ray(cam, (float)(pixel % cam->width) + off.x, (float)(pixel / cam->width) + off.y, lens, &org, &dir);
     float3 L = (float3)(0.0f), beta = (float3)(1.0f);
@@ -43,14 +68,20 @@ __kernel void path_trace(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong
         Bsdf b = surface_bsdf(SCENE_ARGS, &sf);
         if (HAS_DISPERSION) disperse(SCENE_ARGS, &sf, &b, &pw, &dispersed, &beta);
         float3 wo = -dir;
-        L += beta * next_event(SCENE_ARGS, &b, sf.p, wo, LOBE_ALL, &rng);
+#if PATH_QMC
+        float u_pick = path_1d(&ps);
+        L += beta * next_event_u(SCENE_ARGS, &b, sf.p, wo, LOBE_ALL, u_pick, path_2d(&ps));
+#else
+        L += beta * next_event(SCENE_ARGS, &b, sf.p, wo, LOBE_ALL, &ps); /* a point only where it takes one */
+#endif
         BsdfSample s;
-        float u0 = rng_float(&rng), u1 = rng_float(&rng), u2 = rng_float(&rng);
-        if (!bsdf_sample(&b, wo, LOBE_ALL, u0, u1, u2, &s)) break;
+        float u_lobe = path_1d(&ps);
+        float2 u = path_2d(&ps);
+        if (!bsdf_sample(&b, wo, LOBE_ALL, u_lobe, u.x, u.y, &s)) break;
         /* Russian roulette after the first bounces, survival by throughput. */
         if (depth >= 2) {
             float q = fmin(max3(beta * s.weight), 1.0f);
-            if (!(rng_float(&rng) < q)) break;
+            if (!(path_1d(&ps) < q)) break;
             beta *= s.weight / q;
         } else {
             beta *= s.weight;

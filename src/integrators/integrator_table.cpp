@@ -100,6 +100,8 @@ std::string integrator_build_options(const RenderSettings& settings, const Devic
     // one visible point per pixel and pass.
     std::string options = "-DEYE_SLOTS=" + std::to_string(integrator_row(settings.integrator).eye_slots);
     if (settings.filter == PixelFilter::Tent) options += " -DPIXEL_FILTER_TENT";
+    // The path tracer's numbers, compiled in alone: PoCL if-converts a run-time choice into both.
+    if (settings.sampler == Sampler::Independent) options += " -DPATH_SAMPLER_INDEPENDENT";
     if (!features.empty()) options += " " + features;
     return options;
 }

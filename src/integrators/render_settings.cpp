@@ -10,6 +10,14 @@ const char* to_string(PixelFilter filter) {
     return "?";
 }
 
+const char* to_string(Sampler sampler) {
+    switch (sampler) {
+    case Sampler::Sobol: return "sobol";
+    case Sampler::Independent: return "independent";
+    }
+    return "?";
+}
+
 const char* to_string(DirectLighting direct) {
     switch (direct) {
     case DirectLighting::Photons: return "photons";

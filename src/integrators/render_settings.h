@@ -9,9 +9,11 @@ namespace clppm {
 
 enum class DirectLighting { Photons, Sample }; // --direct photons|sample
 enum class PixelFilter { Box, Tent };          // --filter box|tent
+enum class Sampler { Sobol, Independent };     // --sampler sobol|independent (the path tracer's)
 
 const char* to_string(DirectLighting direct); // "photons", "sample"
 const char* to_string(PixelFilter filter);    // "box", "tent"
+const char* to_string(Sampler sampler);       // "sobol", "independent"
 
 // The one set of defaults for what shapes an image, whichever front end asks (the command line,
 // the Python module, the tests). The scene's part (camera, resolution, lens, path length) is the
@@ -27,6 +29,9 @@ struct RenderSettings : SceneSettings {
     double radius = 0; // initial radius in world units; 0: heuristic
     uint64_t seed = 1;
     PixelFilter filter = PixelFilter::Box;
+    // The path tracer's numbers: Owen-scrambled Sobol' points over the passes, or independent
+    // random streams (bench/RESULTS.md, issue 36). The other integrators draw independent ones.
+    Sampler sampler = Sampler::Sobol;
     // VCM and BPT: one technique alone (VCM_MODE_* of kernels/vcm_mis.h), for the tests that
     // compare the techniques; -1: the integrator's own.
     int vcm_techniques = -1;

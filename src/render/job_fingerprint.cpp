@@ -20,14 +20,23 @@ std::string hex(uint64_t v) {
 Json job_fingerprint(const RenderOptions& o, const DeviceScene& ds, uint64_t scene_hash,
                      const std::string& kernel_source) {
     const RenderSettings& s = o.settings;
-    return {{"scene", hex(scene_hash)},       {"kernels", hex(fnv1a64(kernel_source))},
-            {"--integrator", s.integrator},   {"--direct", to_string(s.direct)},
-            {"--width", ds.camera.width},     {"--height", ds.camera.height},
-            {"--camera", s.camera},           {"--spp", s.spp},
-            {"--photons", s.photons},         {"--alpha", s.alpha},
-            {"--radius", s.radius},           {"--seed", s.seed},
-            {"--max-bounces", s.max_bounces}, {"--filter", to_string(s.filter)},
-            {"--aperture", s.aperture},       {"--focus-distance", s.focus_distance}};
+    return {{"scene", hex(scene_hash)},
+            {"kernels", hex(fnv1a64(kernel_source))},
+            {"--integrator", s.integrator},
+            {"--direct", to_string(s.direct)},
+            {"--width", ds.camera.width},
+            {"--height", ds.camera.height},
+            {"--camera", s.camera},
+            {"--spp", s.spp},
+            {"--photons", s.photons},
+            {"--alpha", s.alpha},
+            {"--radius", s.radius},
+            {"--seed", s.seed},
+            {"--max-bounces", s.max_bounces},
+            {"--filter", to_string(s.filter)},
+            {"--aperture", s.aperture},
+            {"--focus-distance", s.focus_distance},
+            {"--sampler", to_string(s.sampler)}};
 }
 
 Checkpoint open_resume(const std::string& path, const Json& fingerprint) {

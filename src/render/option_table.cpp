@@ -168,6 +168,16 @@ const std::vector<RenderOptionSpec>& render_option_table() {
          }},
         {"Integrator", "--max-bounces", nullptr, "N", "Longest eye or photon path", "an integer in 1..1024", "16",
          [](RenderOptions& o, const OptionArg& a) { o.settings.max_bounces = unsigned(parse_int(a, 1, 1024)); }},
+        {"Integrator", "--sampler", nullptr, "NAME",
+         "The path tracer's numbers: sobol = Owen-scrambled Sobol' points over the passes (lower error at equal "
+         "time), independent = independent random streams; the other integrators draw independent ones",
+         "sobol or independent", "sobol",
+         [](RenderOptions& o, const OptionArg& a) {
+             const std::string v = lower(a.value);
+             if (v == "sobol") o.settings.sampler = Sampler::Sobol;
+             else if (v == "independent") o.settings.sampler = Sampler::Independent;
+             else bad_value(a);
+         }},
         {"Integrator", "--seed", nullptr, "S", "Random seed", "an integer in 0..18446744073709551615", "1",
          [](RenderOptions& o, const OptionArg& a) { o.settings.seed = parse_u64(a); }},
         // Hachisuka, Jarosz and Jensen 2010: per-pixel bias and noise (integrators/error_estimate.h).

@@ -47,6 +47,7 @@ Json options_every_rank_shares(const RenderOptions& o) {
             {"--seed", s.seed},
             {"--max-bounces", s.max_bounces},
             {"--filter", to_string(s.filter)},
+            {"--sampler", to_string(s.sampler)},
             {"--aperture", s.aperture},
             {"--focus-distance", s.focus_distance},
             {"--passes", o.passes ? Json(*o.passes) : Json("default")},
