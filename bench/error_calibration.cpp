@@ -144,7 +144,10 @@ int main(int argc, char** argv) {
                         continue;
                     }
                     r.integ->run_pass();
-                    const bool sample = p == a.passes || (p >= 4 && (p & (p - 1)) == 0); // 4, 8, 16, ...
+                    // 4, 6, 8, 12, 16, 24, ...: powers of two and the counts half way between, where
+                    // the path tracer's Sobol' passes are no net (kernels/sobol.cl)
+                    const uint64_t odd = p % 3 == 0 ? p / 3 : p;
+                    const bool sample = p == a.passes || (p >= 4 && (odd & (odd - 1)) == 0);
                     if (!sample) continue;
                     ErrorImage e = r.integ->error_estimate(a.confidence);
                     std::vector<float> actual(e.absolute.size());

@@ -82,6 +82,33 @@ void pool_path_traced_sigma(ErrorImage& e, double t) {
         }
 }
 
+// The variance of a pixel's mean over Sobol' passes as a fraction g of what independent passes'
+// spread says (kernels/pt_error.cl). At the last power-of-two count P each pixel's half-split D_i
+// estimates Var(mean) times 2^a - 1, where the variance falls as P^-a (a = 1 for independent
+// passes); pooled over the pixels, relative to their luminance as the measure is, against
+// sigma_i^2 n / P, it is G(P) = (2^a - 1) g(P). Since g(P) ~ P^(1 - a), G(P) / G(P/2) = 2^(1-a)
+// gives a, clamped to [1, 2]. Between powers of two g(P) is kept: conservative, as the error still
+// falls. `raw` remembers G by P across calls; returns 1 (no gain) before P = 2.
+double sobol_gain(const std::vector<cl_float8>& b, uint64_t passes, double floor, std::map<uint64_t, double>& raw) {
+    if (passes < 2) return 1;
+    uint64_t p = 1;
+    while (p * 2 <= passes) p *= 2;
+    double num = 0, den = 0;
+    for (const cl_float8& v : b) {
+        const double d = std::max(double(v.s[1]), floor), sigma = v.s[5], split = v.s[6];
+        if (!(d > 0) || !(split >= 0) || !std::isfinite(sigma) || !std::isfinite(split)) continue;
+        num += split / (d * d);
+        den += sigma * sigma * double(passes) / double(p) / (d * d);
+    }
+    if (!(den > 0)) return 1;
+    const double g_raw = num / den;
+    raw[p] = g_raw;
+    double a = 1;
+    if (auto it = raw.find(p / 2); it != raw.end() && it->second > 0 && g_raw > 0)
+        a = std::clamp(1 - std::log2(g_raw / it->second), 1.0, 2.0);
+    return std::clamp(g_raw / (std::exp2(a) - 1), 0.0, 1.0);
+}
+
 } // namespace
 
 double student_t_quantile(double p, double nu) {
@@ -187,7 +214,7 @@ ErrorEstimator::ErrorEstimator(const DeviceContext& dc, const cl::Program& progr
     if (!layout_.path_traced) k_gather_ = cl::Kernel(program, "error_gather");
     k_reset_ = cl::Kernel(program, layout_.path_traced ? "pt_error_reset" : "error_reset");
     k_update_ = cl::Kernel(program, layout_.path_traced ? "pt_error_update" : "error_update");
-    k_bound_ = cl::Kernel(program, "error_bound");
+    k_bound_ = cl::Kernel(program, layout_.path_traced ? "pt_error_bound" : "error_bound");
     auto make = [&](size_t bytes) {
         stats_.device_bytes += bytes;
         return cl::Buffer(dc_.context, CL_MEM_READ_WRITE, std::max<size_t>(bytes, 1));
@@ -203,6 +230,7 @@ void ErrorEstimator::reset(const cl::Buffer& source) {
     else set_args(k_reset_, 0, source, layout_.pixel_first, cl_uint(n_), error_stats_);
     enqueue_1d(dc_.queue, k_reset_, n_);
     passes_ = 0;
+    sobol_raw_gain_.clear();
 }
 
 void ErrorEstimator::update_accum(const cl::Buffer& accum, uint32_t first, uint32_t count) {
@@ -245,7 +273,21 @@ ErrorImage ErrorEstimator::estimate(double confidence, int width, int height, co
             e.absolute[i] = std::fabs(e.bias[i]) + e.noise[i];
         }
     }
-    if (layout_.path_traced) pool_path_traced_sigma(e, t);
+    if (layout_.path_traced) {
+        double mean = 0;
+        for (float l : e.luminance) mean += std::max(0.0, double(l));
+        const double gain =
+            layout_.sobol ? sobol_gain(b, passes_, kRelativeFloor * mean / double(n_), sobol_raw_gain_) : 1.0;
+        pool_path_traced_sigma(e, t);
+        if (gain < 1) {
+            const double s = std::sqrt(gain);
+            for (uint32_t i = 0; i < n_; ++i) {
+                e.sigma[i] = float(e.sigma[i] * s);
+                e.noise[i] = float(e.noise[i] * s);
+                e.absolute[i] = e.noise[i];
+            }
+        }
+    }
     e.relative = relative_bounds(e.absolute, e.luminance);
     e.image_error = image_error(e.relative);
     if (passes_ >= 2) {

@@ -5,6 +5,7 @@
 // is a percentile of the per-pixel bounds relative to the pixel radiance.
 #pragma once
 #include <cstdint>
+#include <map>
 #include <vector>
 
 #include "device/cl.h"
@@ -49,6 +50,7 @@ double image_error(std::vector<float> v, double percentile = kErrorPercentile);
 // [pixel_first[p], pixel_first[p + 1]) with `spp` samples per pixel and its constant seen emission.
 struct PixelHitpoints {
     bool path_traced = false;   // the path tracer: no hit points, statistics from its running sums
+    bool sobol = false;         // ... with Sobol' points over the passes (kernels/pt_error.cl)
     uint32_t num_hitpoints = 0; // 0: one per pixel
     cl::Buffer pixel_first;     // PPM: num_pixels + 1 offsets
     cl::Buffer emitted;         // PPM: float4 seen emission summed over the pixel's samples
@@ -90,6 +92,9 @@ private:
     uint32_t n_;
     PixelHitpoints layout_;
     uint64_t passes_ = 0;
+    // Sobol' passes: the pooled half-split variance over the independent-pass variance, by
+    // power-of-two count (sobol_gain).
+    std::map<uint64_t, double> sobol_raw_gain_;
     cl::Kernel k_gather_, k_reset_, k_update_, k_bound_;
     cl::Buffer laplacian_, error_stats_, bound_;
 };

@@ -39,6 +39,7 @@ void PtIntegrator::enable_error_estimation() {
     if (errors_) return;
     PixelHitpoints layout;
     layout.path_traced = true;
+    layout.sobol = settings_.sampler == Sampler::Sobol;
     errors_ = std::make_unique<ErrorEstimator>(dc_, program_, num_pixels_, stats_, layout);
     if (accum_()) errors_->reset(accum_); // after prepare(): the estimate starts here
 }
