@@ -20,12 +20,7 @@ refdir=${REF_DIR:-/tmp/clppm-sampler-refs}
 mkdir -p "$refdir"
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
-python3 - "$here/scenes/cornell_box.gltf" "$out/cornell_diffuse.gltf" <<'PY'
-import json, sys
-d = json.load(open(sys.argv[1]))
-d["scenes"][0]["nodes"] = [n for n in d["scenes"][0]["nodes"] if d["nodes"][n].get("name") not in ("glass_sphere", "mirror_sphere")]
-json.dump(d, open(sys.argv[2], "w"))
-PY
+python3 "$here/bench/cornell_diffuse.py" "$here/scenes/cornell_box.gltf" "$out/cornell_diffuse.gltf"
 common="--integrator pt --width $size --height $size --quiet --no-png"
 echo "$(nproc) cores, $(date -u +%F), ${size}x${size}, $secs s per run, references of $ref_passes passes"
 echo

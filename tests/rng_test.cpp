@@ -19,14 +19,7 @@ using namespace clppm::test;
 
 namespace {
 
-// ---- host reference: O'Neill's pcg32_srandom_r / pcg32_random_r and Vigna's SplitMix64 ----
-
-uint64_t ref_splitmix64(uint64_t x) {
-    uint64_t z = x + 0x9E3779B97F4A7C15ull;
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return z ^ (z >> 31);
-}
+// ---- host reference: O'Neill's pcg32_srandom_r / pcg32_random_r (SplitMix64: stat_tests.h) ----
 
 struct RefPcg32 {
     uint64_t state = 0, inc = 1;

@@ -28,13 +28,6 @@ namespace {
 
 // ---- host reference ----
 
-uint64_t ref_splitmix64(uint64_t x) {
-    uint64_t z = x + 0x9E3779B97F4A7C15ull;
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return z ^ (z >> 31);
-}
-
 uint32_t ref_reverse(uint32_t v) {
     uint32_t r = 0;
     for (int b = 0; b < 32; ++b) r |= ((v >> b) & 1u) << (31 - b);
@@ -120,8 +113,8 @@ __kernel void draws(ulong seed, uint first_pixel, ulong first_pass, uint passes,
 struct Device : KernelHarness {
     Device() : KernelHarness(assemble_kernel_source("sobol.cl") + kWrappers) {}
     // out[((p * passes + j) * draws + k) * 2 + c]
-    std::vector<float> draws(uint64_t seed, uint32_t first_pixel, uint32_t pixels, uint64_t first_pass,
-                             uint32_t passes, uint32_t draws) const {
+    std::vector<float> draws(uint64_t seed, uint32_t first_pixel, uint32_t pixels, uint64_t first_pass, uint32_t passes,
+                             uint32_t draws) const {
         const size_t n = size_t(pixels) * passes;
         cl::Buffer ob = output(n * draws * 2 * sizeof(float));
         cl::Kernel k(program, "draws");
@@ -254,7 +247,8 @@ TEST(Sobol, DrawsAndPixelsAreIndependent) {
                 a.push_back(x), b.push_back(y);
             }
             const Chi2Result r = chi2_test(obs, expd);
-            EXPECT_GT(r.p_value, alpha) << "pixel " << pa << " draw " << ka << " against pixel " << pb << " draw " << kb;
+            EXPECT_GT(r.p_value, alpha) << "pixel " << pa << " draw " << ka << " against pixel " << pb << " draw "
+                                        << kb;
             EXPECT_LT(std::fabs(correlation(a, b)), 4.0 / std::sqrt(double(n)));
         }
     }

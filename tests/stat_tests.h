@@ -5,12 +5,22 @@
 #pragma once
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <functional>
 #include <numeric>
 #include <string>
 #include <vector>
 
 namespace clppm::test {
+
+// Vigna's SplitMix64 step, the host reference for kernels/rng.cl's splitmix64 (the rng and Sobol'
+// tests derive their streams' seeds with it).
+inline uint64_t ref_splitmix64(uint64_t x) {
+    uint64_t z = x + 0x9E3779B97F4A7C15ull;
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    return z ^ (z >> 31);
+}
 
 // P(a, x) = gamma(a, x) / Gamma(a) by its series, valid for x < a + 1 (Numerical Recipes 6.2.5).
 inline double gamma_p_series(double a, double x) {
