@@ -58,7 +58,9 @@ TEST(Options, Defaults) {
 // Choices are case-insensitive; the PNG's tone options and their ranges.
 TEST(Options, ChoicesIgnoreCaseAndToneOptions) {
     CommandLine o = parse_options(Args{"--integrator", "SPPM", "--direct", "Photons", "--filter", "TENT", "--tonemap",
-                                       "Clip", "--exposure=-2.5", "--auto-exposure"});
+                                       "Clip", "--exposure=-2.5", "--auto-exposure", "--sampler", "Independent"});
+    EXPECT_EQ(o.render.settings.sampler, Sampler::Independent);
+    EXPECT_EQ(parse_options(Args{}).render.settings.sampler, Sampler::Sobol);
     EXPECT_EQ(o.render.settings.integrator, "sppm");
     EXPECT_NE(o.render.settings.integrator, "auto");
     EXPECT_EQ(parse_options(Args{"--integrator", "ppm", "--integrator=Auto"}).render.settings.integrator, "auto");
@@ -282,6 +284,7 @@ INSTANTIATE_TEST_SUITE_P(
         BadValue{{"--stats-json="}, "--stats-json '': must be a file name"},
         BadValue{{"--integrator", "mlt"}, "--integrator mlt: must be auto, ppm, sppm, pppm, pt, vcm or bpt"},
         BadValue{{"--filter", "mitchell"}, "--filter mitchell: must be box or tent"},
+        BadValue{{"--sampler", "halton"}, "--sampler halton: must be sobol or independent"},
         BadValue{{"--aperture", "-1"}, "--aperture -1: must be a finite number >= 0 (0 = pinhole)"},
         BadValue{{"--focus-distance", "0"}, "--focus-distance 0: must be a finite number > 0"},
         BadValue{{"--direct", "both"}, "--direct both: must be photons or sample"},
