@@ -50,7 +50,7 @@ def read_accessor(doc, blob, index):
     acc = doc["accessors"][index]
     view = doc["bufferViews"][acc["bufferView"]]
     comps = {"SCALAR": 1, "VEC2": 2, "VEC3": 3}[acc["type"]]
-    fmt = {5126: "f", 5123: "H", 5125: "I"}[acc["componentType"]]
+    fmt = {5126: "f", 5121: "B", 5123: "H", 5125: "I"}[acc["componentType"]]
     start = view.get("byteOffset", 0) + acc.get("byteOffset", 0)
     n = acc["count"] * comps
     vals = struct.unpack_from("<%d%s" % (n, fmt), blob, start)
@@ -98,13 +98,17 @@ def texture(doc, index, tmp, key, srgb=True, alpha_cutoff=None):
     return {"type": "bitmap", "bitmap": bmp, "raw": not srgb, "filter_type": filt, "wrap_mode": wrap}
 
 
-def mitsuba_scene(name, tmp):
-    doc = json.load(open(os.path.join(DATA, name + ".gltf")))
+def mitsuba_scene(name, tmp, size=SIZE, max_depth=-1):
+    """name: a scene of tests/data, or the path of a .gltf file (bench/peers_diffuse_box.py)."""
+    path = name if name.endswith(".gltf") else os.path.join(DATA, name + ".gltf")
+    name = os.path.splitext(os.path.basename(path))[0]
+    doc = json.load(open(path))
     uri = doc["buffers"][0]["uri"]
     blob = base64.b64decode(uri[uri.index(",") + 1:])
-    scene = {"type": "scene", "integrator": {"type": "path", "max_depth": -1}}
+    scene = {"type": "scene", "integrator": {"type": "path", "max_depth": max_depth}}
     has_medium = False
-    for node in doc["nodes"]:
+    mesh_nodes = 0
+    for node in (doc["nodes"][i] for i in doc["scenes"][doc.get("scene", 0)]["nodes"]):
         t = node.get("translation", [0, 0, 0])
         if "camera" in node:
             q = node.get("rotation", [0, 0, 0, 1])
@@ -113,13 +117,15 @@ def mitsuba_scene(name, tmp):
             scene["sensor"] = {
                 "type": "perspective", "fov_axis": "y", "fov": math.degrees(yfov),
                 "to_world": mi.ScalarTransform4f().look_at(origin=t, target=[t[i] + fwd[i] for i in range(3)], up=up),
-                "film": {"type": "hdrfilm", "width": SIZE, "height": SIZE, "rfilter": {"type": "box"},
+                "film": {"type": "hdrfilm", "width": size, "height": size, "rfilter": {"type": "box"},
                          "pixel_format": "rgb"},
                 "sampler": {"type": "independent"}}
             continue
         if "mesh" not in node:
             continue
         assert "rotation" not in node and "scale" not in node, "mesh nodes are translated only"
+        tag = name if mesh_nodes == 0 else "%s_n%d" % (name, mesh_nodes)  # the first keeps the old names
+        mesh_nodes += 1
         for k, prim in enumerate(doc["meshes"][node["mesh"]]["primitives"]):
             pos = read_accessor(doc, blob, prim["attributes"]["POSITION"])
             idx = read_accessor(doc, blob, prim["indices"])
@@ -129,7 +135,7 @@ def mitsuba_scene(name, tmp):
             if "TEXCOORD_0" in prim["attributes"]:
                 uv = read_accessor(doc, blob, prim["attributes"]["TEXCOORD_0"])
                 uvs = [tuple(uv[idx[i + j]] for j in range(3)) for i in range(0, len(idx), 3)]
-            path = os.path.join(tmp, "%s_%d.ply" % (name, k))
+            path = os.path.join(tmp, "%s_%d.ply" % (tag, k))
             write_ply(path, tris, uvs)
             m = doc["materials"][prim["material"]]
             ext = m.get("extensions", {})
@@ -155,7 +161,7 @@ def mitsuba_scene(name, tmp):
                 refl = {"type": "rgb", "value": c}
                 if "baseColorTexture" in pbr:
                     assert c == [1, 1, 1], "textured base colours here have factor 1"
-                    refl = texture(doc, pbr["baseColorTexture"]["index"], tmp, "%s_%d_base" % (name, k))
+                    refl = texture(doc, pbr["baseColorTexture"]["index"], tmp, "%s_%d_base" % (tag, k))
                 # clppm's non-emissive surfaces reflect on both sides (README.md, "Materials").
                 inner = {"type": "diffuse", "reflectance": refl}
                 if "normalTexture" in m:
@@ -164,21 +170,21 @@ def mitsuba_scene(name, tmp):
                     # runs down the image, n x dp/du points up the image: glTF's +Y.
                     inner = {"type": "normalmap", "bsdf": inner, "use_shadowing_function": False,
                              "flip_invalid_normals": False,
-                             "normalmap": texture(doc, m["normalTexture"]["index"], tmp, "%s_%d_normal" % (name, k),
+                             "normalmap": texture(doc, m["normalTexture"]["index"], tmp, "%s_%d_normal" % (tag, k),
                                                   srgb=False)}
                 # clppm's non-emissive surfaces reflect on both sides (README.md, "Materials").
                 shape["bsdf"] = {"type": "twosided", "bsdf": inner}
                 if m.get("alphaMode") == "MASK":
                     shape["bsdf"] = {"type": "mask", "bsdf": shape["bsdf"],
                                      "opacity": texture(doc, pbr["baseColorTexture"]["index"], tmp,
-                                                        "%s_%d_alpha" % (name, k), alpha_cutoff=m.get("alphaCutoff", 0.5))}
+                                                        "%s_%d_alpha" % (tag, k), alpha_cutoff=m.get("alphaCutoff", 0.5))}
             if "emissiveFactor" in m:
                 s = ext.get("KHR_materials_emissive_strength", {}).get("emissiveStrength", 1.0)
                 shape["emitter"] = {"type": "area",
                                     "radiance": {"type": "rgb", "value": [e * s for e in m["emissiveFactor"]]}}
-            scene["%s_%d" % (name, k)] = shape
+            scene["%s_%d" % (tag, k)] = shape
     if has_medium:
-        scene["integrator"] = {"type": "volpath", "max_depth": -1}
+        scene["integrator"] = {"type": "volpath", "max_depth": max_depth}
     return scene
 
 

@@ -1,0 +1,118 @@
+#!/usr/bin/env python3
+"""clppm's path tracer against Mitsuba 3's `path` on the diffuse Cornell box, side by side in one
+run at equal wall time (issue 36): each image against one reference, by `clppm compare --box 4`,
+with the wall and CPU time each took. Run offline with Mitsuba 3 from PyPI:
+
+    python3 -m venv /tmp/mi && /tmp/mi/bin/pip install mitsuba numpy
+    apt-get install libllvm19; DRJIT_LIBLLVM_PATH=/usr/lib/x86_64-linux-gnu/libLLVM-19.so \\
+        /tmp/mi/bin/python bench/peers_diffuse_box.py [BUILD_DIR] [SECONDS] [SIZE] [REF_PASSES]
+
+The scene reaches Mitsuba through tests/references/make_references.py (the same triangles, twosided
+diffuse surfaces, a one-sided area emitter, the same camera and box pixel filter), with max_depth
+17: clppm's 16 bounces. The reference is clppm's path tracer with independent numbers and another
+seed (REF_PASSES passes; PEERS_REF=FILE reuses one) for clppm, and Mitsuba's own of REF_FACTOR (20)
+times its spp for Mitsuba; the two references against each other say whether the renderers agree. Mitsuba runs the
+llvm_ad_rgb variant when DRJIT_LIBLLVM_PATH lets it, else scalar_rgb; its spp is chosen from a
+timed render so that the render takes about SECONDS, and the time it took is reported. clppm's
+wall time is its passes' (--stats-json render_seconds), Mitsuba's its render's, both without
+loading and kernel compilation; CPU times include them. Since the error falls as 1/time, MSE x CPU
+time compares the two at equal error."""
+import json
+import os
+import subprocess
+import sys
+import tempfile
+import time
+
+import drjit as dr
+import mitsuba as mi
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(HERE)
+sys.path.insert(0, os.path.join(ROOT, "tests", "references"))
+import make_references  # noqa: E402
+
+
+def render(scene, spp, seed):
+    """Mitsuba's image, evaluated (the llvm variant computes lazily, when the image is used)."""
+    img = mi.render(scene, spp=spp, seed=seed)
+    dr.eval(img)
+    dr.sync_thread()
+    return img
+
+
+def compare(binary, image, ref):
+    out = subprocess.run([binary, "compare", image, ref, "--box", "4"], capture_output=True, text=True, check=True)
+    return json.loads(out.stdout)
+
+
+def main():
+    build = sys.argv[1] if len(sys.argv) > 1 else os.path.join(ROOT, "build")
+    seconds = float(sys.argv[2]) if len(sys.argv) > 2 else 15
+    size = int(sys.argv[3]) if len(sys.argv) > 3 else 128
+    ref_passes = int(sys.argv[4]) if len(sys.argv) > 4 else 40000
+    ref_factor = int(os.environ.get("REF_FACTOR", "20"))
+    binary = os.path.join(build, "clppm")
+    try:
+        mi.set_variant("llvm_ad_rgb")
+    except Exception:  # no LLVM that Dr.Jit accepts
+        mi.set_variant("scalar_rgb")
+    rows = []
+    with tempfile.TemporaryDirectory() as tmp:
+        scene_file = os.path.join(tmp, "cornell_diffuse.gltf")
+        subprocess.run([sys.executable, os.path.join(HERE, "cornell_diffuse.py"),
+                        os.path.join(ROOT, "scenes", "cornell_box.gltf"), scene_file], check=True)
+        common = [binary, scene_file, "--integrator", "pt", "--width", str(size), "--height", str(size), "--quiet",
+                  "--no-png"]
+        ref = os.environ.get("PEERS_REF", "")  # a cached reference of the same settings
+        if not os.path.isfile(ref):
+            ref = os.path.join(tmp, "ref.exr")
+            subprocess.run(common + ["--sampler", "independent", "--seed", "777", "--passes", str(ref_passes), "-o", ref],
+                           check=True)
+        for sampler in ("sobol", "independent"):
+            img = os.path.join(tmp, "clppm_%s.exr" % sampler)
+            stats = os.path.join(tmp, "stats.json")
+            c0 = os.times()
+            subprocess.run(common + ["--sampler", sampler, "--time", str(seconds), "-o", img, "--stats-json", stats],
+                           check=True)
+            c1 = os.times()
+            cpu = c1.children_user + c1.children_system - c0.children_user - c0.children_system
+            wall = json.load(open(stats))["render_seconds"]  # the passes alone, as Mitsuba's render below
+            rows.append(("clppm pt, %s" % sampler, wall, cpu, compare(binary, img, ref)))
+
+        scene = mi.load_dict(make_references.mitsuba_scene(scene_file, tmp, size=size, max_depth=17))
+        render(scene, 4, 0)  # compiles the kernels (llvm) outside the timed renders
+        spp = 16
+        for _ in range(2):  # the first estimate is mostly the fixed cost of a render
+            t0 = time.time()
+            render(scene, spp, 1)
+            spp = max(16, int(spp * seconds / max(time.time() - t0, 1e-3) / (4 if spp == 16 else 1)))
+        t0, c0 = time.time(), time.process_time()
+        img = render(scene, spp, 2)
+        wall, cpu = time.time() - t0, time.process_time() - c0
+        out = os.path.join(tmp, "mitsuba.exr")
+        mi.Bitmap(img).write(out)
+        # Mitsuba's own reference, REF_FACTOR times the samples: each renderer is measured against
+        # a converged image of its own, so what differs between the two renderers' models (a pixel
+        # filter's edge, an emitter's side) does not count as either one's noise.
+        mi_ref = os.path.join(tmp, "mitsuba_ref.exr")
+        mi.Bitmap(render(scene, spp * ref_factor, 99)).write(mi_ref)
+        rows.append(("Mitsuba %s path (%s, %d spp)" % (mi.__version__, mi.variant(), spp), wall, cpu,
+                     compare(binary, out, mi_ref)))
+        cross = compare(binary, mi_ref, ref)
+
+    print("Diffuse Cornell box, %dx%d, about %g s each; references: clppm pt, %d independent passes, and Mitsuba, "
+          "%d times its spp; %d cores" % (size, size, seconds, ref_passes, ref_factor, os.cpu_count()))
+    print("The two references against each other: mean ratio %.4f, box-4 relative MSE %.2e, p90 %.4f"
+          % (cross["mean_ratio"], cross["box_rel_mse"], cross["p90_rel_error"]))
+    print()
+    # The error falls as 1/time: MSE x CPU time compares renderers at equal error (lower is better).
+    print("| renderer | render wall s | CPU s | mean ratio | box-4 relative MSE | p90 relative error | MSE x CPU s |")
+    print("|---|---:|---:|---:|---:|---:|---:|")
+    for name, wall, cpu, c in rows:
+        print("| %s | %.1f | %.1f | %.4f | %.3e | %.4f | %.2e |" % (name, wall, cpu, c["mean_ratio"], c["box_rel_mse"],
+                                                                   c["p90_rel_error"], c["box_rel_mse"] * cpu))
+
+
+if __name__ == "__main__":
+    main()
