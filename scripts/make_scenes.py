@@ -568,6 +568,36 @@ def doorway(out_dir):
     return 2 * len(faces) + 2
 
 
+def skylight(out_dir):
+    """A closed room lit only by the sun through a small skylight: the photons of a directional
+    light cover the scene's bounding disc, and about one in fifty enters (issue 36's 'light through a
+    gap', for visual importance: Hachisuka and Jensen 2009). Double-sided white walls, diffuse only."""
+    b = GltfBuilder()
+    white = b.material("white", WHITE, specular=0.0, double_sided=True)
+    faces = [f for i, f in enumerate(box_room(b, (-1.0, 0.0, -1.0), (1.0, 2.0, 1.0))) if i != 1]
+    # The ceiling (y = 2, facing down) around a 0.4 x 0.4 opening centred at (0.3, -0.2).
+    hx, hz, h = 0.3, -0.2, 0.2
+    for (x0, x1, z0, z1) in ((-1.0, 1.0, -1.0, hz - h), (-1.0, 1.0, hz + h, 1.0), (-1.0, hx - h, hz - h, hz + h),
+                             (hx + h, 1.0, hz - h, hz + h)):
+        faces.append(quad(((x0 + x1) / 2, 2.0, (z0 + z1) / 2), ((x1 - x0) / 2, 0, 0), (0, 0, (z1 - z0) / 2)))
+    prims = []
+    for pos, nrm, idx in faces:
+        check_front_faces(pos, nrm, idx)
+        prims.append(b.primitive(pos, idx, nrm, material=white, index_type=UBYTE))
+    room = b.mesh(prims, "room")
+    sun_dir = normalize((-0.35, -1.0, 0.25))
+    sun = b.light({"name": "sun", "type": "directional", "color": [1.0, 1.0, 1.0], "intensity": 20.0})
+    cam_pos, target = (-0.85, 1.2, 0.9), (0.3, 0.4, -0.6)
+    cam = b.camera(1.1, 1.0, "inside")
+    b.scene([
+        b.node(name="room", mesh=room),
+        b.node(name="sun", light=sun, rotation=look_rotation(sun_dir)),
+        b.node(name="camera", camera=cam, translation=list(cam_pos), rotation=look_rotation(sub(target, cam_pos))),
+    ])
+    b.write_embedded(os.path.join(out_dir, "skylight.gltf"))
+    return 2 * len(faces)
+
+
 def bunny_1m(out_dir):
     """The same blob with 10x the triangles (1.0M), for bench/scaling_10x.sh: not shipped."""
     return bunny_100k(out_dir, 1012, "bunny_1m")
@@ -581,7 +611,7 @@ def main():
         return
     out_dir = sys.argv[1] if len(sys.argv) > 1 else os.path.join(here, "..", "scenes")
     os.makedirs(out_dir, exist_ok=True)
-    for make in (cornell_box, caustic, furnace, plane_point_light, bunny_100k, doorway, dispersion_box):
+    for make in (cornell_box, caustic, furnace, plane_point_light, bunny_100k, doorway, dispersion_box, skylight):
         print("%-20s %7d triangles" % (make.__name__, make(out_dir)))
 
 
