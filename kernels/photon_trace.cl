@@ -4,10 +4,14 @@
  * hit points (bsdf_gathered_lobes).
  * With skip_direct set (explicit direct lighting at hit points), the first diffuse hit of a
  * photon that came straight from the light is not stored: that light is sampled directly. */
+#ifndef CLPPM_PHOTON_TRACE_CL
+#define CLPPM_PHOTON_TRACE_CL
+
 #include "rng.cl"
 #include "lights.cl"
 #include "bsdf.cl"
 #include "dispersion.cl"
+#include "hash_grid.cl"
 
 void store_photon(__global Photon* photons, uint capacity, volatile __global uint* counter, float3 p, float3 n,
                   float3 flux, float3 wi, bool dispersed) {
@@ -24,42 +28,67 @@ void store_photon(__global Photon* photons, uint capacity, volatile __global uin
     ph->wi_oct = oct_encode(wi);
 }
 
-__kernel void photon_trace(SCENE_PARAMS, ulong seed, ulong pass, uint first_photon, uint num_photons, uint skip_direct,
-                           __global Photon* photons, uint capacity, volatile __global uint* counter) {
-    uint i = get_global_id(0);
-    if (i >= num_photons || info->num_lights == 0) return;
-    Rng rng = rng_make(seed, pass, first_photon + i, RNG_PHOTON);
+/* Where a Markov chain of photon paths (kernels/photon_chain.cl) keeps a photon: where some hit
+ * point may gather it, by the cells their spheres marked this pass. Elsewhere a photon adds
+ * nothing to any pixel, so that its path is invisible (V = 0) exactly when it stores none. */
+#ifdef PHOTON_VISUAL_IMPORTANCE
+#define SEEN_PARAMS , __constant GridInfo *seen_grid, __global const uchar *seen
+#define SEEN_ARGS , seen_grid, seen
+#define PHOTON_SEEN(p) (seen[grid_bucket(seen_grid, grid_cell(seen_grid, p))] != 0)
+#else
+#define SEEN_PARAMS
+#define SEEN_ARGS
+#define PHOTON_SEEN(p) true
+#endif
+
+/* Traces one photon path from rng's numbers and returns how many of its hits it stored. */
+uint photon_path(SCENE_PARAMS, Rng* rng, const PassWavelength* pw, uint skip_direct, __global Photon* photons,
+                 uint capacity, volatile __global uint* counter SEEN_PARAMS) {
     float3 org, dir, flux;
-    emit_photon(SCENE_ARGS, &rng, &org, &dir, &flux);
-    if (!(max3(flux) > 0.0f)) return;
-    const PassWavelength pw = pass_wavelength(seed, pass);
+    emit_photon(SCENE_ARGS, rng, &org, &dir, &flux);
+    if (!(max3(flux) > 0.0f)) return 0;
     bool dispersed = false; /* the photon has met a dispersive surface and carries W (dispersion.cl) */
+    uint stored = 0;
 
     for (uint bounce = 0; bounce < info->max_bounces; ++bounce) {
         Hit hit;
-        if (!trace_closest(SCENE_ARGS, org, dir, INFINITY, &hit)) return;
+        if (!trace_closest(SCENE_ARGS, org, dir, INFINITY, &hit)) return stored;
         Surface sf = make_surface(SCENE_ARGS, dir, &hit);
         if (HAS_VOLUME) {
             flux *= volume_transmittance(SCENE_ARGS, &sf, sf.t * length(dir));
-            if (!(max3(flux) > 0.0f)) return;
+            if (!(max3(flux) > 0.0f)) return stored;
         }
         Bsdf bsdf = surface_bsdf(SCENE_ARGS, &sf);
-        if (HAS_DISPERSION) disperse(SCENE_ARGS, &sf, &bsdf, &pw, &dispersed, &flux);
+        if (HAS_DISPERSION) disperse(SCENE_ARGS, &sf, &bsdf, pw, &dispersed, &flux);
         float3 wo = -dir;
         /* Stored where the eye pass puts hit points: on surfaces with lobes the gather keeps. */
-        if (!(skip_direct && bounce == 0) && bsdf_has_gathered(&bsdf))
+        if (!(skip_direct && bounce == 0) && bsdf_has_gathered(&bsdf) && PHOTON_SEEN(sf.p)) {
             store_photon(photons, capacity, counter, sf.p, sf.ns, flux, wo, dispersed);
+            ++stored;
+        }
         /* The BSDF is reciprocal, so sampling it from the photon's side scatters flux correctly. */
         BsdfSample s;
-        float u0 = rng_float(&rng), u1 = rng_float(&rng), u2 = rng_float(&rng);
-        if (!bsdf_sample(&bsdf, wo, LOBE_ALL, u0, u1, u2, &s)) return;
+        float u0 = rng_float(rng), u1 = rng_float(rng), u2 = rng_float(rng);
+        if (!bsdf_sample(&bsdf, wo, LOBE_ALL, u0, u1, u2, &s)) return stored;
         /* Russian roulette with the scattering weight as survival probability keeps flux near
          * constant. */
         float q = fmin(max3(s.weight), 1.0f);
-        if (q < 1.0f && !(rng_float(&rng) < q)) return;
+        if (q < 1.0f && !(rng_float(rng) < q)) return stored;
         flux *= s.weight / q;
         dir = s.wi;
         org = offset_origin(SCENE_ARGS, sf.p, s.below ? -sf.ng : sf.ng);
-        if (!(max3(flux) > 0.0f)) return;
+        if (!(max3(flux) > 0.0f)) return stored;
     }
+    return stored;
 }
+
+__kernel void photon_trace(SCENE_PARAMS, ulong seed, ulong pass, uint first_photon, uint num_photons, uint skip_direct,
+                           __global Photon* photons, uint capacity, volatile __global uint* counter SEEN_PARAMS) {
+    uint i = get_global_id(0);
+    if (i >= num_photons || info->num_lights == 0) return;
+    Rng rng = rng_make(seed, pass, first_photon + i, RNG_PHOTON);
+    const PassWavelength pw = pass_wavelength(seed, pass);
+    photon_path(SCENE_ARGS, &rng, &pw, skip_direct, photons, capacity, counter SEEN_ARGS);
+}
+
+#endif

@@ -1,6 +1,9 @@
 /* ppm_program.cl: the kernels of one progressive photon mapping render, built as one program. */
 #include "eye_pass.cl"
 #include "photon_trace.cl"
+#ifdef PHOTON_VISUAL_IMPORTANCE
+#include "photon_chain.cl"
+#endif
 #include "hash_grid.cl"
 #include "gather.cl"
 #include "direct_light.cl"

@@ -8,6 +8,12 @@
 typedef struct {
     ulong state;
     ulong inc;
+#ifdef PHOTON_VISUAL_IMPORTANCE
+    /* A Markov chain's photon path (kernels/photon_chain.cl): its first pss_dims numbers come from
+     * pss, the rest from the stream. */
+    const float* pss;
+    uint pss_next, pss_dims;
+#endif
 } Rng;
 
 ulong splitmix64(ulong x) {
@@ -26,7 +32,12 @@ uint rng_next(Rng* r) {
 }
 
 /* Uniform in [0, 1): 24 random bits, exactly representable. */
-float rng_float(Rng* r) { return (float)(rng_next(r) >> 8) * (1.0f / 16777216.0f); }
+float rng_float(Rng* r) {
+#ifdef PHOTON_VISUAL_IMPORTANCE
+    if (r->pss_next < r->pss_dims) return r->pss[r->pss_next++];
+#endif
+    return (float)(rng_next(r) >> 8) * (1.0f / 16777216.0f);
+}
 
 /* purpose separates the streams of different kernels that share (pass, index). */
 Rng rng_make(ulong seed, ulong pass, ulong index, uint purpose) {
@@ -35,6 +46,10 @@ Rng rng_make(ulong seed, ulong pass, ulong index, uint purpose) {
     ulong b = splitmix64(a ^ splitmix64(index));
     r.state = 0;
     r.inc = (b << 1) | 1UL;
+#ifdef PHOTON_VISUAL_IMPORTANCE
+    r.pss = 0;
+    r.pss_next = r.pss_dims = 0;
+#endif
     rng_next(&r);
     r.state += splitmix64(b);
     rng_next(&r);
@@ -47,5 +62,6 @@ Rng rng_make(ulong seed, ulong pass, ulong index, uint purpose) {
 #define RNG_PATH 4u
 #define RNG_VCM_LIGHT 5u
 #define RNG_VCM_CAMERA 6u
+#define RNG_PHOTON_TAIL 7u
 
 #endif

@@ -281,6 +281,27 @@ typedef struct {
     u32 pad0;
 } GridInfo; /* 32 bytes */
 
+/* Visual importance for photons (Hachisuka and Jensen 2009, "Robust adaptive photon tracing using
+ * photon path visibility"): one Markov chain of photon paths per photon index of a pass, whose
+ * target is the path's visibility V(u) in primary sample space. The state is its first
+ * PHOTON_CHAIN_DIMS numbers, and the seed of the stream that continues them (kernels/
+ * photon_chain.cl). step > 0 once the chain has a visible state; 0 before. */
+#define PHOTON_CHAIN_DIMS 12
+#define PHOTON_CHAIN_STEPS 32 /* steps of each chain per pass: one uniform path each */
+typedef struct {
+    float u[PHOTON_CHAIN_DIMS]; /* the state's first numbers, each in [0, 1) */
+    u32 tail[2];                /* the seed of the numbers after them */
+    float step;                 /* the mutation's size, adapted towards an acceptance of 0.234 */
+    u32 mutations;              /* mutations proposed since the chain found its first state */
+} PhotonChain;                  /* 64 bytes */
+
+/* What a batch's chains did, summed by atomics (PhotonChains, src/integrators/photon_chains.h). */
+#define CHAIN_UNIFORM_VISIBLE 0 /* uniform paths that were visible (V_c of Sec. 4.2) */
+#define CHAIN_STATES 1          /* chains that deposited a state's photons */
+#define CHAIN_ACCEPTED 2        /* mutations accepted */
+#define CHAIN_MUTATIONS 3       /* mutations proposed */
+#define CHAIN_COUNTS 4
+
 /* Vertex connection and merging (kernels/vcm.cl): a light sub-path's vertex on a surface with a
  * non-delta lobe. The grid and the gather read pos, normal_oct and wi_oct as a photon's; the
  * connections rebuild the surface from (prim, u, v) and the arrival direction. */

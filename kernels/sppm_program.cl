@@ -1,6 +1,9 @@
 /* sppm_program.cl: the kernels of a stochastic or probabilistic PPM render (EYE_SLOTS 1). */
 #include "eye_pass.cl"
 #include "photon_trace.cl"
+#ifdef PHOTON_VISUAL_IMPORTANCE
+#include "photon_chain.cl"
+#endif
 #include "hash_grid.cl"
 #include "gather.cl"
 #include "direct_light.cl"

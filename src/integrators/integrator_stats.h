@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "device/cl.h"
+#include "shared_types.h"
 
 namespace clppm {
 
@@ -25,6 +26,10 @@ struct IntegratorStats {
     std::vector<uint32_t> device_photons;        // photons each device traced in the last pass, primary first
     std::vector<uint32_t> rank_photons;          // photons (path tracer: pixels) each MPI rank took in the last pass
     uint64_t local_work = 0;                     // photons (path tracer: pixel samples) this process traced
+    // --visual-importance (integrators/photon_chains.h): the chains' counts over all passes
+    // (kernels/shared_types.h CHAIN_*): visible uniform paths, states deposited, mutations
+    // accepted and proposed.
+    uint64_t chain_counts[CHAIN_COUNTS] = {0, 0, 0, 0};
     // Kernel events of the current pass, resolved into phase_seconds at the pass's end so that
     // timing never adds a synchronisation point inside the pass.
     std::vector<std::pair<std::string, cl::Event>> pending_events;

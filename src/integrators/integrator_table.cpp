@@ -27,8 +27,8 @@ IntegratorMemory pt_memory(const RenderSettings&, size_t pixels, bool errors) {
     return PtIntegrator::memory_needed(pixels, errors);
 }
 IntegratorMemory vcm_memory(const RenderSettings&, size_t pixels, bool) { return VcmIntegrator::memory_needed(pixels); }
-size_t photon_memory(const RenderSettings& settings, size_t, const DeviceInfo& device) {
-    return PhotonMap::memory_needed(settings, device);
+size_t photon_memory(const RenderSettings& settings, size_t pixels, const DeviceInfo& device) {
+    return PhotonMap::memory_needed(settings, device, pixels);
 }
 size_t no_transport_memory(const RenderSettings&, size_t, const DeviceInfo&) { return 0; }
 size_t light_vertex_memory(const RenderSettings&, size_t pixels, const DeviceInfo& device) {
@@ -102,6 +102,7 @@ std::string integrator_build_options(const RenderSettings& settings, const Devic
     if (settings.filter == PixelFilter::Tent) options += " -DPIXEL_FILTER_TENT";
     // The path tracer's numbers, compiled in alone: PoCL if-converts a run-time choice into both.
     if (settings.sampler == Sampler::Independent) options += " -DPATH_SAMPLER_INDEPENDENT";
+    if (settings.visual_importance) options += " -DPHOTON_VISUAL_IMPORTANCE";
     if (!features.empty()) options += " " + features;
     return options;
 }

@@ -7,24 +7,44 @@
 
 namespace clppm {
 
+namespace {
+
+// Uniform paths each traced item takes: one per photon, or PHOTON_CHAIN_STEPS per chain.
+uint64_t paths_per_item(const RenderSettings& settings) { return settings.visual_importance ? PHOTON_CHAIN_STEPS : 1; }
+
+} // namespace
+
 PhotonMap::PhotonMap(const DeviceContext& dc, const DeviceScene& scene, const RenderSettings& settings,
                      const cl::Program& program, IntegratorStats& stats, uint64_t max_batch_photons)
     : dc_(dc), scene_(scene), settings_(settings), stats_(stats), grid_(dc, program, stats),
-      trace_(
-          dc, sizeof(dev::Photon), kStoredPerEmitted,
-          std::min<uint64_t>({settings.photons, kMaxBatchPhotons, max_batch_photons > 0 ? max_batch_photons : ~0ull}),
-          "a single photon", "hits") {
-    k_photon_ = cl::Kernel(program, "photon_trace");
+      trace_(dc, sizeof(dev::Photon), kStoredPerEmitted * paths_per_item(settings),
+             std::min<uint64_t>({(settings.photons + paths_per_item(settings) - 1) / paths_per_item(settings),
+                                 kMaxBatchPhotons / paths_per_item(settings),
+                                 max_batch_photons > 0 ? max_batch_photons : ~0ull}),
+             settings.visual_importance ? "a single photon chain" : "a single photon", "hits") {
+    if (settings.visual_importance) {
+        k_photon_ = cl::Kernel(program, "photon_chain_trace");
+        chains_ = std::make_unique<PhotonChains>(dc, program, stats,
+                                                 (settings.photons + PHOTON_CHAIN_STEPS - 1) / PHOTON_CHAIN_STEPS);
+    } else {
+        k_photon_ = cl::Kernel(program, "photon_trace");
+    }
     k_gather_ = cl::Kernel(program, "gather");
 }
 
-size_t PhotonMap::memory_needed(const RenderSettings& settings, const DeviceInfo& device) {
+size_t PhotonMap::memory_needed(const RenderSettings& settings, const DeviceInfo& device, uint64_t hitpoints) {
     const uint64_t capacity = BatchedTrace::initial_capacity(std::min<uint64_t>(settings.photons, kMaxBatchPhotons),
                                                              kStoredPerEmitted, sizeof(dev::Photon), device);
-    return 2 * size_t(capacity) * sizeof(dev::Photon) + HashGrid::bytes_for(capacity);
+    return 2 * size_t(capacity) * sizeof(dev::Photon) + HashGrid::bytes_for(capacity) +
+           (settings.visual_importance
+                ? PhotonChains::memory_needed((settings.photons + PHOTON_CHAIN_STEPS - 1) / PHOTON_CHAIN_STEPS,
+                                              hitpoints)
+                : 0);
 }
 
-size_t PhotonMap::device_bytes() const { return trace_.device_bytes() + grid_.device_bytes(); }
+size_t PhotonMap::device_bytes() const {
+    return trace_.device_bytes() + grid_.device_bytes() + (chains_ ? chains_->device_bytes() : 0);
+}
 
 void PhotonMap::run_pass(uint64_t pass, uint32_t first_photon, uint32_t count_photons, const cl::Buffer& hitpoints,
                          const cl::Buffer& stats, uint32_t n, float global_r2, double typical_radius, double max_radius,
@@ -34,22 +54,34 @@ void PhotonMap::run_pass(uint64_t pass, uint32_t first_photon, uint32_t count_ph
         if (n > 0) dc_.queue.enqueueFillBuffer(out, cl_uchar(0), 0, size_t(n) * sizeof(dev::PassFlux));
         return;
     }
+    if (chains_) { // where hit points may gather: cells of the initial radius
+        const double cell = std::max(max_radius, 2.0 * scene_.info.radius / double(1 << 20));
+        chains_->mark(hitpoints, stats, n, global_r2, scene_.bounds_min, cell);
+    }
+    // Items: photons [first, first + count), or with chains every chain (one device and process).
+    const uint32_t first_item = chains_ ? 0 : first_photon;
+    const uint32_t end_item = chains_
+                                  ? uint32_t((uint64_t(count_photons) + PHOTON_CHAIN_STEPS - 1) / PHOTON_CHAIN_STEPS)
+                                  : first_photon + count_photons;
     trace_.run(
-        first_photon, first_photon + count_photons, [&](uint32_t first, uint32_t count) { trace(pass, first, count); },
+        first_item, end_item, [&](uint32_t first, uint32_t count) { trace(pass, first, count); },
         [&](uint32_t, uint32_t, uint32_t stored) {
+            if (chains_) chains_->commit_batch();
             build_grid(stored, typical_radius, max_radius);
             gather(pass, hitpoints, stats, n, global_r2, batches_ > 0, out);
             stats_.photons_stored += stored;
             ++batches_;
         });
+    if (chains_) chains_->end_pass();
     stats_.photon_bytes = device_bytes();
     stats_.photon_batches = batches_;
 }
 
 void PhotonMap::trace(uint64_t pass, uint32_t first, uint32_t count) {
-    set_args(k_photon_, scene_.set_scene_args(k_photon_), cl_ulong(settings_.seed), cl_ulong(pass), cl_uint(first),
-             cl_uint(count), cl_uint(settings_.direct == DirectLighting::Sample ? 1 : 0), trace_.records(),
-             cl_uint(trace_.capacity()), trace_.counter());
+    const int a = set_args(k_photon_, scene_.set_scene_args(k_photon_), cl_ulong(settings_.seed), cl_ulong(pass),
+                           cl_uint(first), cl_uint(count), cl_uint(settings_.direct == DirectLighting::Sample ? 1 : 0),
+                           trace_.records(), cl_uint(trace_.capacity()), trace_.counter());
+    if (chains_) chains_->set_trace_args(k_photon_, a, uint32_t(settings_.photons));
     cl::Event ev;
     enqueue_1d(dc_.queue, k_photon_, count, &ev);
     add_event_time(stats_, "photon_trace", ev);

@@ -4,6 +4,7 @@
 // batches whose gathers add up exactly (fixed-point sums), giving the same image.
 #pragma once
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -12,6 +13,7 @@
 #include "integrators/batched_trace.h"
 #include "integrators/hash_grid.h"
 #include "integrators/integrator_stats.h"
+#include "integrators/photon_chains.h"
 #include "integrators/render_settings.h"
 #include "scene/device_scene.h"
 
@@ -48,9 +50,13 @@ public:
 
     size_t device_bytes() const;
 
+    // With --visual-importance: the chains the photons come from (nullptr without).
+    PhotonChains* chains() const { return chains_.get(); }
+
     // Device memory a pass of settings.photons photons needs at most: both photon buffers within
-    // the budget (a quarter of the device), and the grid's table sized for them.
-    static size_t memory_needed(const RenderSettings& settings, const DeviceInfo& device);
+    // the budget (a quarter of the device), and the grid's table sized for them; with
+    // --visual-importance, the chains and the table of cells that `hitpoints` hit points mark.
+    static size_t memory_needed(const RenderSettings& settings, const DeviceInfo& device, uint64_t hitpoints);
 
 private:
     void trace(uint64_t pass, uint32_t first, uint32_t count);
@@ -69,6 +75,7 @@ private:
     cl::Kernel k_second_;
     cl::Buffer second_out_;
     std::string second_phase_;
+    std::unique_ptr<PhotonChains> chains_;
     BatchedTrace trace_; // last: destroyed first, waiting for the queue
     uint32_t batches_ = 0;
 };

@@ -3,6 +3,7 @@
 #include "integrators/checkpoint_checks.h"
 #include "integrators/direct_light.h"
 #include "integrators/progressive_update.h"
+#include "util/error.h"
 
 namespace clppm {
 
@@ -10,6 +11,8 @@ PhotonMappingIntegrator::PhotonMappingIntegrator(const DeviceContext& dc, const 
                                                  const RenderSettings& settings, const cl::Program& program,
                                                  const SecondaryDevices& secondaries)
     : IntegratorBase(dc, scene, settings, program) {
+    if (settings.visual_importance && settings.integrator == "pppm")
+        throw Error("--visual-importance: PPPM's passes are independent estimates; use --integrator sppm or ppm");
     photons_ = std::make_unique<PhotonPasses>(dc, scene, settings_, program, stats_, secondaries.devices,
                                               secondaries.program_file, secondaries.build_options);
     k_eye_ = cl::Kernel(program, "eye_pass");
@@ -29,12 +32,18 @@ void PhotonMappingIntegrator::progressive_update(uint32_t n) {
     if (n > 0) stats_.mean_radius = typical_radius_ = mean, max_radius_ = mx;
 }
 
+double PhotonMappingIntegrator::film_photons() const {
+    const PhotonChains* chains = photons_->chains();
+    return chains ? chains->effective_emitted(stats_.photons_emitted) : double(stats_.photons_emitted);
+}
+
 void PhotonMappingIntegrator::save(Checkpoint& ck) {
     IntegratorBase::save(ck);
     save_state(ck);
     ck.put("stats", read_buffer<dev::HitStats>(dc_.queue, stats_buf_, hit_slots_));
     ck.header["typical_radius"] = typical_radius_;
     ck.header["max_radius"] = max_radius_;
+    if (PhotonChains* chains = photons_->chains()) chains->save(ck);
     save_error_stats(ck);
 }
 
@@ -47,6 +56,7 @@ void PhotonMappingIntegrator::restore(const Checkpoint& ck) {
     write_buffer(dc_.queue, stats_buf_, hstats);
     typical_radius_ = checkpoint_number(ck, "typical_radius", 0, r0 * (1 + 1e-9));
     max_radius_ = checkpoint_number(ck, "max_radius", 0, r0 * (1 + 1e-9));
+    if (PhotonChains* chains = photons_->chains()) chains->restore(ck);
     restore_error_stats(ck, stats_buf_);
     restore_state(ck);
 }

@@ -31,6 +31,9 @@ protected:
     // What else a checkpoint holds of the integrator (restored after the hit statistics).
     virtual void save_state(Checkpoint& ck) const = 0;
     virtual void restore_state(const Checkpoint& ck) = 0;
+    // The photon count the film divides tau by: N_emitted, or with --visual-importance the
+    // chains' effective count (PhotonChains::effective_emitted).
+    double film_photons() const;
     // Phi / M: the power each photon of a pass carries.
     double power_per_photon() const { return double(scene_.info.total_power) / double(settings_.photons); }
 

@@ -54,6 +54,9 @@ PhotonPasses::PhotonPasses(const DeviceContext& primary, const DeviceScene& scen
                            const std::string& build_options)
     : dc_(primary), settings_(settings), stats_(stats), primary_(primary, scene, settings, program, stats),
       fan_out_(compute_units(primary.info, secondaries)) {
+    // A chain lives on the device and in the process that traces its photon index every pass.
+    if (settings.visual_importance && (!secondaries.empty() || cluster().distributed()))
+        throw Error("--visual-importance runs on one device in one process: give a single --device, no mpirun");
     for (const DeviceInfo& info : secondaries)
         workers_.push_back(std::make_unique<Worker>(info, primary, scene, settings, program_file, build_options));
 }

@@ -42,6 +42,9 @@ public:
     // (their photons would miss the second gather).
     void set_second_gather(const cl::Kernel& kernel, const cl::Buffer& out, const std::string& phase);
 
+    // With --visual-importance, the chains the photons come from (one device, one process).
+    PhotonChains* chains() const { return primary_.chains(); }
+
 private:
     struct Worker;
     // This process's photons [first_photon, first_photon + M), on its devices.

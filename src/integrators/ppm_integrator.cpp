@@ -187,7 +187,7 @@ void PpmIntegrator::restore_state(const Checkpoint& ck) {
 
 Image PpmIntegrator::image() {
     set_args(k_film_, 0, stats_buf_, pixel_first_, emitted_, cl_uint(num_pixels_), cl_uint(settings_.spp),
-             cl_double(scene_.info.total_power), cl_double(double(stats_.photons_emitted)),
+             cl_double(scene_.info.total_power), cl_double(film_photons()),
              cl_double(double(settings_.direct == DirectLighting::Sample ? stats_.passes : 0)), image_buf_);
     enqueue_1d(dc_.queue, k_film_, num_pixels_);
     return read_film(dc_, image_buf_, scene_.camera.width, scene_.camera.height);

@@ -32,6 +32,9 @@ struct RenderSettings : SceneSettings {
     // The path tracer's numbers: Owen-scrambled Sobol' points over the passes, or independent
     // random streams (bench/RESULTS.md, issue 36). The other integrators draw independent ones.
     Sampler sampler = Sampler::Sobol;
+    // PPM and SPPM: photon paths from Markov chains whose target is their visibility to the hit
+    // points (Hachisuka and Jensen 2009; integrators/photon_chains.h), not independent ones.
+    bool visual_importance = false;
     // VCM and BPT: one technique alone (VCM_MODE_* of kernels/vcm_mis.h), for the tests that
     // compare the techniques; -1: the integrator's own.
     int vcm_techniques = -1;

@@ -127,7 +127,7 @@ void SppmIntegrator::restore_state(const Checkpoint& ck) {
 Image SppmIntegrator::image() {
     int a = set_args(k_film_, 0, stats_buf_, cl_uint(num_pixels_));
     if (probabilistic_) a = set_args(k_film_, a, cl_double(power_per_photon()));
-    else a = set_args(k_film_, a, cl_double(scene_.info.total_power), cl_double(double(stats_.photons_emitted)));
+    else a = set_args(k_film_, a, cl_double(scene_.info.total_power), cl_double(film_photons()));
     set_args(k_film_, a, cl_double(double(stats_.passes)), image_buf_);
     enqueue_1d(dc_.queue, k_film_, num_pixels_);
     return read_film(dc_, image_buf_, scene_.camera.width, scene_.camera.height);

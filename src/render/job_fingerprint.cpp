@@ -36,7 +36,8 @@ Json job_fingerprint(const RenderOptions& o, const DeviceScene& ds, uint64_t sce
             {"--filter", to_string(s.filter)},
             {"--aperture", s.aperture},
             {"--focus-distance", s.focus_distance},
-            {"--sampler", to_string(s.sampler)}};
+            {"--sampler", to_string(s.sampler)},
+            {"--visual-importance", s.visual_importance}};
 }
 
 Checkpoint open_resume(const std::string& path, const Json& fingerprint) {

@@ -311,6 +311,15 @@ Json RenderJob::stats_json(const RenderEnd& end, const Image* given) const {
                                 {"photons", st.photon_bytes},
                                 {"total", ds_->device_bytes + st.device_bytes + st.photon_bytes}};
     j["photon_batches_per_pass"] = st.photon_batches;
+    if (options_.settings.visual_importance) {
+        const uint64_t* c = st.chain_counts;
+        j["visual_importance"] = {
+            {"uniform_visible_fraction",
+             st.photons_emitted ? double(c[CHAIN_UNIFORM_VISIBLE]) / double(st.photons_emitted) : 0.0},
+            {"states_deposited", c[CHAIN_STATES]},
+            {"mutation_acceptance", c[CHAIN_MUTATIONS] ? double(c[CHAIN_ACCEPTED]) / double(c[CHAIN_MUTATIONS]) : 0.0},
+            {"mutations", c[CHAIN_MUTATIONS]}};
+    }
     j["device_photons_last_pass"] = st.device_photons;
     j["degenerate_triangles_skipped"] = scene_.degenerate_triangles_skipped;
     j["nonfinite_pixels"] = count_nonfinite(img);

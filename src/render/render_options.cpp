@@ -48,6 +48,7 @@ Json options_every_rank_shares(const RenderOptions& o) {
             {"--max-bounces", s.max_bounces},
             {"--filter", to_string(s.filter)},
             {"--sampler", to_string(s.sampler)},
+            {"--visual-importance", s.visual_importance},
             {"--aperture", s.aperture},
             {"--focus-distance", s.focus_distance},
             {"--passes", o.passes ? Json(*o.passes) : Json("default")},

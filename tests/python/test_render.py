@@ -29,6 +29,15 @@ def test_a_scene_file_and_environment_options(cli_image):
     assert np.array_equal(image, cli_image(scene, **dict(options, env_color="0.2,0.3,0.4")))
 
 
+def test_visual_importance_by_keyword(cli_image):
+    """The command line's flag as a keyword: the same Markov chains, the same image."""
+    scene = os.path.join(DATA, "..", "..", "scenes", "skylight.gltf")
+    options = dict(SMALL, integrator="sppm", visual_importance=True, passes=2)
+    image = clppm.render(scene, **options)
+    assert np.isfinite(image).all() and image.mean() > 0.01
+    assert np.array_equal(image, cli_image(scene, **options))
+
+
 def test_the_defaults_are_the_command_lines():
     with clppm.Renderer(**SMALL) as r:
         s = r.settings

@@ -121,6 +121,17 @@ def mitsuba_scene(name, tmp, size=SIZE, max_depth=-1):
                          "pixel_format": "rgb"},
                 "sampler": {"type": "independent"}}
             continue
+        light = node.get("extensions", {}).get("KHR_lights_punctual", {}).get("light")
+        if light is not None:
+            # A directional light of E lux is irradiance E in clppm's units (README.md, "Punctual
+            # lights"): Mitsuba's `directional` emitter of that irradiance, along the node's -Z.
+            L = doc["extensions"]["KHR_lights_punctual"]["lights"][light]
+            assert L["type"] == "directional", "only directional lights are mapped"
+            q = node.get("rotation", [0, 0, 0, 1])
+            e = L.get("intensity", 1.0)
+            scene["light_%d" % light] = {"type": "directional", "direction": list(quat_rotate(q, (0, 0, -1))),
+                                         "irradiance": {"type": "rgb", "value": [c * e for c in L.get("color", [1, 1, 1])]}}
+            continue
         if "mesh" not in node:
             continue
         assert "rotation" not in node and "scale" not in node, "mesh nodes are translated only"
