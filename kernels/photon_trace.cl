@@ -13,32 +13,46 @@
 #include "dispersion.cl"
 #include "hash_grid.cl"
 
-void store_photon(__global Photon* photons, uint capacity, volatile __global uint* counter, float3 p, float3 n,
-                  float3 flux, float3 wi, bool dispersed) {
+/* A stored photon: hit point p with normal n, flux, direction wi back along the path. */
+Photon make_photon(float3 p, float3 n, float3 flux, float3 wi, bool dispersed) {
+    Photon ph;
+    ph.pos[0] = p.x;
+    ph.pos[1] = p.y;
+    ph.pos[2] = p.z;
+    ph.normal_oct = oct_encode(n);
+    ph.flux[0] = with_dispersed(flux.x, dispersed);
+    ph.flux[1] = flux.y;
+    ph.flux[2] = flux.z;
+    ph.wi_oct = oct_encode(wi);
+    return ph;
+}
+
+void put_photon(__global Photon* photons, uint capacity, volatile __global uint* counter, const Photon* ph) {
     uint slot = atomic_inc(counter);
     if (slot >= capacity) return; /* the host sees counter > capacity, grows the buffer, re-runs */
-    __global Photon* ph = &photons[slot];
-    ph->pos[0] = p.x;
-    ph->pos[1] = p.y;
-    ph->pos[2] = p.z;
-    ph->normal_oct = oct_encode(n);
-    ph->flux[0] = with_dispersed(flux.x, dispersed);
-    ph->flux[1] = flux.y;
-    ph->flux[2] = flux.z;
-    ph->wi_oct = oct_encode(wi);
+    photons[slot] = *ph;
 }
 
 /* Where a Markov chain of photon paths (kernels/photon_chain.cl) keeps a photon: where some hit
  * point may gather it, by the cells their spheres marked this pass. Elsewhere a photon adds
  * nothing to any pixel, so that its path is invisible (V = 0) exactly when it stores none. */
 #ifdef PHOTON_VISUAL_IMPORTANCE
-#define SEEN_PARAMS , __constant GridInfo *seen_grid, __global const uchar *seen
-#define SEEN_ARGS , seen_grid, seen
 #define PHOTON_SEEN(p) (seen[grid_bucket(seen_grid, grid_cell(seen_grid, p))] != 0)
+/* The chain also records every photon the path would store, seen or not, up to
+ * PHOTON_CHAIN_CACHE of them (*n_rec counts them all), to deposit its state again without tracing
+ * it (photon_chain.cl). */
+#define SEEN_PARAMS , __constant GridInfo *seen_grid, __global const uchar *seen, Photon *rec, uint *n_rec
+#define SEEN_ARGS , seen_grid, seen, rec, n_rec
+#define RECORD_PHOTON(ph)                                                                                              \
+    do {                                                                                                               \
+        if (*n_rec < PHOTON_CHAIN_CACHE) rec[*n_rec] = (ph);                                                           \
+        ++*n_rec;                                                                                                      \
+    } while (0)
 #else
+#define PHOTON_SEEN(p) true
 #define SEEN_PARAMS
 #define SEEN_ARGS
-#define PHOTON_SEEN(p) true
+#define RECORD_PHOTON(ph)
 #endif
 
 /* Traces one photon path from rng's numbers and returns how many of its hits it stored. */
@@ -62,9 +76,13 @@ uint photon_path(SCENE_PARAMS, Rng* rng, const PassWavelength* pw, uint skip_dir
         if (HAS_DISPERSION) disperse(SCENE_ARGS, &sf, &bsdf, pw, &dispersed, &flux);
         float3 wo = -dir;
         /* Stored where the eye pass puts hit points: on surfaces with lobes the gather keeps. */
-        if (!(skip_direct && bounce == 0) && bsdf_has_gathered(&bsdf) && PHOTON_SEEN(sf.p)) {
-            store_photon(photons, capacity, counter, sf.p, sf.ns, flux, wo, dispersed);
-            ++stored;
+        if (!(skip_direct && bounce == 0) && bsdf_has_gathered(&bsdf)) {
+            const Photon ph = make_photon(sf.p, sf.ns, flux, wo, dispersed);
+            RECORD_PHOTON(ph);
+            if (PHOTON_SEEN(sf.p)) {
+                put_photon(photons, capacity, counter, &ph);
+                ++stored;
+            }
         }
         /* The BSDF is reciprocal, so sampling it from the photon's side scatters flux correctly. */
         BsdfSample s;
@@ -82,12 +100,23 @@ uint photon_path(SCENE_PARAMS, Rng* rng, const PassWavelength* pw, uint skip_dir
     return stored;
 }
 
+#ifdef PHOTON_VISUAL_IMPORTANCE
+#define SEEN_KERNEL_PARAMS , __constant GridInfo *seen_grid, __global const uchar *seen
+#else
+#define SEEN_KERNEL_PARAMS
+#endif
+
 __kernel void photon_trace(SCENE_PARAMS, ulong seed, ulong pass, uint first_photon, uint num_photons, uint skip_direct,
-                           __global Photon* photons, uint capacity, volatile __global uint* counter SEEN_PARAMS) {
+                           __global Photon* photons, uint capacity,
+                           volatile __global uint* counter SEEN_KERNEL_PARAMS) {
     uint i = get_global_id(0);
     if (i >= num_photons || info->num_lights == 0) return;
     Rng rng = rng_make(seed, pass, first_photon + i, RNG_PHOTON);
     const PassWavelength pw = pass_wavelength(seed, pass);
+#ifdef PHOTON_VISUAL_IMPORTANCE
+    Photon rec[PHOTON_CHAIN_CACHE];
+    uint recorded = 0, *n_rec = &recorded;
+#endif
     photon_path(SCENE_ARGS, &rng, &pw, skip_direct, photons, capacity, counter SEEN_ARGS);
 }
 

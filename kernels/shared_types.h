@@ -288,12 +288,16 @@ typedef struct {
  * photon_chain.cl). step > 0 once the chain has a visible state; 0 before. */
 #define PHOTON_CHAIN_DIMS 12
 #define PHOTON_CHAIN_STEPS 32 /* steps of each chain per pass: one uniform path each */
+#define PHOTON_CHAIN_CACHE 8  /* photons of a state kept to deposit it again without tracing it */
+#define PHOTON_CHAIN_UNCACHED 0xffffffffu
 typedef struct {
     float u[PHOTON_CHAIN_DIMS]; /* the state's first numbers, each in [0, 1) */
     u32 tail[2];                /* the seed of the numbers after them */
     float step;                 /* the mutation's size, adapted towards an acceptance of 0.234 */
     u32 mutations;              /* mutations proposed since the chain found its first state */
-} PhotonChain;                  /* 64 bytes */
+    u32 cached;                 /* the state's photons in the cache, or PHOTON_CHAIN_UNCACHED */
+    u32 pad[3];
+} PhotonChain; /* 80 bytes */
 
 /* What a batch's chains did, summed by atomics (PhotonChains, src/integrators/photon_chains.h). */
 #define CHAIN_UNIFORM_VISIBLE 0 /* uniform paths that were visible (V_c of Sec. 4.2) */

@@ -114,7 +114,8 @@ CLPPM_CHECK_OFFSET(LightVertex, path_length, 60);
 
 CLPPM_CHECK_SIZE(GridInfo, 32);
 CLPPM_CHECK_OFFSET(GridInfo, inv_cell, 16);
-CLPPM_CHECK_SIZE(PhotonChain, 64);
+CLPPM_CHECK_SIZE(PhotonChain, 80);
+CLPPM_CHECK_OFFSET(PhotonChain, cached, 64);
 CLPPM_CHECK_OFFSET(PhotonChain, tail, 48);
 CLPPM_CHECK_OFFSET(PhotonChain, step, 56);
 

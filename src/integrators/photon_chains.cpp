@@ -16,10 +16,11 @@ namespace {
 // a table with room for them at a typical radius (27 each) and few collisions.
 uint32_t seen_table_size(uint64_t hitpoints) { return hash_grid_table_size(64 * std::max<uint64_t>(hitpoints, 1)); }
 
+size_t cache_bytes(uint64_t chains) { return size_t(chains) * PHOTON_CHAIN_CACHE * sizeof(dev::Photon); }
+
 } // namespace
 
-PhotonChains::PhotonChains(const DeviceContext& dc, const cl::Program& program, IntegratorStats& stats,
-                           uint64_t chains)
+PhotonChains::PhotonChains(const DeviceContext& dc, const cl::Program& program, IntegratorStats& stats, uint64_t chains)
     : dc_(dc), stats_(stats), chains_count_(chains) {
     k_mark_ = cl::Kernel(program, "visibility_mark");
     const size_t bytes = size_t(chains) * sizeof(dev::PhotonChain);
@@ -27,16 +28,18 @@ PhotonChains::PhotonChains(const DeviceContext& dc, const cl::Program& program, 
         b = cl::Buffer(dc.context, CL_MEM_READ_WRITE, bytes);
         dc.queue.enqueueFillBuffer(b, cl_uchar(0), 0, bytes); // step 0: no state yet
     }
+    for (cl::Buffer& b : cache_) b = cl::Buffer(dc.context, CL_MEM_READ_WRITE, cache_bytes(chains));
     counts_ = cl::Buffer(dc.context, CL_MEM_READ_WRITE, CHAIN_COUNTS * sizeof(cl_uint));
     grid_info_ = cl::Buffer(dc.context, CL_MEM_READ_ONLY, sizeof(dev::GridInfo));
 }
 
 size_t PhotonChains::memory_needed(uint64_t chains, uint64_t hitpoints) {
-    return 2 * size_t(chains) * sizeof(dev::PhotonChain) + seen_table_size(hitpoints);
+    return 2 * (size_t(chains) * sizeof(dev::PhotonChain) + cache_bytes(chains)) + seen_table_size(hitpoints);
 }
 
 size_t PhotonChains::device_bytes() const {
-    return 2 * size_t(chains_count_) * sizeof(dev::PhotonChain) + table_size_ + sizeof(dev::GridInfo);
+    return 2 * (size_t(chains_count_) * sizeof(dev::PhotonChain) + cache_bytes(chains_count_)) + table_size_ +
+           sizeof(dev::GridInfo);
 }
 
 void PhotonChains::mark(const cl::Buffer& hitpoints, const cl::Buffer& hit_stats, uint32_t n, float global_r2,
@@ -61,17 +64,24 @@ void PhotonChains::mark(const cl::Buffer& hitpoints, const cl::Buffer& hit_stats
 
 void PhotonChains::set_trace_args(cl::Kernel& kernel, int a, uint32_t photons_per_pass) {
     dc_.queue.enqueueFillBuffer(counts_, cl_uint(0), 0, CHAIN_COUNTS * sizeof(cl_uint));
-    set_args(kernel, a, grid_info_, seen_, chains_[current_], chains_[1 - current_], counts_,
-             cl_uint(photons_per_pass));
+    set_args(kernel, a, grid_info_, seen_, chains_[current_], chains_[1 - current_], cache_[current_],
+             cache_[1 - current_], counts_, cl_uint(photons_per_pass));
 }
 
 void PhotonChains::commit_batch() {
     cl_uint c[CHAIN_COUNTS];
     dc_.queue.enqueueReadBuffer(counts_, CL_TRUE, 0, sizeof c, c);
-    for (int k = 0; k < CHAIN_COUNTS; ++k) stats_.chain_counts[k] += c[k];
+    for (int k = 0; k < CHAIN_COUNTS; ++k) pending_[k] += c[k];
 }
 
-void PhotonChains::end_pass() { current_ = 1 - current_; }
+void PhotonChains::end_pass() {
+    current_ = 1 - current_;
+    for (int k = 0; k < CHAIN_COUNTS; ++k) stats_.chain_counts[k] += pending_[k], pending_[k] = 0;
+}
+
+void PhotonChains::begin_pass() {
+    for (uint64_t& p : pending_) p = 0; // a pass abandoned between batches (Ctrl-C) counts nothing
+}
 
 double PhotonChains::effective_emitted(uint64_t uniform_paths) const {
     const uint64_t visible = stats_.chain_counts[CHAIN_UNIFORM_VISIBLE];
@@ -81,9 +91,11 @@ double PhotonChains::effective_emitted(uint64_t uniform_paths) const {
 
 void PhotonChains::save(Checkpoint& ck) const {
     ck.put("photon_chains", read_buffer<dev::PhotonChain>(dc_.queue, chains_[current_], chains_count_));
+    ck.put("photon_chain_cache",
+           read_buffer<dev::Photon>(dc_.queue, cache_[current_], chains_count_ * PHOTON_CHAIN_CACHE));
     ck.put("photon_seen_cells", read_buffer<unsigned char>(dc_.queue, seen_, table_size_));
-    ck.header["photon_seen_grid"] = {grid_.origin[0], grid_.origin[1], grid_.origin[2], grid_.inv_cell,
-                                     grid_.table_size, grid_.num_photons};
+    ck.header["photon_seen_grid"] = {grid_.origin[0], grid_.origin[1],  grid_.origin[2],
+                                     grid_.inv_cell,  grid_.table_size, grid_.num_photons};
     Json counts = Json::array();
     for (uint64_t c : stats_.chain_counts) counts.push_back(c);
     ck.header["photon_chain_counts"] = counts;
@@ -119,11 +131,14 @@ void PhotonChains::restore(const Checkpoint& ck) {
     dc_.queue.enqueueWriteBuffer(grid_info_, CL_TRUE, 0, sizeof grid_, &grid_);
     std::vector<dev::PhotonChain> chains = ck.get<dev::PhotonChain>("photon_chains", chains_count_);
     for (const dev::PhotonChain& c : chains) {
-        bool ok = c.step >= 0.f && c.step <= 1.f;
+        bool ok =
+            c.step >= 0.f && c.step <= 1.f && (c.cached <= PHOTON_CHAIN_CACHE || c.cached == PHOTON_CHAIN_UNCACHED);
         for (float u : c.u) ok = ok && u >= 0.f && u < 1.f;
         if (!ok) throw Error(ck.path + ": checkpoint has a photon chain out of range (photon_chains)");
     }
     write_buffer(dc_.queue, chains_[current_], chains);
+    write_buffer(dc_.queue, cache_[current_],
+                 ck.get<dev::Photon>("photon_chain_cache", chains_count_ * PHOTON_CHAIN_CACHE));
 }
 
 } // namespace clppm

@@ -32,9 +32,11 @@ public:
     // The chain kernel's arguments after photon_trace's own (from index a), for a pass of
     // photons_per_pass uniform paths; clears the counts.
     void set_trace_args(cl::Kernel& kernel, int a, uint32_t photons_per_pass);
-    // A batch's photons fit: its chains' counts join the totals.
+    // Before a pass's first batch.
+    void begin_pass();
+    // A batch's photons fit: its chains' counts join the pass's.
     void commit_batch();
-    // The pass's chains become the next pass's.
+    // The pass's chains become the next pass's, and its counts join the totals.
     void end_pass();
 
     // N_states N_U / V_c (Hachisuka and Jensen 2009, Eq. 6 and Sec. 4.2): the photon count that
@@ -53,8 +55,9 @@ private:
     IntegratorStats& stats_;
     uint64_t chains_count_;
     cl::Kernel k_mark_;
-    cl::Buffer chains_[2], counts_, grid_info_, seen_;
+    cl::Buffer chains_[2], cache_[2], counts_, grid_info_, seen_; // cache_: each chain's state's photons
     int current_ = 0; // chains_[current_] holds the states the next pass starts from
+    uint64_t pending_[CHAIN_COUNTS] = {0, 0, 0, 0};
     uint32_t table_size_ = 0;
     dev::GridInfo grid_{};
 };

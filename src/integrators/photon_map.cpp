@@ -57,6 +57,7 @@ void PhotonMap::run_pass(uint64_t pass, uint32_t first_photon, uint32_t count_ph
     if (chains_) { // where hit points may gather: cells of the initial radius
         const double cell = std::max(max_radius, 2.0 * scene_.info.radius / double(1 << 20));
         chains_->mark(hitpoints, stats, n, global_r2, scene_.bounds_min, cell);
+        chains_->begin_pass();
     }
     // Items: photons [first, first + count), or with chains every chain (one device and process).
     const uint32_t first_item = chains_ ? 0 : first_photon;
