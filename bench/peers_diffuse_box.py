@@ -41,6 +41,39 @@ def render(scene, spp, seed):
     return img
 
 
+def timed_render(scene, seconds, tmp, ref_factor):
+    """Mitsuba's image of about `seconds` (its spp chosen from timed renders, the kernels compiled
+    first), written to tmp/mitsuba.exr, and its own reference of ref_factor times the samples in
+    tmp/mitsuba_ref.exr: (image path, reference path, spp, wall s, CPU s)."""
+    render(scene, 4, 0)  # compiles the kernels (llvm) outside the timed renders
+    spp = 16
+    for _ in range(2):  # the first estimate is mostly the fixed cost of a render
+        t0 = time.time()
+        render(scene, spp, 1)
+        spp = max(16, int(spp * seconds / max(time.time() - t0, 1e-3) / (4 if spp == 16 else 1)))
+    t0, c0 = time.time(), time.process_time()
+    img = render(scene, spp, 2)
+    wall, cpu = time.time() - t0, time.process_time() - c0
+    out = os.path.join(tmp, "mitsuba.exr")
+    mi.Bitmap(img).write(out)
+    # Mitsuba's own reference, ref_factor times the samples: each renderer is measured against a
+    # converged image of its own, so what differs between the two renderers' models (a pixel
+    # filter's edge, an emitter's side) does not count as either one's noise.
+    ref = os.path.join(tmp, "mitsuba_ref.exr")
+    mi.Bitmap(render(scene, spp * ref_factor, 99)).write(ref)
+    return out, ref, spp, wall, cpu
+
+
+def clppm_timed(command, stats):
+    """Runs clppm (`command`, which writes --stats-json `stats`): (wall s of its passes alone, as
+    Mitsuba's render is timed, and CPU s of the whole process)."""
+    c0 = os.times()
+    subprocess.run(command + ["--stats-json", stats], check=True)
+    c1 = os.times()
+    cpu = c1.children_user + c1.children_system - c0.children_user - c0.children_system
+    return json.load(open(stats))["render_seconds"], cpu
+
+
 def compare(binary, image, ref):
     out = subprocess.run([binary, "compare", image, ref, "--box", "4"], capture_output=True, text=True, check=True)
     return json.loads(out.stdout)
@@ -71,32 +104,12 @@ def main():
                            check=True)
         for sampler in ("sobol", "independent"):
             img = os.path.join(tmp, "clppm_%s.exr" % sampler)
-            stats = os.path.join(tmp, "stats.json")
-            c0 = os.times()
-            subprocess.run(common + ["--sampler", sampler, "--time", str(seconds), "-o", img, "--stats-json", stats],
-                           check=True)
-            c1 = os.times()
-            cpu = c1.children_user + c1.children_system - c0.children_user - c0.children_system
-            wall = json.load(open(stats))["render_seconds"]  # the passes alone, as Mitsuba's render below
+            wall, cpu = clppm_timed(common + ["--sampler", sampler, "--time", str(seconds), "-o", img],
+                                    os.path.join(tmp, "stats.json"))
             rows.append(("clppm pt, %s" % sampler, wall, cpu, compare(binary, img, ref)))
 
         scene = mi.load_dict(make_references.mitsuba_scene(scene_file, tmp, size=size, max_depth=17))
-        render(scene, 4, 0)  # compiles the kernels (llvm) outside the timed renders
-        spp = 16
-        for _ in range(2):  # the first estimate is mostly the fixed cost of a render
-            t0 = time.time()
-            render(scene, spp, 1)
-            spp = max(16, int(spp * seconds / max(time.time() - t0, 1e-3) / (4 if spp == 16 else 1)))
-        t0, c0 = time.time(), time.process_time()
-        img = render(scene, spp, 2)
-        wall, cpu = time.time() - t0, time.process_time() - c0
-        out = os.path.join(tmp, "mitsuba.exr")
-        mi.Bitmap(img).write(out)
-        # Mitsuba's own reference, REF_FACTOR times the samples: each renderer is measured against
-        # a converged image of its own, so what differs between the two renderers' models (a pixel
-        # filter's edge, an emitter's side) does not count as either one's noise.
-        mi_ref = os.path.join(tmp, "mitsuba_ref.exr")
-        mi.Bitmap(render(scene, spp * ref_factor, 99)).write(mi_ref)
+        out, mi_ref, spp, wall, cpu = timed_render(scene, seconds, tmp, ref_factor)
         rows.append(("Mitsuba %s path (%s, %d spp)" % (mi.__version__, mi.variant(), spp), wall, cpu,
                      compare(binary, out, mi_ref)))
         cross = compare(binary, mi_ref, ref)

@@ -36,16 +36,7 @@ for scene in $scenes; do
     for sampler in independent sobol; do
       /usr/bin/time -f "%U %S" -o "$out/time" "$bin" "$arg" $common --sampler $sampler --seed $r --time "$secs" \
         -o "$out/run.exr" --stats-json "$out/run.json"
-      python3 - "$out" "$name" "$sampler" "$r" "$bin" "$ref" <<'PY' | tee -a "$out/rows"
-import json, subprocess, sys
-out, name, sampler, seed, binary, ref = sys.argv[1:]
-st = json.load(open(out + "/run.json"))
-cpu = sum(float(x) for x in open(out + "/time").read().split()[-2:])
-c = json.loads(subprocess.run([binary, "compare", out + "/run.exr", ref, "--box", "4"],
-                              capture_output=True, text=True, check=True).stdout)
-print("| %s | %s | %s | %.1f | %d | %.4f | %.3e | %.4f |" % (name, sampler, seed, cpu, st["passes"],
-      c["mean_ratio"], c["box_rel_mse"], c["p90_rel_error"]))
-PY
+      python3 "$here/bench/run_row.py" "$out" "$name" "$sampler" "$r" "$bin" "$ref" | tee -a "$out/rows"
     done
   done
 done

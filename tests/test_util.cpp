@@ -11,6 +11,8 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include "io/image_io.h"
+
 namespace clppm::test {
 
 const DeviceInfo& test_device() {
@@ -49,6 +51,19 @@ int run_command(const std::string& cmd, std::string* output) {
 std::string clppm_binary() { return CLPPM_BINARY; }
 
 int run_clppm(const std::string& args, std::string* output) { return run_command(clppm_binary() + " " + args, output); }
+
+std::string expect_resume_is_exact(const std::string& args, const std::string& what) {
+    std::string d = make_temp_dir("resume"), out;
+    EXPECT_EQ(run_clppm(args + " --passes 5 -o " + d + "/full.exr", &out), 0) << what << ": " << out;
+    EXPECT_EQ(run_clppm(args + " --passes 2 -o " + d + "/part.exr --checkpoint " + d + "/c.ck", &out), 0)
+        << what << ": " << out;
+    EXPECT_EQ(run_clppm(args + " --passes 5 -o " + d + "/res.exr --resume " + d + "/c.ck", &out), 0)
+        << what << ": " << out;
+    Image full = read_exr(d + "/full.exr"), res = read_exr(d + "/res.exr"), part = read_exr(d + "/part.exr");
+    EXPECT_EQ(full.rgb, res.rgb) << what << ": resumed render differs";
+    EXPECT_NE(full.rgb, part.rgb) << what << ": the test must compare different pass counts";
+    return d;
+}
 
 } // namespace clppm::test
 

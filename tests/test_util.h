@@ -26,6 +26,11 @@ std::string clppm_binary();
 // Runs the clppm executable with `args` (a shell-quoted string); like run_command.
 int run_clppm(const std::string& args, std::string* output);
 
+// Renders `args` for 5 passes straight, and for 2 passes with a checkpoint resumed to 5: the two
+// images are equal bit for bit (and differ from the 2-pass one, so the test can fail). Returns
+// the temporary folder holding full.exr, part.exr, res.exr and c.ck.
+std::string expect_resume_is_exact(const std::string& args, const std::string& what);
+
 // The mean radiance of tests/data/<file> rendered by the clppm executable at 48x32 with
 // `integrator` for `passes` passes of `photons` photons (the same seed every time); a failed
 // run is a test failure. The material and geometry tests compare such means of scene pairs.

@@ -1,7 +1,9 @@
 #include "integrators/default_integrator.h"
 
+#include <cstdio>
 #include <vector>
 
+#include "integrators/light_reach.h"
 #include "scene/environment.h"
 
 namespace clppm {
@@ -30,10 +32,10 @@ std::string caustic_material(const Scene& scene) {
 } // namespace
 
 const char* const kDefaultIntegratorRule =
-    "sppm where glass or smooth metal casts caustics from the scene's own lights, pt otherwise; measured: "
-    "bench/RESULTS.md";
+    "sppm where glass or smooth metal casts caustics from the scene's own lights or where they reach under 5% of "
+    "what the camera sees directly (light through a gap), pt otherwise; measured: bench/RESULTS.md";
 
-IntegratorChoice default_integrator(const Scene& scene) {
+IntegratorChoice default_integrator(const Scene& scene, const RenderSettings& settings, bool chains_allowed) {
     const bool own_lights = scene_has_lights(scene);
     if (!own_lights && !scene.environment.present) // no light at all: the error says so
         return {"sppm", "the scene has no lights"};
@@ -45,8 +47,28 @@ IntegratorChoice default_integrator(const Scene& scene) {
     if (!own_lights)
         return {"pt", "the scene is lit only by its environment, where the path tracer converges fastest "
                       "(--integrator sppm for photon mapping)"};
-    return {"pt", "no glass or smooth metal casts caustics here, where the path tracer converges fastest "
-                  "(--integrator sppm for photon mapping)"};
+    const LightReach reach = light_reach(scene, settings);
+    char lit[64];
+    std::snprintf(lit, sizeof lit, "%.0f%%", 100.0 * reach.lit);
+    if (reach.measured && reach.lit < kGapReach) {
+        // Directional lights send their photons over the scene's whole bounding disc: through a
+        // gap, most land where nothing is seen, and the chains keep the few that are.
+        bool distant = false;
+        for (const dev::Light& l : scene.punctual_lights) distant = distant || l.type == LIGHT_DIRECTIONAL;
+        IntegratorChoice c{"sppm",
+                           std::string("the lights reach only ") + lit +
+                               " of what the camera sees directly (light through a gap), where photons find the "
+                               "light that bounces in: stochastic progressive photon mapping"};
+        if (distant && chains_allowed) {
+            c.visual_importance = true;
+            c.reason += ", with visual importance for the directional light's photons";
+        }
+        c.reason += " (--integrator pt for the path tracer)";
+        return c;
+    }
+    return {"pt", std::string("no glass or smooth metal casts caustics here, where the path tracer converges fastest") +
+                      (reach.measured ? std::string(" (the lights reach ") + lit + " of what the camera sees)" : "") +
+                      " (--integrator sppm for photon mapping)"};
 }
 
 } // namespace clppm

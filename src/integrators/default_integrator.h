@@ -1,8 +1,9 @@
 // The integrator a render gets when --integrator is not given (or is "auto"), chosen by
-// measurement (bench/default_integrator.sh, bench/RESULTS.md "The default integrator"): SPPM for a
-// scene with lights of its own (emissive surfaces, punctual lights), the path tracer for a scene
-// lit only by an environment (the default white one, --env or --env-color), where photons from the
-// sky mostly light what light samples already light and the path tracer is far ahead.
+// measurement (bench/default_integrator.sh, bench/visual_importance.sh, bench/RESULTS.md): SPPM
+// where glass or smooth metal casts caustics of the scene's own lights; SPPM where those lights
+// reach almost nothing the camera sees directly (light through a gap; with visual importance when
+// a directional light's photons cover the scene's bounding disc); the path tracer everywhere else,
+// and for a scene lit only by an environment.
 #pragma once
 #include <string>
 
@@ -12,12 +13,20 @@
 namespace clppm {
 
 struct IntegratorChoice {
-    std::string integrator; // a row of integrators/integrator_table.h
-    std::string reason;     // for the note: why this one
+    std::string integrator;         // a row of integrators/integrator_table.h
+    std::string reason;             // for the note: why this one
+    bool visual_importance = false; // SPPM's photons from Markov chains (integrators/photon_chains.h)
 };
 
-// `scene` after apply_environment.
-IntegratorChoice default_integrator(const Scene& scene);
+// Below this fraction of light samples reaching their light from what the camera sees
+// (integrators/light_reach.h), light comes through a gap: SPPM. Measured (bench/RESULTS.md, "Light
+// through a gap"): the path tracer is best in the doorway (24% reach), SPPM with visual importance
+// in the skylit room (1%); the threshold is their midpoint on a log scale.
+constexpr double kGapReach = 0.05;
+
+// `scene` after apply_environment; settings for the camera; chains_allowed: visual importance may
+// be chosen (one device, one process, no error estimate).
+IntegratorChoice default_integrator(const Scene& scene, const RenderSettings& settings, bool chains_allowed);
 
 // The rule above in a line, for --help.
 extern const char* const kDefaultIntegratorRule;

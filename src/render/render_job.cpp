@@ -49,7 +49,7 @@ RenderJob::RenderJob(const RenderOptions& options, RenderLog& log)
         lock_ = std::make_unique<OutputLock>(files);
     }
     load_scene();
-    choose_integrator();
+    choose_integrator(chosen.size());
     set_up_device(chosen);
     build_kernels(chosen);
     start_s_ = now_seconds();
@@ -84,11 +84,13 @@ void RenderJob::load_scene() {
     require_ranks_agree({{"the scene's contents (" + scene_.source + ")", hash}}); // the same file everywhere
 }
 
-void RenderJob::choose_integrator() {
+void RenderJob::choose_integrator(size_t devices) {
     RenderSettings& s = options_.settings;
     if (s.integrator == "auto") {
-        const IntegratorChoice choice = default_integrator(scene_);
+        const bool chains_allowed = !wants_error_estimate(options_) && !cluster().distributed() && devices == 1;
+        const IntegratorChoice choice = default_integrator(scene_, s, chains_allowed);
         s.integrator = choice.integrator;
+        s.visual_importance = choice.visual_importance;
         integrator_note_ = "integrator " + s.integrator + ": " + choice.reason;
     }
     row_ = &integrator_row(s.integrator);

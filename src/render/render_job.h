@@ -94,7 +94,7 @@ public:
 
 private:
     void load_scene();
-    void choose_integrator();
+    void choose_integrator(size_t devices);
     void set_up_device(const std::vector<DeviceInfo>& chosen);
     void build_kernels(const std::vector<DeviceInfo>& chosen);
     void resume();
