@@ -4,8 +4,9 @@ value of its own)."""
 import bpy
 
 INTEGRATORS = [
-    ("auto", "Auto", "The fastest for the scene: stochastic PPM where glass or smooth metal casts caustics, the "
-                     "path tracer otherwise"),
+    ("auto", "Auto", "The fastest for the scene: stochastic PPM where glass or smooth metal casts caustics or "
+                     "where the lights reach almost nothing the camera sees (light through a gap), the path "
+                     "tracer otherwise"),
     ("sppm", "SPPM", "Stochastic progressive photon mapping"),
     ("pppm", "PPPM", "Probabilistic progressive photon mapping"),
     ("ppm", "PPM", "Progressive photon mapping (fixed hit points)"),
@@ -28,6 +29,10 @@ class ClppmSceneSettings(bpy.types.PropertyGroup):
     photons: bpy.props.IntProperty(name="Photons per pass", min=1, max=2147483647, default=200000)
     alpha: bpy.props.FloatProperty(name="Alpha", min=0.01, max=1.0, default=0.7,
                                    description="Fraction of new photons kept per pass (radius reduction)")
+    visual_importance: bpy.props.BoolProperty(
+        name="Visual importance", default=False,
+        description="PPM and SPPM: photon paths from Markov chains that keep to what the camera sees (Hachisuka "
+                    "and Jensen 2009), for light through a gap or a window; one device, no target error")
     device: bpy.props.StringProperty(name="Device", default="",
                                      description="OpenCL device: an index, cpu, gpu or part of a name (empty: "
                                                  "the first GPU, else the first device)")
@@ -46,6 +51,8 @@ class ClppmSceneSettings(bpy.types.PropertyGroup):
             o["target_error"] = self.target_error
         if self.device:
             o["device"] = self.device
+        if self.visual_importance:
+            o["visual_importance"] = True
         return o
 
 

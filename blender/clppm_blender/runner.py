@@ -120,6 +120,9 @@ class CommandRender:
         args = [command, scene, "-o", self.output, "--no-png", "--progressive-output", "1"]
         for key, value in options.items():
             name = "--" + key.replace("_", "-")
+            if value is True:  # a flag
+                args.append(name)
+                continue
             if isinstance(value, (tuple, list)):
                 value = ",".join(repr(float(v)) for v in value)
             args += [name, str(value)]

@@ -26,6 +26,7 @@ class CLPPM_PT_render(bpy.types.Panel):
         col = layout.column(align=True)
         col.prop(s, "photons")
         col.prop(s, "alpha")
+        col.prop(s, "visual_importance")
         layout.prop(s, "device")
         layout.prop(s, "seed")
         layout.prop(s, "update_every")

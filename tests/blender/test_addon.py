@@ -254,9 +254,14 @@ def test_the_settings_have_the_librarys_defaults_and_integrators():
     assert table["integrator"]["range"] == "auto, ppm, sppm, pppm, pt, vcm or bpt"
     assert names == {"auto", "ppm", "sppm", "pppm", "pt", "vcm", "bpt"}
     # Where the library has no value (0 in the panel), the option is not passed.
-    for name in ("passes", "time", "target_error", "device"):
+    for name in ("passes", "time", "target_error", "device", "visual_importance"):
         settings.property_unset(name)
     assert set(settings.options()) == {"integrator", "photons", "alpha", "seed"}
+    # A switch the library takes as a flag: passed only when on.
+    assert not settings.bl_rna.properties["visual_importance"].default and table["visual_importance"]["flag"]
+    settings.visual_importance = True
+    assert settings.options()["visual_importance"] is True
+    settings.property_unset("visual_importance")
 
 
 def test_the_export_is_handed_to_the_main_thread_from_the_render_thread():
