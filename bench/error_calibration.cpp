@@ -22,6 +22,7 @@
 
 #include "bench_util.h"
 #include "integrators/error_estimate.h"
+#include "integrators/integrator_table.h"
 #include "io/image_io.h"
 
 using namespace clppm;
@@ -39,9 +40,9 @@ struct Args {
 };
 
 std::string parse_integrator(const std::string& name) {
-    for (const char* i : {"ppm", "sppm", "pppm", "pt"})
+    for (const char* i : {"ppm", "sppm", "pppm", "pt", "vcm", "bpt"})
         if (name == i) return i;
-    throw Error("--integrators: " + name + " is not ppm, sppm, pppm or pt");
+    throw Error("--integrators: " + name + " is not ppm, sppm, pppm, pt, vcm or bpt");
 }
 
 // A file name part for a scene name or path.
@@ -134,9 +135,10 @@ int main(int argc, char** argv) {
                 if (s.integrator == "ppm") s.spp = 4;
                 Render r(device, scene, s, false, true);
                 const double t0 = now_s();
-                // The path tracer's passes are one sample per pixel each, far cheaper than a photon
-                // pass: it runs --pt-pass-factor times as many (the table shows its real count).
-                const uint64_t factor = s.integrator == "pt" ? a.pt_pass_factor : 1;
+                // The passes of the path tracer, VCM and BPT are one sample per pixel each, far cheaper
+                // than a photon pass: they run --pt-pass-factor times as many (the table shows their
+                // real count).
+                const uint64_t factor = integrator_row(s.integrator).unit == WorkUnit::Pixels ? a.pt_pass_factor : 1;
                 for (uint64_t q = 1; q <= a.passes * factor; ++q) {
                     const uint64_t p = (q + factor - 1) / factor;
                     if (q % factor) {
@@ -179,9 +181,9 @@ int main(int argc, char** argv) {
                "bound,median_actual_over_bound\n";
         std::ostringstream md;
         md << "Device: " << device.name << "; " << a.size << "x" << a.size << ", " << a.photons
-           << " photons per pass (PPM: --spp 4), alpha 0.7; reference: SPPM, " << a.ref_passes << " passes of "
-           << a.photons * a.ref_photon_factor << " photons (seed 1000); confidence " << a.confidence << "; total "
-           << int(now_s() - t_start) << " s.\n\n"
+           << " photons per pass (PPM: --spp 4), alpha 0.7; reference: " << a.ref_integrator << ", " << a.ref_passes
+           << " passes of " << a.photons * a.ref_photon_factor << " photons (seed 1000); confidence " << a.confidence
+           << "; total " << int(now_s() - t_start) << " s.\n\n"
            << "| scene | integrator | pass | s | bound (p90) | noise only (p90) | noise and bias (p90) | calibrated "
               "estimate (p90) "
               "| actual (p90) | calibrated / actual | pixels within bound | median actual/bound |\n"

@@ -1,7 +1,8 @@
-/* pt_error.cl: the path tracer's error estimate. A pass adds one sample per pixel to the running
- * sum (path_trace), so the pass's estimate L_j is the sum's growth and the image is their mean;
- * the estimate is unbiased, so the statistics' bias stays 0 and only the spread of the L_j
- * (Welford, as error_update) bounds the error. ErrorStats.direct_y holds the sum's luminance
+/* pt_error.cl: the error estimate of the integrators that add one sample per pixel and pass to a
+ * running sum (path_trace, and vcm_camera for VCM and BPT). The pass's estimate L_j is the sum's
+ * growth and the image is their mean; the path tracer and BPT are unbiased and VCM's merging bias
+ * stays within the calibration (bench/ERROR_CALIBRATION.md), so the statistics' bias stays 0 and
+ * only the spread of the L_j (Welford, as error_update) bounds the error. ErrorStats.direct_y holds the sum's luminance
  * after the previous pass.
  *
  * With Sobol' points (sobol.cl) the passes are not independent: the mean of 2^m of them is far

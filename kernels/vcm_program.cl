@@ -4,3 +4,4 @@
 #include "hash_grid.cl"
 #include "vcm.cl"
 #include "mean_film.cl"
+#include "pt_error.cl"

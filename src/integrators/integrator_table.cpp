@@ -26,7 +26,9 @@ IntegratorMemory sppm_memory(const RenderSettings&, size_t pixels, bool errors) 
 IntegratorMemory pt_memory(const RenderSettings&, size_t pixels, bool errors) {
     return PtIntegrator::memory_needed(pixels, errors);
 }
-IntegratorMemory vcm_memory(const RenderSettings&, size_t pixels, bool) { return VcmIntegrator::memory_needed(pixels); }
+IntegratorMemory vcm_memory(const RenderSettings&, size_t pixels, bool errors) {
+    return VcmIntegrator::memory_needed(pixels, errors);
+}
 size_t photon_memory(const RenderSettings& settings, size_t pixels, const DeviceInfo& device) {
     return PhotonMap::memory_needed(settings, device, pixels);
 }
@@ -51,10 +53,10 @@ const std::vector<IntegratorRow> kTable = {
     {"pt", nullptr, "path tracing", "path_trace.cl", PPM_EYE_SLOTS, WorkUnit::Pixels, kPixelPasses, false, true, true,
      "", pt_memory, no_transport_memory, make<PtIntegrator>, PtIntegrator::warnings},
     {"vcm", nullptr, "vertex connection and merging (bidirectional path tracing and photon merging under MIS)",
-     "vcm_program.cl", PPM_EYE_SLOTS, WorkUnit::Pixels, kPixelPasses, true, false, false,
+     "vcm_program.cl", PPM_EYE_SLOTS, WorkUnit::Pixels, kPixelPasses, true, false, true,
      " (every process traces all light sub-paths)", vcm_memory, light_vertex_memory, make<VcmIntegrator>, nullptr},
     {"bpt", "bdpt", "bidirectional path tracing", "vcm_program.cl", PPM_EYE_SLOTS, WorkUnit::Pixels, kPixelPasses, true,
-     false, false, " (every process traces all light sub-paths)", vcm_memory, light_vertex_memory, make<VcmIntegrator>,
+     false, true, " (every process traces all light sub-paths)", vcm_memory, light_vertex_memory, make<VcmIntegrator>,
      nullptr},
 };
 

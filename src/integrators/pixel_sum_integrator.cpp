@@ -32,6 +32,22 @@ void PixelSumIntegrator::allocate_sum() {
     image_buf_ = cl::Buffer(dc_.context, CL_MEM_READ_WRITE, film);
     stats_.device_bytes += sum + film;
     stats_.hitpoints = num_pixels_;
+    if (errors_) errors_->reset(accum_);
+}
+
+IntegratorMemory PixelSumIntegrator::with_error_estimation(IntegratorMemory m, size_t pixels) {
+    m.bytes += pixels * (sizeof(dev::ErrorStats) + sizeof(cl_float8));
+    m.largest_buffer = std::max(m.largest_buffer, pixels * sizeof(dev::ErrorStats));
+    return m;
+}
+
+void PixelSumIntegrator::enable_error_estimation() {
+    if (errors_) return;
+    PixelHitpoints layout;
+    layout.path_traced = true;
+    layout.sobol = sobol_passes();
+    errors_ = std::make_unique<ErrorEstimator>(dc_, program_, num_pixels_, stats_, layout);
+    if (accum_()) errors_->reset(accum_); // after prepare(): the estimate starts here
 }
 
 PixelRanges PixelSumIntegrator::begin_pass() {
@@ -39,11 +55,20 @@ PixelRanges PixelSumIntegrator::begin_pass() {
     return split_pixels(num_pixels_, balance_);
 }
 
-void PixelSumIntegrator::end_pass(const PixelRanges& ranges, const cl::Buffer* also, size_t also_doubles) {
+// Each pixel's sample depends on (seed, pass, pixel) alone, so any split of the pixels gives the
+// same sums; with several processes the ranks share the error statistics as the sums.
+void PixelSumIntegrator::end_pass(const PixelRanges& ranges) {
+    if (errors_ && ranges.count > 0) {
+        errors_->update_accum(accum_, ranges.first, ranges.count);
+        collect_event_times(stats_);
+    }
     if (cluster().distributed()) {
         balance_.record(ranges.count, now_seconds() - pass_start_s_);
         share_pixels(dc_.queue, accum_, 3, ranges, num_pixels_);
-        if (also) share_pixels(dc_.queue, *also, also_doubles, ranges, num_pixels_);
+        static_assert(sizeof(dev::ErrorStats) % sizeof(double) == 0, "ErrorStats is doubles");
+        if (errors_)
+            share_pixels(dc_.queue, errors_->statistics(), sizeof(dev::ErrorStats) / sizeof(double), ranges,
+                         num_pixels_);
         stats_.rank_photons.assign(ranges.counts.begin(), ranges.counts.end());
     }
     stats_.local_work += ranges.count;
@@ -52,12 +77,14 @@ void PixelSumIntegrator::end_pass(const PixelRanges& ranges, const cl::Buffer* a
 
 void PixelSumIntegrator::save_sum(Checkpoint& ck) const {
     ck.put("accum", read_buffer<cl_double>(dc_.queue, accum_, size_t(num_pixels_) * 3));
+    save_error_stats(ck);
 }
 
 void PixelSumIntegrator::restore_sum(const Checkpoint& ck) {
     std::vector<cl_double> accum = ck.get<cl_double>("accum", size_t(num_pixels_) * 3);
     check_radiance_sums(ck, accum, "accum");
     write_buffer(dc_.queue, accum_, accum);
+    restore_error_stats(ck, accum_);
 }
 
 Image PixelSumIntegrator::image() {

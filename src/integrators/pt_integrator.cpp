@@ -18,11 +18,7 @@ PtIntegrator::PtIntegrator(const DeviceContext& dc, const DeviceScene& scene, co
 
 IntegratorMemory PtIntegrator::memory_needed(size_t pixels, bool error_estimation) {
     IntegratorMemory m{pixels * (kSumBytesPerPixel + kFilmBytesPerPixel), pixels * kSumBytesPerPixel};
-    if (error_estimation) {
-        m.bytes += pixels * (sizeof(dev::ErrorStats) + sizeof(cl_float8));
-        m.largest_buffer = std::max(m.largest_buffer, pixels * sizeof(dev::ErrorStats));
-    }
-    return m;
+    return error_estimation ? with_error_estimation(m, pixels) : m;
 }
 
 std::vector<std::string> PtIntegrator::warnings(const Scene& scene, const SceneFeatures& features) {
@@ -35,22 +31,10 @@ std::vector<std::string> PtIntegrator::warnings(const Scene& scene, const SceneF
             "that light is missing from its image and from its error estimate (--integrator sppm finds it)"};
 }
 
-void PtIntegrator::enable_error_estimation() {
-    if (errors_) return;
-    PixelHitpoints layout;
-    layout.path_traced = true;
-    layout.sobol = settings_.sampler == Sampler::Sobol;
-    errors_ = std::make_unique<ErrorEstimator>(dc_, program_, num_pixels_, stats_, layout);
-    if (accum_()) errors_->reset(accum_); // after prepare(): the estimate starts here
-}
+bool PtIntegrator::sobol_passes() const { return settings_.sampler == Sampler::Sobol; }
 
-void PtIntegrator::prepare() {
-    allocate_sum();
-    if (errors_) errors_->reset(accum_);
-}
+void PtIntegrator::prepare() { allocate_sum(); }
 
-// Each pixel's sample depends on (seed, pass, pixel) alone, so any split of the pixels gives the
-// same sums; with several processes the ranks share the error statistics as the sums.
 void PtIntegrator::run_pass() {
     const PixelRanges ranges = begin_pass();
     if (ranges.count > 0) {
@@ -59,24 +43,20 @@ void PtIntegrator::run_pass() {
         cl::Event ev;
         enqueue_1d_range(dc_.queue, k_trace_, ranges.first, ranges.count, &ev);
         add_event_time(stats_, "path_trace", ev);
-        if (errors_) errors_->update_accum(accum_, ranges.first, ranges.count);
     }
     collect_event_times(stats_); // waits for the pass
-    static_assert(sizeof(dev::ErrorStats) % sizeof(double) == 0, "ErrorStats is doubles");
-    end_pass(ranges, errors_ ? &errors_->statistics() : nullptr, sizeof(dev::ErrorStats) / sizeof(double));
+    end_pass(ranges);
 }
 
 void PtIntegrator::save(Checkpoint& ck) {
     IntegratorBase::save(ck);
     save_sum(ck);
-    save_error_stats(ck);
 }
 
 void PtIntegrator::restore(const Checkpoint& ck) {
     IntegratorBase::restore(ck);
     require_checkpoint_field(ck, stats_.photons_emitted == 0, "photons_emitted (a path tracer emits none)");
     restore_sum(ck);
-    restore_error_stats(ck, accum_);
 }
 
 } // namespace clppm

@@ -25,9 +25,9 @@ public:
     void run_pass() override;
     void save(Checkpoint& ck) override;
     void restore(const Checkpoint& ck) override;
-    // From the spread of the passes' samples (no bias: the path tracer is unbiased), from the
-    // next pass on.
-    void enable_error_estimation() override;
+
+protected:
+    bool sobol_passes() const override;
 
 private:
     cl::Kernel k_trace_;

@@ -33,8 +33,9 @@ uint32_t technique_mode(const RenderSettings& s) {
 
 } // namespace
 
-IntegratorMemory VcmIntegrator::memory_needed(size_t pixels) {
-    return {pixels * kBytesPerPixel, pixels * 3 * sizeof(cl_double)};
+IntegratorMemory VcmIntegrator::memory_needed(size_t pixels, bool error_estimation) {
+    const IntegratorMemory m{pixels * kBytesPerPixel, pixels * 3 * sizeof(cl_double)};
+    return error_estimation ? with_error_estimation(m, pixels) : m;
 }
 
 size_t VcmIntegrator::light_vertex_bytes(size_t pixels, const DeviceInfo& device) {

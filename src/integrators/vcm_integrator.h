@@ -24,8 +24,8 @@ public:
     VcmIntegrator(const DeviceContext& dc, const DeviceScene& scene, const RenderSettings& settings,
                   const cl::Program& program, const SecondaryDevices& secondaries = {});
     ~VcmIntegrator() override;
-    // The per-pixel buffers prepare() allocates for `pixels` pixels.
-    static IntegratorMemory memory_needed(size_t pixels);
+    // The per-pixel buffers prepare() (and enable_error_estimation()) allocate for `pixels` pixels.
+    static IntegratorMemory memory_needed(size_t pixels, bool error_estimation = false);
     // The light vertex buffers and grid a pass over `pixels` light sub-paths starts with (they are
     // batched to stay within a quarter of the device's memory).
     static size_t light_vertex_bytes(size_t pixels, const DeviceInfo& device);
