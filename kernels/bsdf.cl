@@ -87,6 +87,15 @@
 /* The coat's Schlick F0: ior 1.5, as KHR_materials_clearcoat fixes it. */
 #define COAT_F0 0.04f
 
+/* What a path carries (pbrt-v4's TransportMode; Veach 1997, Sec. 5.2): a camera path radiance, a
+ * light path (a photon, a light sub-path) importance. The BSDF below is written for importance;
+ * refraction into a medium of relative index eta compresses radiance by eta^2, so a camera path's
+ * refracted light is 1/eta^2 of that. Paths that leave a solid as they entered it see both
+ * factors cancel, so only a camera vertex inside a refracting solid (VCM merging and connecting at
+ * rough glass) tells the two apart. */
+#define TRANSPORT_RADIANCE 0u
+#define TRANSPORT_IMPORTANCE 1u
+
 typedef struct {
     float3 ns, ng;                  /* shading and geometric normal on the side of wo */
     float3 nl;                      /* the smooth normal, ns before any normal map (bsdf_smooth_side) */
@@ -97,6 +106,7 @@ typedef struct {
     float dielectric, glass, metal; /* lobe weights */
     float eta;                      /* LOBE_GLASS: relative index n_t / n_i for light crossing from the ns side */
     bool thin;                      /* LOBE_GLASS: thin-walled, transmission does not bend */
+    bool radiance;                  /* carries radiance (TRANSPORT_RADIANCE): refraction scales by 1/eta^2 */
     bool front;                     /* the side of ns is outside the mesh (the winding's front) */
     float3 sigma;                   /* KHR_materials_volume: the mesh's absorption coefficient */
     float3 nc;                      /* LOBE_COAT: the coat's normal, on the side of wo */
@@ -328,6 +338,10 @@ bool glass_is_rough(const Bsdf* b) {
  * refraction through h = +-normalize(wo + eta wi) (Eq. 16), (1 - F) D G2 |wo.h| |wi.h| eta^2 /
  * (|cos_o cos_i| (wo.h + eta wi.h)^2) (Eq. 21 in flux form, see above), whose last factor
  * eta^2 |wi.h| / (wo.h + eta wi.h)^2 is the Jacobian dh / dwi (Eq. 17). */
+/* What refraction through the glass lobe scales a path's weight by: 1/eta^2 for radiance, 1 for
+ * importance (TRANSPORT_RADIANCE above); thin walls do not bend light and scale nothing. */
+float refraction_scale(const Bsdf* b) { return b->radiance && !b->thin ? 1.0f / (b->eta * b->eta) : 1.0f; }
+
 float3 glass_eval(const Bsdf* b, float3 wo, float3 wi, float* pdf) {
     *pdf = 0.0f;
     float3 n = b->ns;
@@ -358,7 +372,7 @@ float3 glass_eval(const Bsdf* b, float3 wo, float3 wi, float* pdf) {
     float denom = o_h + b->eta * i_h;
     float jacobian = b->eta * b->eta * -i_h / (denom * denom);
     *pdf = (1.0f - F) * g1 * d * o_h / cos_o * jacobian;
-    return b->base * ((1.0f - F) * d * g2 * o_h / (cos_o * -cos_i) * jacobian);
+    return b->base * ((1.0f - F) * d * g2 * o_h / (cos_o * -cos_i) * jacobian * refraction_scale(b));
 }
 
 /* Samples the rough glass lobe: h by the visible normals from wo, then reflection with
@@ -740,7 +754,7 @@ bool bsdf_sample_lobes(const Bsdf* b, float3 wo, uint mask, float u_lobe, float 
         s->wi = b->thin ? -wo : refract_dir(-wo, b->ns, b->eta);
         if (dot(s->wi, b->ng) >= 0.0f) return false;
         s->below = true;
-        s->weight = b->base * (b->glass * layers_scale(b, wo, s->wi) / p_tech);
+        s->weight = b->base * (b->glass * layers_scale(b, wo, s->wi) * refraction_scale(b) / p_tech);
         return true;
     }
     if (mirror && (tech == TECH_LAYER || tech == TECH_METAL)) {
@@ -864,10 +878,12 @@ bool bsdf_has_gathered(const Bsdf* b) {
 
 /* ---- a material at a surface ------------------------------------------------------------------ */
 
-/* The glTF material at this surface (factors times textures). */
-Bsdf surface_bsdf(SCENE_PARAMS, const Surface* s) {
+/* The glTF material at this surface (factors times textures), for a path that carries `transport`
+ * (TRANSPORT_RADIANCE from the camera, TRANSPORT_IMPORTANCE from a light). */
+Bsdf surface_bsdf(SCENE_PARAMS, const Surface* s, uint transport) {
     __global const Material* m = &materials[s->material];
     Bsdf b;
+    b.radiance = transport == TRANSPORT_RADIANCE;
     b.ns = s->ns;
     b.ng = s->ng;
     b.nl = s->nl;

@@ -173,7 +173,7 @@ __kernel void eye_pass(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong p
         if (r.depth + 1 >= info->max_bounces) continue;
         float plen = r.path_length + sf.t;
 
-        Bsdf bsdf = surface_bsdf(SCENE_ARGS, &sf);
+        Bsdf bsdf = surface_bsdf(SCENE_ARGS, &sf, TRANSPORT_RADIANCE);
         if (HAS_DISPERSION) disperse(SCENE_ARGS, &sf, &bsdf, &pw, &r.dispersed, &r.weight);
         /* The lobes the eye path samples through see the lights directly too (with MIS): no hit
          * point gathers their direct light, and a sampled ray never finds a punctual light. */

@@ -64,6 +64,7 @@ Bsdf hitpoint_bsdf(__global const HitPoint* hp, float3 n) {
     b.glass = 0.0f;
     b.eta = 1.0f;
     b.thin = false;
+    b.radiance = true; /* the eye's side */
     b.front = true;
     b.sigma = (float3)(0.0f);
     b.coat = HAS_CLEARCOAT ? hp->coat : 0.0f;

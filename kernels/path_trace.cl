@@ -68,7 +68,7 @@ __kernel void path_trace(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong
             L += beta * le * (prev_delta ? 1.0f : emission_mis(SCENE_ARGS, &sf, dir, prev_pdf));
         }
         if (HAS_UNLIT && chain) L += beta * surface_unlit(SCENE_ARGS, &sf);
-        Bsdf b = surface_bsdf(SCENE_ARGS, &sf);
+        Bsdf b = surface_bsdf(SCENE_ARGS, &sf, TRANSPORT_RADIANCE);
         if (HAS_DISPERSION) disperse(SCENE_ARGS, &sf, &b, &pw, &dispersed, &beta);
         float3 wo = -dir;
 #if PATH_QMC

@@ -72,7 +72,7 @@ uint photon_path(SCENE_PARAMS, Rng* rng, const PassWavelength* pw, uint skip_dir
             flux *= volume_transmittance(SCENE_ARGS, &sf, sf.t * length(dir));
             if (!(max3(flux) > 0.0f)) return stored;
         }
-        Bsdf bsdf = surface_bsdf(SCENE_ARGS, &sf);
+        Bsdf bsdf = surface_bsdf(SCENE_ARGS, &sf, TRANSPORT_IMPORTANCE);
         if (HAS_DISPERSION) disperse(SCENE_ARGS, &sf, &bsdf, pw, &dispersed, &flux);
         float3 wo = -dir;
         /* Stored where the eye pass puts hit points: on surfaces with lobes the gather keeps. */

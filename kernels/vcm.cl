@@ -125,7 +125,7 @@ __kernel void vcm_light(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong 
         }
         float3 wo = -dir;
         vcm_on_hit(&m, sf.t * sf.t * dot(dir, dir) / area_scale, fabs(dot(sf.ns, wo)), len == 1 && !e.finite);
-        Bsdf b = surface_bsdf(SCENE_ARGS, &sf);
+        Bsdf b = surface_bsdf(SCENE_ARGS, &sf, TRANSPORT_IMPORTANCE);
         if (HAS_DISPERSION) disperse(SCENE_ARGS, &sf, &b, &pw, &dispersed, &T);
         if (bsdf_has_nondelta(&b)) {
             if (store) {
@@ -214,7 +214,7 @@ float3 vcm_connect(SCENE_PARAMS, const Surface* sf, const Bsdf* b, float3 wo, co
     h.v = lv->v;
     h.prim = lv->prim;
     Surface sl = make_surface(SCENE_ARGS, -wi_l, &h);
-    Bsdf bl = surface_bsdf(SCENE_ARGS, &sl);
+    Bsdf bl = surface_bsdf(SCENE_ARGS, &sl, TRANSPORT_IMPORTANCE);
     if (HAS_DISPERSION) disperse_index(SCENE_ARGS, &sl, &bl, pw);
     if (!bsdf_connects(&bl, -w, LOBE_ALL)) return (float3)(0.0f);
     float3 f_l = bsdf_eval(&bl, wi_l, -w, LOBE_ALL);
@@ -312,7 +312,7 @@ __kernel void vcm_camera(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong
         }
         if (t >= max_len) break;
         wo = normalize(wo);
-        Bsdf b = surface_bsdf(SCENE_ARGS, &sf);
+        Bsdf b = surface_bsdf(SCENE_ARGS, &sf, TRANSPORT_RADIANCE);
         if (HAS_DISPERSION) disperse(SCENE_ARGS, &sf, &b, &pw, &dispersed, &beta);
         if (bsdf_has_nondelta(&b)) {
             if (connections && first && t + 1 <= max_len)

@@ -66,6 +66,7 @@ Bsdf test_bsdf(__global const float* p, float3 n) {
     b.metal = p[10];
     b.eta = p[11];
     b.thin = p[12] != 0.0f;
+    b.radiance = false; /* the host references are written for importance, as the model is */
     b.front = true;
     b.sigma = (float3)(0.0f);
     b.nc = n;
@@ -96,12 +97,13 @@ __kernel void model_eval_pdf(__global const float* p, float nx, float ny, float 
     out[4 * i + 3] = bsdf_pdf(&b, wo, w, mask);
 }
 /* bsdf_sample from wo with u[3 i .. 3 i + 2]: wi, weight, pdf, and flags (1 sampled, 2 delta,
- * 4 below). */
+ * 4 below), for a path carrying importance (radiance 0) or radiance. */
 __kernel void model_sample(__global const float* p, float nx, float ny, float nz, float ox, float oy, float oz,
-                           uint mask, __global const float* u, __global float* out) {
+                           uint mask, __global const float* u, uint radiance, __global float* out) {
     uint i = get_global_id(0);
     float3 n = (float3)(nx, ny, nz), wo = (float3)(ox, oy, oz);
     Bsdf b = test_bsdf(p, n);
+    b.radiance = radiance != 0u;
     BsdfSample s;
     bool ok = bsdf_sample(&b, wo, mask, u[3 * i], u[3 * i + 1], u[3 * i + 2], &s);
     __global float* o = &out[8 * i];
@@ -268,13 +270,14 @@ inline std::vector<float> model_eval(const Params& p, D3 n, D3 wo, const std::ve
 }
 
 // Per sample: wi, weight, pdf, flags (1 sampled, 2 delta, 4 below).
-inline std::vector<float> model_sample(const Params& p, D3 n, D3 wo, size_t m, unsigned mask, uint64_t seed) {
+inline std::vector<float> model_sample(const Params& p, D3 n, D3 wo, size_t m, unsigned mask, uint64_t seed,
+                                       bool radiance = false) {
     const Device& d = device();
     cl::Buffer pb = d.input(p.pack()), ub = d.input(uniforms(3 * m, seed)), out = d.output(8 * m * sizeof(float));
     cl::Kernel k(d.program, "model_sample");
     k.setArg(0, pb), k.setArg(1, float(n.x)), k.setArg(2, float(n.y)), k.setArg(3, float(n.z));
     k.setArg(4, float(wo.x)), k.setArg(5, float(wo.y)), k.setArg(6, float(wo.z)), k.setArg(7, cl_uint(mask));
-    k.setArg(8, ub), k.setArg(9, out);
+    k.setArg(8, ub), k.setArg(9, cl_uint(radiance)), k.setArg(10, out);
     d.run(k, m);
     return d.read<float>(out, 8 * m);
 }

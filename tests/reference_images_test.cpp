@@ -111,8 +111,8 @@ double p90_relative_error(const Image& a, const Image& ref) {
 // The stopping rule against Mitsuba (bench/ERROR_CALIBRATION.md fits its factor against SPPM
 // references): when --target-error E stops a render, the image's actual error, by the measure the
 // option states, lies in [E/2, E], for each integrator, on the textured floor and
-// on the rough glass block, a scene the calibration never saw; the path tracer's estimate is its
-// noise alone. PPM's four fixed samples per pixel
+// on the rough glass block, a scene the calibration never saw; the path tracer's, VCM's and BPT's
+// estimates are their noise alone. PPM's four fixed samples per pixel
 // cannot reach 0.15 on the rough glass (blurred refraction varies within a pixel): there it must
 // not stop, and it is right not to.
 TEST(ReferenceImages, TargetErrorStopsWithinTheStatedBand) {
@@ -125,7 +125,9 @@ TEST(ReferenceImages, TargetErrorStopsWithinTheStatedBand) {
     for (const Case& c : {Case{"ref_textured", "ppm", 0.1, true}, Case{"ref_textured", "sppm", 0.1, true},
                           Case{"ref_textured", "pppm", 0.1, true}, Case{"ref_textured", "pt", 0.1, true},
                           Case{"ref_rough_glass", "pt", 0.15, true}, Case{"ref_rough_glass", "sppm", 0.15, true},
-                          Case{"ref_rough_glass", "pppm", 0.15, true}, Case{"ref_rough_glass", "ppm", 0.15, false}}) {
+                          Case{"ref_rough_glass", "pppm", 0.15, true}, Case{"ref_rough_glass", "ppm", 0.15, false},
+                          Case{"ref_textured", "vcm", 0.1, true}, Case{"ref_textured", "bpt", 0.1, true},
+                          Case{"ref_rough_glass", "vcm", 0.15, true}, Case{"ref_rough_glass", "bpt", 0.15, true}}) {
         const std::string what = std::string(c.scene) + " " + c.integrator;
         const Image ref = read_exr(std::string(CLPPM_TEST_DATA) + "/../references/" + c.scene + ".exr");
         const std::string d = make_temp_dir("target_error"), out_file = d + "/out.exr";

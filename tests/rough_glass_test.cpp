@@ -305,3 +305,38 @@ TEST(RoughGlass, SmoothThinWallDoesNotBend) {
         EXPECT_NEAR(transmitted / 20000, 1 - F, 0.012) << "cos_o " << cos_o;
     }
 }
+
+// A camera path carries radiance, a light path importance (kernels/bsdf.cl, TRANSPORT_RADIANCE):
+// with the same numbers, every sample through a solid's surface weighs 1/eta^2 as much for
+// radiance (eta the index beyond the surface over the index before it, 1.5 and 1/1.5 from either
+// side), rough or smooth; reflections and thin walls weigh the same.
+TEST(RoughGlass, RadianceRefractsWithOneOverEtaSquared) {
+    const D3 n = float_normal();
+    const size_t m = 4000;
+    for (double alpha : {0.0, 0.09}) {
+        for (double eta : {1.5, 1 / 1.5}) {
+            for (bool thin : {false, true}) {
+                const Params p = glass(alpha, eta, thin);
+                const std::vector<float> imp = model_sample(p, n, view(0.9), m, kAll, 31);
+                const std::vector<float> rad = model_sample(p, n, view(0.9), m, kAll, 31, true);
+                size_t below = 0;
+                for (size_t i = 0; i < m; ++i) {
+                    const int flags = int(imp[8 * i + 7]);
+                    ASSERT_EQ(flags, int(rad[8 * i + 7])) << "the same sample, sample " << i;
+                    if (!(flags & 1)) continue;
+                    const bool through = (flags & 4) != 0 && !thin;
+                    below += through;
+                    const double expect = through ? 1 / (eta * eta) : 1.0;
+                    for (int c = 3; c < 6; ++c) {
+                        ASSERT_NEAR(rad[8 * i + c], expect * imp[8 * i + c], 1e-5 * imp[8 * i + c])
+                            << "alpha " << alpha << " eta " << eta << " thin " << thin << " sample " << i;
+                    }
+                    ASSERT_EQ(rad[8 * i + 6], imp[8 * i + 6]) << "the density is the same";
+                }
+                if (!thin) {
+                    EXPECT_GT(below, m / 10) << "alpha " << alpha << " eta " << eta;
+                }
+            }
+        }
+    }
+}
