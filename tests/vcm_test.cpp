@@ -8,6 +8,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <random>
+#include <vector>
 
 #include "device/kernel_launch.h"
 #include "device/kernel_program.h"
@@ -60,6 +61,24 @@ void expect_alike(const Image& img, const Image& ref, double tol, double qtol, c
     }
 }
 
+// One of VCM's techniques alone (or all of them) against a reference: its mode, passes, the
+// tolerances of expect_alike, the merging radius (0: the default) and a name.
+struct TechniqueCase {
+    int mode;
+    uint64_t passes;
+    double tol, qtol, radius;
+    const char* name;
+};
+
+void expect_techniques_converge(const Scene& scene, const Image& ref, unsigned size,
+                                const std::vector<TechniqueCase>& cases) {
+    for (const TechniqueCase& c : cases) {
+        RenderSettings s = settings("vcm", size, c.mode);
+        s.radius = c.radius;
+        expect_alike(render_passes(scene, s, c.passes), ref, c.tol, c.qtol, c.name);
+    }
+}
+
 // The diffuse box under its area light, 24x24: the path tracer's image at 4096 passes.
 const Image& diffuse_reference() {
     static const Image ref = render_passes(diffuse_box(), settings("pt", 24), 4096);
@@ -73,25 +92,14 @@ const Image& diffuse_reference() {
 // the light itself (no light vertex lies on it), so the image's lit part is compared: every
 // technique counts directly seen emission (one way only to find it).
 TEST(Vcm, EachTechniqueAloneConvergesToThePathTracersImage) {
-    const Image& ref = diffuse_reference();
-    struct Case {
-        int mode;
-        uint64_t passes;
-        double tol, qtol;
-        const char* name;
-    };
-    // Measured on the two-core PoCL box: ratios within 0.4% (mean) and 1.5% (quadrants).
-    for (const Case& c : {Case{VCM_MODE_PT, 2048, 0.015, 0.04, "path tracing only"},
-                          Case{VCM_MODE_LT, 2048, 0.015, 0.04, "light tracing only"},
-                          Case{VCM_MODE_VM, 512, 0.02, 0.05, "merging only"},
-                          Case{VCM_MODE_BPT, 512, 0.01, 0.03, "connections only (bpt)"},
-                          Case{VCM_MODE_VCM, 512, 0.01, 0.03, "all (vcm)"}}) {
-        RenderSettings s = settings("vcm", 24, c.mode);
-        // Below the 24-pixel footprint (the default radius): little blur where merging counts.
-        if (c.mode == VCM_MODE_VM || c.mode == VCM_MODE_VCM) s.radius = 0.04;
-        Image img = render_passes(diffuse_box(), s, c.passes);
-        expect_alike(img, ref, c.tol, c.qtol, c.name);
-    }
+    // Measured on the two-core PoCL box: ratios within 0.4% (mean) and 1.5% (quadrants). Merging
+    // at 0.04, below the 24-pixel footprint (the default radius): little blur where it counts.
+    expect_techniques_converge(diffuse_box(), diffuse_reference(), 24,
+                               {TechniqueCase{VCM_MODE_PT, 2048, 0.015, 0.04, 0, "path tracing only"},
+                                TechniqueCase{VCM_MODE_LT, 2048, 0.015, 0.04, 0, "light tracing only"},
+                                TechniqueCase{VCM_MODE_VM, 512, 0.02, 0.05, 0.04, "merging only"},
+                                TechniqueCase{VCM_MODE_BPT, 512, 0.01, 0.03, 0, "connections only (bpt)"},
+                                TechniqueCase{VCM_MODE_VCM, 512, 0.01, 0.03, 0.04, "all (vcm)"}});
 }
 
 // The integrators as a user picks them: bpt and vcm against the path tracer on the diffuse box.
@@ -321,23 +329,12 @@ TEST(Vcm, FixedPointSumsAreExactWithOrWithoutInt64Atomics) {
 // With one BSDF for both, merging alone was 10 to 25% too bright here and BPT 1.3%.
 TEST(Vcm, EachTechniqueAloneConvergesThroughRoughGlass) {
     const Scene scene = load_gltf(std::string(CLPPM_TEST_DATA) + "/ref_rough_glass.gltf");
-    const Image ref = render_passes(scene, settings("pt", 32), 4096);
-    struct Case {
-        int mode;
-        uint64_t passes;
-        double tol, qtol;
-        const char* name;
-    };
     // Measured on the two-core PoCL box: merging alone 0.994 (worst quadrant channel 3.3% off),
     // BPT 1.0011 (0.6%), all together 1.009 (2.3%) at radius 0.03. All together carry merging's
     // bias, which grows with the radius: 1.028 at the default radius of these 32 pixels, 1.044 at
     // 0.2 (6% at the default before the transport modes).
-    for (const Case& c : {Case{VCM_MODE_VM, 2048, 0.03, 0.07, "merging only"},
-                          Case{VCM_MODE_BPT, 1024, 0.01, 0.02, "connections only (bpt)"},
-                          Case{VCM_MODE_VCM, 1024, 0.02, 0.045, "all (vcm)"}}) {
-        RenderSettings s = settings("vcm", 32, c.mode);
-        if (c.mode == VCM_MODE_VCM) s.radius = 0.03;
-        Image img = render_passes(scene, s, c.passes);
-        expect_alike(img, ref, c.tol, c.qtol, c.name);
-    }
+    expect_techniques_converge(scene, render_passes(scene, settings("pt", 32), 4096), 32,
+                               {TechniqueCase{VCM_MODE_VM, 2048, 0.03, 0.07, 0, "merging only"},
+                                TechniqueCase{VCM_MODE_BPT, 1024, 0.01, 0.02, 0, "connections only (bpt)"},
+                                TechniqueCase{VCM_MODE_VCM, 1024, 0.02, 0.045, 0.03, "all (vcm)"}});
 }
