@@ -78,7 +78,8 @@ uint eye_followed_lobes(const Bsdf* bsdf) {
 
 /* The continuations of an eye path at a surface (kernels/bsdf.cl decides which lobes are whose):
  * a hit point for the lobes it keeps; one sampled ray for the other reflection lobes; and, at
- * glass, its reflection and its refraction with their Fresnel weights. Returns how many. */
+ * glass, its reflection and its refraction with their Fresnel weights (radiance: the refraction
+ * compressed by 1/eta^2, refraction_scale in kernels/bsdf.cl). Returns how many. */
 uint surface_branches(const Bsdf* bsdf, float3 wo, float3 weight, Rng* rng, Branch* br) {
     uint n = 0;
     if (bsdf_plain_lambert(bsdf)) { /* one way on: a hit point */
@@ -118,8 +119,9 @@ uint surface_branches(const Bsdf* bsdf, float3 wo, float3 weight, Rng* rng, Bran
         if (F < 1.0f) {
             float3 t = bsdf->thin ? -wo : refract_dir(-wo, bsdf->ns, bsdf->eta);
             if (dot(t, bsdf->ng) < 0.0f)
-                br[n++] =
-                    ray_branch(weight * bsdf->base * (bsdf->glass * (1.0f - F) * layers_scale(bsdf, wo, t)), t, true);
+                br[n++] = ray_branch(weight * bsdf->base *
+                                         (bsdf->glass * (1.0f - F) * layers_scale(bsdf, wo, t) * refraction_scale(bsdf)),
+                                     t, true);
         }
     }
     return n;
