@@ -69,7 +69,9 @@ typedef struct {
     float sx, sy, sz;
 } RayShear;
 
-inline RayShear ray_shear(float3 org, float3 dir) {
+inline float vec3_component(float3 v, int k) { return k == 0 ? v.x : (k == 1 ? v.y : v.z); }
+
+inline RayShear ray_shear(float3 org, float3 dir, float3 idir) {
     const float3 a = fabs(dir);
     /* kz: axis of largest |dir|; kx, ky follow it cyclically, swapped when dir[kz] < 0 to keep
      * the winding (the test is two-sided anyway, but the sign of det stays meaningful). */
@@ -77,19 +79,19 @@ inline RayShear ray_shear(float3 org, float3 dir) {
     s.kz = a.x > a.y ? (a.x > a.z ? 0 : 2) : (a.y > a.z ? 1 : 2);
     s.kx = s.kz == 2 ? 0 : s.kz + 1;
     s.ky = s.kx == 2 ? 0 : s.kx + 1;
-    const float dz = s.kz == 0 ? dir.x : (s.kz == 1 ? dir.y : dir.z);
+    const float dz = vec3_component(dir, s.kz);
     if (dz < 0.0f) {
         const int tmp = s.kx;
         s.kx = s.ky;
         s.ky = tmp;
     }
-    const float o[3] = {org.x, org.y, org.z}, d[3] = {dir.x, dir.y, dir.z};
-    s.ox = o[s.kx];
-    s.oy = o[s.ky];
-    s.oz = o[s.kz];
-    s.sx = d[s.kx] / dz;
-    s.sy = d[s.ky] / dz;
-    s.sz = 1.0f / dz;
+    /* Components by selects, not by indexing a private array (which went through memory). */
+    s.ox = vec3_component(org, s.kx);
+    s.oy = vec3_component(org, s.ky);
+    s.oz = vec3_component(org, s.kz);
+    s.sz = vec3_component(idir, s.kz); /* 1 / dz, unless the ray is degenerate (all |dir| < 1e-20) */
+    s.sx = vec3_component(dir, s.kx) * s.sz;
+    s.sy = vec3_component(dir, s.ky) * s.sz;
     return s;
 }
 
@@ -154,7 +156,7 @@ bool bvh_intersect(__global const BvhNode* nodes, __global const BvhTriBlock* bl
     const int near_x = idir.x >= 0.0f ? 0 : 3, near_y = idir.y >= 0.0f ? 1 : 4, near_z = idir.z >= 0.0f ? 2 : 5;
     const int far_x = 3 - near_x, far_y = 5 - near_y, far_z = 7 - near_z;
 
-    const RayShear shear = ray_shear(org, dir);
+    const RayShear shear = ray_shear(org, dir, idir);
 
     int stack_node[BVH_STACK_SIZE];
     uint stack_count[BVH_STACK_SIZE];

@@ -126,7 +126,9 @@ Surface make_surface(SCENE_PARAMS, float3 dir, const Hit* h) {
     float3 ns = load3g(sh->n0) * b0 + load3g(sh->n1) * b1 + load3g(sh->n2) * b2;
     float len = length(ns);
     ns = (len > 1e-12f && isfinite(len)) ? ns / len : ng;
-    s.uv = triangle_uv(SCENE_ARGS, prim, b1, b2);
+    /* Texture coordinates only where a texture reads them (scene_features.cpp sets HAS_TEXTURES
+     * for every textured input, normal maps included). */
+    s.uv = HAS_TEXTURES ? triangle_uv(SCENE_ARGS, prim, b1, b2) : (float4)(0.0f);
     s.material = sh->material;
     s.color = (HAS_VERTEX_COLORS && info->vertex_colors)
                   ? colors[3 * prim] * b0 + colors[3 * prim + 1] * b1 + colors[3 * prim + 2] * b2

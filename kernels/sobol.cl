@@ -33,9 +33,28 @@ uint reverse_bits32(uint v) {
     return (v >> 16) | (v << 16);
 }
 
+/* The same on two words at once: sobol_2d's two coordinates share every step (one vector op
+ * each on SSE/AVX, where the scalar chains ran one after the other). */
+uint2 reverse_bits32x2(uint2 v) {
+    v = ((v >> 1) & 0x55555555u) | ((v & 0x55555555u) << 1);
+    v = ((v >> 2) & 0x33333333u) | ((v & 0x33333333u) << 2);
+    v = ((v >> 4) & 0x0F0F0F0Fu) | ((v & 0x0F0F0F0Fu) << 4);
+    v = ((v >> 8) & 0x00FF00FFu) | ((v & 0x00FF00FFu) << 8);
+    return (v >> 16) | (v << 16);
+}
+
 /* A random permutation of 32-bit words in which output bit k depends only on input bits 0..k:
  * applied to reversed bits it is a nested uniform (Owen) scramble. */
 uint owen_hash(uint v, uint seed) {
+    v ^= v * 0x3d20adeau;
+    v += seed;
+    v *= (seed >> 16) | 1u;
+    v ^= v * 0x05526c56u;
+    v ^= v * 0x53a22864u;
+    return v;
+}
+
+uint2 owen_hash_x2(uint2 v, uint2 seed) {
     v ^= v * 0x3d20adeau;
     v += seed;
     v *= (seed >> 16) | 1u;
@@ -68,6 +87,14 @@ uint hash32(uint x) {
     return x ^ (x >> 16);
 }
 
+uint2 hash32_x2(uint2 x) {
+    x ^= x >> 16;
+    x *= 0x7feb352du;
+    x ^= x >> 15;
+    x *= 0x846ca68bu;
+    return x ^ (x >> 16);
+}
+
 typedef struct {
     uint seed;           /* (render seed, pixel) */
     uint index_reversed; /* the pass number, bits reversed */
@@ -85,7 +112,7 @@ Sobol sobol_make(ulong seed, uint pixel, ulong pass) {
 /* The shuffled index of dimension d (Burley 2020, Eq. 4 and Listing 5) and two coordinate seeds. */
 uint sobol_shuffled_index(Sobol* s, uint2* scramble) {
     uint h = hash32(s->seed + s->dim++ * 0x9E3779B9u);
-    *scramble = (uint2)(hash32(h ^ 0x85EBCA6Bu), hash32(h ^ 0xC2B2AE35u));
+    *scramble = hash32_x2((uint2)(h) ^ (uint2)(0x85EBCA6Bu, 0xC2B2AE35u));
     return reverse_bits32(owen_hash(s->index_reversed, h));
 }
 
@@ -99,8 +126,8 @@ float sobol_1d(Sobol* s) {
 float2 sobol_2d(Sobol* s) {
     uint2 sc;
     uint i = sobol_shuffled_index(s, &sc);
-    return (float2)(sobol_to_float(reverse_bits32(owen_hash(i, sc.x))),
-                    sobol_to_float(reverse_bits32(owen_hash(sobol_pascal_reversed(i), sc.y))));
+    const uint2 x = reverse_bits32x2(owen_hash_x2((uint2)(i, sobol_pascal_reversed(i)), sc));
+    return convert_float2(x >> 8) * (1.0f / 16777216.0f); /* sobol_to_float of each */
 }
 
 #endif
