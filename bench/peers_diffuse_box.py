@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 """clppm's path tracer against Mitsuba 3's `path` on the diffuse Cornell box, side by side in one
-run at equal wall time (issue 36): each image against one reference, by `clppm compare --box 4`,
+run at equal wall time (issue 36), Mitsuba with each of its samplers in MI_SAMPLERS (default
+independent, ldsampler and multijitter: its best is the peer): each image against one reference, by `clppm compare --box 4`,
 with the wall and CPU time each took. Run offline with Mitsuba 3 from PyPI:
 
     python3 -m venv /tmp/mi && /tmp/mi/bin/pip install mitsuba numpy
@@ -41,21 +42,27 @@ def render(scene, spp, seed):
     return img
 
 
-def timed_render(scene, seconds, tmp, ref_factor):
+def timed_render(scene, seconds, tmp, ref_factor, name):
     """Mitsuba's image of about `seconds` (its spp chosen from timed renders, the kernels compiled
-    first), written to tmp/mitsuba.exr, and its own reference of ref_factor times the samples in
-    tmp/mitsuba_ref.exr: (image path, reference path, spp, wall s, CPU s)."""
+    first), written to tmp/NAME.exr, and, when ref_factor > 0, its own reference of ref_factor
+    times the samples in tmp/mitsuba_ref.exr: (image path, reference path or None, spp, wall s,
+    CPU s)."""
     render(scene, 4, 0)  # compiles the kernels (llvm) outside the timed renders
     spp = 16
     for _ in range(2):  # the first estimate is mostly the fixed cost of a render
         t0 = time.time()
         render(scene, spp, 1)
         spp = max(16, int(spp * seconds / max(time.time() - t0, 1e-3) / (4 if spp == 16 else 1)))
+    # Dr.Jit may compile a kernel for each new spp: a render at the chosen spp first, so the timed
+    # one runs what is already compiled, as clppm's timed passes do.
+    render(scene, spp, 3)
     t0, c0 = time.time(), time.process_time()
     img = render(scene, spp, 2)
     wall, cpu = time.time() - t0, time.process_time() - c0
-    out = os.path.join(tmp, "mitsuba.exr")
+    out = os.path.join(tmp, name + ".exr")
     mi.Bitmap(img).write(out)
+    if ref_factor <= 0:
+        return out, None, spp, wall, cpu
     # Mitsuba's own reference, ref_factor times the samples: each renderer is measured against a
     # converged image of its own, so what differs between the two renderers' models (a pixel
     # filter's edge, an emitter's side) does not count as either one's noise.
@@ -71,7 +78,8 @@ def clppm_timed(command, stats):
     subprocess.run(command + ["--stats-json", stats], check=True)
     c1 = os.times()
     cpu = c1.children_user + c1.children_system - c0.children_user - c0.children_system
-    return json.load(open(stats))["render_seconds"], cpu
+    st = json.load(open(stats))
+    return st["render_seconds"], cpu, st["passes"]
 
 
 def compare(binary, image, ref):
@@ -104,14 +112,22 @@ def main():
                            check=True)
         for sampler in ("sobol", "independent"):
             img = os.path.join(tmp, "clppm_%s.exr" % sampler)
-            wall, cpu = clppm_timed(common + ["--sampler", sampler, "--time", str(seconds), "-o", img],
-                                    os.path.join(tmp, "stats.json"))
-            rows.append(("clppm pt, %s" % sampler, wall, cpu, compare(binary, img, ref)))
+            wall, cpu, passes = clppm_timed(common + ["--sampler", sampler, "--time", str(seconds), "-o", img],
+                                            os.path.join(tmp, "stats.json"))
+            rows.append(("clppm pt, %s" % sampler, passes, wall, cpu, compare(binary, img, ref)))
 
-        scene = mi.load_dict(make_references.mitsuba_scene(scene_file, tmp, size=size, max_depth=17))
-        out, mi_ref, spp, wall, cpu = timed_render(scene, seconds, tmp, ref_factor)
-        rows.append(("Mitsuba %s path (%s, %d spp)" % (mi.__version__, mi.variant(), spp), wall, cpu,
-                     compare(binary, out, mi_ref)))
+        # Every Mitsuba image against one reference of its own: the first sampler's (independent
+        # numbers) at REF_FACTOR times its spp.
+        mi_ref = None
+        for sampler in os.environ.get("MI_SAMPLERS", "independent,ldsampler,multijitter").split(","):
+            d = make_references.mitsuba_scene(scene_file, tmp, size=size, max_depth=17)
+            d["sensor"]["sampler"] = {"type": sampler}
+            scene = mi.load_dict(d)
+            out, new_ref, spp, wall, cpu = timed_render(scene, seconds, tmp, 0 if mi_ref else ref_factor,
+                                                        "mitsuba_" + sampler)
+            mi_ref = mi_ref or new_ref
+            rows.append(("Mitsuba %s path, %s (%s)" % (mi.__version__, sampler, mi.variant()), spp, wall, cpu,
+                         compare(binary, out, mi_ref)))
         cross = compare(binary, mi_ref, ref)
 
     print("Diffuse Cornell box, %dx%d, about %g s each; references: clppm pt, %d independent passes, and Mitsuba, "
@@ -120,11 +136,15 @@ def main():
           % (cross["mean_ratio"], cross["box_rel_mse"], cross["p90_rel_error"]))
     print()
     # The error falls as 1/time: MSE x CPU time compares renderers at equal error (lower is better).
-    print("| renderer | render wall s | CPU s | mean ratio | box-4 relative MSE | p90 relative error | MSE x CPU s |")
-    print("|---|---:|---:|---:|---:|---:|---:|")
-    for name, wall, cpu, c in rows:
-        print("| %s | %.1f | %.1f | %.4f | %.3e | %.4f | %.2e |" % (name, wall, cpu, c["mean_ratio"], c["box_rel_mse"],
-                                                                   c["p90_rel_error"], c["box_rel_mse"] * cpu))
+    # MSE x spp is the error of one sample per pixel: how good each renderer's samples are, apart
+    # from how fast it draws them (spp / CPU s).
+    print("| renderer | spp | render wall s | CPU s | spp / CPU s | mean ratio | box-4 relative MSE | p90 relative "
+          "error | MSE x spp | MSE x CPU s |")
+    print("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
+    for name, spp, wall, cpu, c in rows:
+        print("| %s | %d | %.1f | %.1f | %.1f | %.4f | %.3e | %.4f | %.2e | %.2e |"
+              % (name, spp, wall, cpu, spp / cpu, c["mean_ratio"], c["box_rel_mse"], c["p90_rel_error"],
+                 c["box_rel_mse"] * spp, c["box_rel_mse"] * cpu))
 
 
 if __name__ == "__main__":

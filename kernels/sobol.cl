@@ -17,6 +17,7 @@
  * - each coordinate is Owen-scrambled by a hash whose every bit depends only on the bits above it
  *   (Laine and Karras 2011, with the constants of pbrt-v4 after Vegdahl), so each point is
  *   uniform on [0,1)^2 and the estimate stays unbiased.
+ * Draws from the SOBOL_QMC_DRAWS-th on are independent numbers (below).
  * Seeds come from (seed, pixel, dimension) only, so a pass's samples do not depend on the device,
  * the work-group size or the passes other devices ran. tests/sobol_test.cpp holds the host
  * reference. The index is the pass number modulo 2^32. */
@@ -116,7 +117,22 @@ uint sobol_shuffled_index(Sobol* s, uint2* scramble) {
     return reverse_bits32(owen_hash(s->index_reversed, h));
 }
 
+/* The first SOBOL_QMC_DRAWS draws of a path are Sobol' points; later ones are independent
+ * uniforms per (seed, pixel, draw, pass), two rounds of hash32 without the scrambles. In the path
+ * tracer's pattern (2 camera draws, then 4 a bounce) 10 covers the camera and two bounces. Where
+ * a path goes after its second bounce barely stratifies, and the points cost: on the diffuse box
+ * (128x128) every draw a point took 10% more CPU a pass than 10, for 5% more error at equal time;
+ * under the sky and through the doorway the two were level (bench/RESULTS.md, issue 36). */
+#ifndef SOBOL_QMC_DRAWS
+#define SOBOL_QMC_DRAWS 10u
+#endif
+uint2 sobol_plain_bits(Sobol* s) {
+    uint h = hash32(s->seed + s->dim++ * 0x9E3779B9u) ^ s->index_reversed;
+    return hash32_x2((uint2)(h) ^ (uint2)(0x85EBCA6Bu, 0xC2B2AE35u));
+}
+
 float sobol_1d(Sobol* s) {
+    if (s->dim >= SOBOL_QMC_DRAWS) return sobol_to_float(sobol_plain_bits(s).x);
     uint2 sc;
     uint i = sobol_shuffled_index(s, &sc);
     /* van der Corput is reverse_bits32(i); its Owen scramble reverses, hashes and reverses back */
@@ -124,6 +140,7 @@ float sobol_1d(Sobol* s) {
 }
 
 float2 sobol_2d(Sobol* s) {
+    if (s->dim >= SOBOL_QMC_DRAWS) return convert_float2(sobol_plain_bits(s) >> 8) * (1.0f / 16777216.0f);
     uint2 sc;
     uint i = sobol_shuffled_index(s, &sc);
     const uint2 x = reverse_bits32x2(owen_hash_x2((uint2)(i, sobol_pascal_reversed(i)), sc));

@@ -2,7 +2,8 @@
 // builds the Sobol' points from their direction numbers (Joe and Kuo's first two dimensions: the
 // identity and the Pascal matrix, v_k = v_{k-1} ^ v_{k-1} >> 1) and scrambles with loops over the
 // bits, then checks what the renderer relies on: every 2^m passes from a multiple of 2^m are a
-// (0,m,2)-net in every 2-D draw and stratified in every 1-D draw, the draws of one path are
+// (0,m,2)-net in every 2-D draw and stratified in every 1-D draw up to SOBOL_QMC_DRAWS (later
+// draws are independent numbers), the draws of one path are
 // independent of one another and of other pixels', each point is uniform, and the path tracer's
 // image keeps its mean while its error falls below that of independent random numbers.
 #include <gtest/gtest.h>
@@ -65,6 +66,9 @@ uint32_t ref_hash32(uint32_t x) { // Wellons' lowbias32
     return x ^ (x >> 16);
 }
 
+// SOBOL_QMC_DRAWS in kernels/sobol.cl: the draws of a path that are Sobol' points.
+constexpr uint32_t kQmcDraws = 10;
+
 struct RefSobol {
     uint32_t seed;
     uint32_t index;
@@ -79,12 +83,19 @@ struct RefSobol {
         return ref_reverse(ref_owen_hash(ref_reverse(index), h));
     }
     static float to_float(uint32_t x) { return float(x >> 8) * (1.0f / 16777216.0f); }
+    // Past kQmcDraws: independent numbers, hash32 of (seed, draw) and the pass, hashed again.
+    std::array<float, 2> plain() {
+        const uint32_t h = ref_hash32(seed + dim++ * 0x9E3779B9u) ^ ref_reverse(index);
+        return {to_float(ref_hash32(h ^ 0x85EBCA6Bu)), to_float(ref_hash32(h ^ 0xC2B2AE35u))};
+    }
     float get1() {
+        if (dim >= kQmcDraws) return plain()[0];
         uint32_t sx, sy;
         const uint32_t i = shuffled(&sx, &sy);
         return to_float(ref_owen(ref_sobol(i, 0), sx));
     }
     std::array<float, 2> get2() {
+        if (dim >= kQmcDraws) return plain();
         uint32_t sx, sy;
         const uint32_t i = shuffled(&sx, &sy);
         return {to_float(ref_owen(ref_sobol(i, 0), sx)), to_float(ref_owen(ref_sobol(i, 1), sy))};
@@ -192,12 +203,12 @@ TEST(Sobol, DeviceMatchesHostReferenceBitForBit) {
 }
 
 // Any 2^m passes from a multiple of 2^m: every 2-D draw is a (0,m,2)-net, every 1-D draw has one
-// point in each interval of length 2^-m. This is what the samples gain over random ones; a broken
-// shuffle or scramble breaks it.
+// point in each interval of length 2^-m, up to the last Sobol' draw. This is what the samples
+// gain over random ones; a broken shuffle or scramble breaks it.
 TEST(Sobol, AlignedBlocksOfPassesAreNets) {
     const Device& d = device();
     const int m = 8;
-    const uint32_t n = 1u << m, draws = 12, pixels = 3;
+    const uint32_t n = 1u << m, draws = kQmcDraws, pixels = 3;
     for (uint64_t block : {uint64_t(0), uint64_t(5), uint64_t(1000)}) {
         const std::vector<float> got = d.draws(42, 77, pixels, block * n, n, draws);
         for (uint32_t p = 0; p < pixels; ++p)
@@ -217,11 +228,16 @@ TEST(Sobol, AlignedBlocksOfPassesAreNets) {
                     ASSERT_EQ(strata[c], 1) << "block " << block << " draw " << k << " stratum " << c;
             }
     }
-    // A block that is not aligned is no net: the property is the points', not the test's.
+    // A block that is not aligned is no net, nor is the first draw past the Sobol' ones: the
+    // property is the points', not the test's.
     const std::vector<float> off = d.draws(42, 77, 1, 3, n, 1);
     std::vector<int> strata(n, 0);
     for (uint32_t j = 0; j < n; ++j) ++strata[size_t(double(off[2 * j]) * n)];
     EXPECT_NE(std::count(strata.begin(), strata.end(), 1), int(n));
+    const std::vector<float> past = d.draws(42, 77, 1, 0, n, kQmcDraws + 1);
+    std::vector<int> past_strata(n, 0);
+    for (uint32_t j = 0; j < n; ++j) ++past_strata[size_t(double(past[(size_t(j) * (kQmcDraws + 1) + kQmcDraws) * 2]) * n)];
+    EXPECT_NE(std::count(past_strata.begin(), past_strata.end(), 1), int(n));
 }
 
 // The draws of one path are independent of one another (the padding), and pixels of one another:
