@@ -119,9 +119,10 @@ uint surface_branches(const Bsdf* bsdf, float3 wo, float3 weight, Rng* rng, Bran
         if (F < 1.0f) {
             float3 t = bsdf->thin ? -wo : refract_dir(-wo, bsdf->ns, bsdf->eta);
             if (dot(t, bsdf->ng) < 0.0f)
-                br[n++] = ray_branch(weight * bsdf->base *
-                                         (bsdf->glass * (1.0f - F) * layers_scale(bsdf, wo, t) * refraction_scale(bsdf)),
-                                     t, true);
+                br[n++] =
+                    ray_branch(weight * bsdf->base *
+                                   (bsdf->glass * (1.0f - F) * layers_scale(bsdf, wo, t) * refraction_scale(bsdf)),
+                               t, true);
         }
     }
     return n;

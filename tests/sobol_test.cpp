@@ -236,7 +236,8 @@ TEST(Sobol, AlignedBlocksOfPassesAreNets) {
     EXPECT_NE(std::count(strata.begin(), strata.end(), 1), int(n));
     const std::vector<float> past = d.draws(42, 77, 1, 0, n, kQmcDraws + 1);
     std::vector<int> past_strata(n, 0);
-    for (uint32_t j = 0; j < n; ++j) ++past_strata[size_t(double(past[(size_t(j) * (kQmcDraws + 1) + kQmcDraws) * 2]) * n)];
+    for (uint32_t j = 0; j < n; ++j)
+        ++past_strata[size_t(double(past[(size_t(j) * (kQmcDraws + 1) + kQmcDraws) * 2]) * n)];
     EXPECT_NE(std::count(past_strata.begin(), past_strata.end(), 1), int(n));
 }
 
