@@ -26,16 +26,9 @@
 
 #include "rng.cl"
 
-uint reverse_bits32(uint v) {
-    v = ((v >> 1) & 0x55555555u) | ((v & 0x55555555u) << 1);
-    v = ((v >> 2) & 0x33333333u) | ((v & 0x33333333u) << 2);
-    v = ((v >> 4) & 0x0F0F0F0Fu) | ((v & 0x0F0F0F0Fu) << 4);
-    v = ((v >> 8) & 0x00FF00FFu) | ((v & 0x00FF00FFu) << 8);
-    return (v >> 16) | (v << 16);
-}
-
-/* The same on two words at once: sobol_2d's two coordinates share every step (one vector op
- * each on SSE/AVX, where the scalar chains ran one after the other). */
+/* Bit reversal, on two words at once: sobol_2d's two coordinates share every step (one vector op
+ * each on SSE/AVX, where the scalar chains ran one after the other); one word takes the first
+ * lane. */
 uint2 reverse_bits32x2(uint2 v) {
     v = ((v >> 1) & 0x55555555u) | ((v & 0x55555555u) << 1);
     v = ((v >> 2) & 0x33333333u) | ((v & 0x33333333u) << 2);
@@ -44,17 +37,10 @@ uint2 reverse_bits32x2(uint2 v) {
     return (v >> 16) | (v << 16);
 }
 
+uint reverse_bits32(uint v) { return reverse_bits32x2((uint2)(v)).x; }
+
 /* A random permutation of 32-bit words in which output bit k depends only on input bits 0..k:
  * applied to reversed bits it is a nested uniform (Owen) scramble. */
-uint owen_hash(uint v, uint seed) {
-    v ^= v * 0x3d20adeau;
-    v += seed;
-    v *= (seed >> 16) | 1u;
-    v ^= v * 0x05526c56u;
-    v ^= v * 0x53a22864u;
-    return v;
-}
-
 uint2 owen_hash_x2(uint2 v, uint2 seed) {
     v ^= v * 0x3d20adeau;
     v += seed;
@@ -63,6 +49,8 @@ uint2 owen_hash_x2(uint2 v, uint2 seed) {
     v ^= v * 0x53a22864u;
     return v;
 }
+
+uint owen_hash(uint v, uint seed) { return owen_hash_x2((uint2)(v), (uint2)(seed)).x; }
 
 /* The second Sobol' dimension before its bits are reversed: output bit k is the XOR of the index
  * bits j whose binary digits contain k's (the Pascal matrix mod 2, C(j, k) odd by Lucas'
@@ -80,14 +68,6 @@ uint sobol_pascal_reversed(uint i) {
 float sobol_to_float(uint x) { return (float)(x >> 8) * (1.0f / 16777216.0f); }
 
 /* A 32-bit integer hash (Wellons' lowbias32): vectorises on CPUs without 64-bit multiplies. */
-uint hash32(uint x) {
-    x ^= x >> 16;
-    x *= 0x7feb352du;
-    x ^= x >> 15;
-    x *= 0x846ca68bu;
-    return x ^ (x >> 16);
-}
-
 uint2 hash32_x2(uint2 x) {
     x ^= x >> 16;
     x *= 0x7feb352du;
@@ -95,6 +75,8 @@ uint2 hash32_x2(uint2 x) {
     x *= 0x846ca68bu;
     return x ^ (x >> 16);
 }
+
+uint hash32(uint x) { return hash32_x2((uint2)(x)).x; }
 
 typedef struct {
     uint seed;           /* (render seed, pixel) */
