@@ -334,13 +334,16 @@ std::array<double, 3> box_mean(const Image& img, int x0, int y0, int x1, int y1)
 TEST(DispersionBox, IntegratorsAgreeAndTheCausticShowsColouredFringes) {
     const std::string scene = std::string(CLPPM_SCENES_DIR) + "/dispersion_box.gltf";
     const int passes = 512;
-    const Image pt = render_box(scene, "pt", passes);
+    // The reference path tracer at 16x the passes: its view through the sphere varies by 2% from
+    // one sample sequence to the next at 512 passes and by 1.5% at 2048 (channel means 0.2195 to
+    // 0.2270 over seeds and samplers), by 0.6% at 8192.
+    const Image pt = render_box(scene, "pt", 16 * passes);
     const std::array<double, 3> sphere = box_mean(pt, 27, 32, 38, 41), caustic = box_mean(pt, 28, 42, 37, 44);
     for (const char* integrator : {"vcm", "bpt", "sppm", "pppm"}) {
         const Image img = render_box(scene, integrator, passes);
         const std::array<double, 3> s = box_mean(img, 27, 32, 38, 41), c = box_mean(img, 28, 42, 37, 44);
         for (int k = 0; k < 3; ++k) EXPECT_NEAR(s[k] / sphere[k], 1.0, 0.025) << integrator << ", channel " << k;
-        // The caustic: the path tracer finds it noisily at 512 passes, and a density estimate blurs
+        // The caustic: the path tracer finds it noisily, and a density estimate blurs
         // it (on the box without dispersion SPPM keeps 0.94 of the path tracer's there, PPPM 0.92,
         // VCM 0.96): a loose check that it is there, with about the right power.
         const double ratio = (c[0] + c[1] + c[2]) / (caustic[0] + caustic[1] + caustic[2]);
