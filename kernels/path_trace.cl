@@ -5,7 +5,8 @@
  * power heuristic (Veach 1997, Sec. 9.2); emission found after a delta lobe counts in full.
  * One sample per pixel per pass, accumulated in double. Its numbers come from Owen-scrambled
  * Sobol' points over the passes (sobol.cl; `--sampler sobol`, the default) or from independent
- * random streams (`--sampler independent`). */
+ * random streams (`--sampler independent`); `--sampler zsobol` lays the pixels' points out on
+ * the screen (sobol.cl, sobol_make_screen). */
 #include "rng.cl"
 #include "sobol.cl"
 #include "camera.cl"
@@ -35,11 +36,15 @@ float2 path_2d(PathSampler* s) { return sobol_2d(s); }
 #define PATH_RR_MAX_SURVIVAL 0.95f
 
 __kernel void path_trace(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong pass, uint num_pixels,
-                         __global double* accum) {
+                         uint screen_log2, __global double* accum) {
     uint pixel = get_global_id(0);
     if (pixel >= num_pixels) return;
 #if PATH_QMC
-    PathSampler ps = sobol_make(seed, pixel, pass - 1); /* passes count from 1: nets from index 0 */
+    /* passes count from 1: nets from index 0. screen_log2: L of sobol_make_screen's layout, or
+     * SOBOL_PER_PIXEL for each pixel's own sequence */
+    PathSampler ps = screen_log2 == SOBOL_PER_PIXEL
+                         ? sobol_make(seed, pixel, pass - 1)
+                         : sobol_make_screen(seed, pixel % cam->width, pixel / cam->width, pass - 1, screen_log2);
 #else
     PathSampler ps = rng_make(seed, pass, pixel, RNG_PATH);
 #endif

@@ -144,6 +144,10 @@ typedef struct {
 #define TEXTURE_MIRROR_T 8u
 #define TEXTURE_NEAREST 16u
 
+/* path_trace's screen_log2 argument for each pixel's own Sobol' sequence (kernels/sobol.cl
+ * sobol_make); any other value is L of the screen-space layout (sobol_make_screen). */
+#define SOBOL_PER_PIXEL 0xFFFFFFFFu
+
 /* One texture reference: an image's texels, its sampler's wrap modes, the texture coordinate
  * set and KHR_texture_transform's affine map of it (identity without the extension). */
 typedef struct {

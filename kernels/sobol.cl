@@ -92,6 +92,39 @@ Sobol sobol_make(ulong seed, uint pixel, ulong pass) {
     return s;
 }
 
+/* Bits of x at the even positions of a 64-bit word: x's and y's interleaved are the Morton (Z)
+ * order of a pixel, in which every aligned 2^k x 2^k block of pixels is a run of 4^k codes. */
+ulong morton_spread(uint x) {
+    ulong v = x;
+    v = (v | (v << 16)) & 0x0000FFFF0000FFFFUL;
+    v = (v | (v << 8)) & 0x00FF00FF00FF00FFUL;
+    v = (v | (v << 4)) & 0x0F0F0F0F0F0F0F0FUL;
+    v = (v | (v << 2)) & 0x3333333333333333UL;
+    return (v | (v << 1)) & 0x5555555555555555UL;
+}
+/* The screen-space layout (`--sampler zsobol`; pbrt-v4's ZSobolSampler, after Ahmed and Wonka
+ * 2020, "Screen-space blue-noise diffusion of Monte Carlo sampling error via hierarchical ordering
+ * of pixels"). For a render planned at 2^L passes, pass j of pixel (x, y) draws point
+ * I = morton(x, y) 2^L + j of one sequence that all pixels share; sobol_shuffled_index's nested
+ * scramble then moves every aligned block of indices as a whole. So each pixel's passes are an
+ * aligned block (a net at every power-of-two count, as in the per-pixel layout), and so are the
+ * 4^k 2^L points of each aligned 2^k x 2^k block of pixels: the block's mean integrates its pixels'
+ * (nearly equal) integrands with 4^k times the points of one net, and the error moves to high
+ * frequencies on the screen. The scramble seeds come from the render seed, the index's bits above
+ * the 32 used (images of over 2^(32-L) pixels) and the generation j / 2^L (passes past the plan
+ * start a new, independent sequence). x, y < 2^16 and L <= 32; tests/sobol_test.cpp holds the
+ * host reference. */
+Sobol sobol_make_screen(ulong seed, uint x, uint y, ulong pass, uint log2_passes) {
+    const ulong morton = morton_spread(x) | (morton_spread(y) << 1);
+    const ulong index = (morton << log2_passes) | (pass & ((1UL << log2_passes) - 1UL));
+    const ulong key = (index >> 32) ^ ((pass >> log2_passes) * 0xD1B54A32D192ED03UL);
+    Sobol s;
+    s.seed = (uint)splitmix64(seed ^ splitmix64(key + 0x2545F4914F6CDD1DUL));
+    s.index_reversed = reverse_bits32((uint)index);
+    s.dim = 0;
+    return s;
+}
+
 /* The shuffled index of dimension d (Burley 2020, Eq. 4 and Listing 5) and two coordinate seeds. */
 uint sobol_shuffled_index(Sobol* s, uint2* scramble) {
     uint h = hash32(s->seed + s->dim++ * 0x9E3779B9u);

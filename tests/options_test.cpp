@@ -284,7 +284,7 @@ INSTANTIATE_TEST_SUITE_P(
         BadValue{{"--stats-json="}, "--stats-json '': must be a file name"},
         BadValue{{"--integrator", "mlt"}, "--integrator mlt: must be auto, ppm, sppm, pppm, pt, vcm or bpt"},
         BadValue{{"--filter", "mitchell"}, "--filter mitchell: must be box or tent"},
-        BadValue{{"--sampler", "halton"}, "--sampler halton: must be sobol or independent"},
+        BadValue{{"--sampler", "halton"}, "--sampler halton: must be sobol, zsobol or independent"},
         BadValue{{"--aperture", "-1"}, "--aperture -1: must be a finite number >= 0 (0 = pinhole)"},
         BadValue{{"--focus-distance", "0"}, "--focus-distance 0: must be a finite number > 0"},
         BadValue{{"--direct", "both"}, "--direct both: must be photons or sample"},

@@ -90,6 +90,31 @@ TEST(Resume, InterruptWritesEverythingAndResumesExactly) {
     }
 }
 
+// --sampler zsobol lays its points out for the planned passes: a checkpoint records the layout
+// (2^1 for --passes 2), a resumed render goes on in it (the passes past the plan are a new
+// generation, unbiased: the same mean as an unbroken render), and a layout no render plans is
+// refused naming the field. Without a pass limit there is no plan: a one-line error.
+TEST(Resume, ZsobolGoesOnInItsPlannedLayout) {
+    std::string d = make_temp_dir("zsobol"), out;
+    const std::string a = kArgs + " --integrator pt --sampler zsobol";
+    ASSERT_EQ(run_clppm(a + " --passes 2 -o " + d + "/a.exr --checkpoint " + d + "/c.ck", &out), 0) << out;
+    Checkpoint ck = read_checkpoint(d + "/c.ck");
+    EXPECT_EQ(ck.header.value("zsobol_log2_passes", -1), 1) << ck.header.dump();
+    ASSERT_EQ(run_clppm(a + " --passes 64 -o " + d + "/r.exr --resume " + d + "/c.ck", &out), 0) << out;
+    ASSERT_EQ(run_clppm(a + " --passes 64 -o " + d + "/n.exr", &out), 0) << out;
+    const Image r = read_exr(d + "/r.exr"), n = read_exr(d + "/n.exr");
+    EXPECT_EQ(count_nonfinite(r), 0u);
+    EXPECT_NE(r.rgb, n.rgb) << "the resumed render must keep the checkpoint's layout, not plan anew";
+    EXPECT_NEAR(mean_radiance(r) / mean_radiance(n), 1.0, 0.03);
+    ck.header["zsobol_log2_passes"] = 33;
+    write_checkpoint(d + "/bad.ck", ck);
+    EXPECT_EQ(run_clppm(a + " --passes 4 -o " + d + "/b.exr --resume " + d + "/bad.ck", &out), 1);
+    EXPECT_NE(out.find("zsobol_log2_passes = 33"), std::string::npos) << out;
+    EXPECT_EQ(run_clppm(a + " --passes 0 --time 1 -o " + d + "/t.exr", &out), 1);
+    EXPECT_NE(out.find("--sampler zsobol: its points are laid out for a planned number of passes"), std::string::npos)
+        << out;
+}
+
 // A second Ctrl-C quits at once; whatever was written before stays a complete image.
 TEST(Resume, SecondInterruptQuitsAtOnceWithoutCorruptingFiles) {
     std::string d = make_temp_dir("interrupt2"), out;

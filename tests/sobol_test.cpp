@@ -76,6 +76,21 @@ struct RefSobol {
     RefSobol(uint64_t render_seed, uint32_t pixel, uint64_t pass)
         : seed(uint32_t(ref_splitmix64(render_seed ^ ref_splitmix64(uint64_t(pixel) + 0x632BE59BD9B4E019ull)))),
           index(uint32_t(pass)) {}
+    // The screen-space layout of 2^l planned passes (sobol_make_screen): pixel (x, y)'s pass j is
+    // point morton(x, y) 2^l + j of one sequence; the index's bits above 32 and the generation
+    // j / 2^l choose its scrambles.
+    static RefSobol screen(uint64_t render_seed, uint32_t x, uint32_t y, uint64_t pass, uint32_t l) {
+        uint64_t morton = 0;
+        for (int b = 0; b < 32; ++b)
+            morton |= (uint64_t(x >> b & 1u) << (2 * b)) | (uint64_t(y >> b & 1u) << (2 * b + 1));
+        const uint64_t low = l == 64 ? pass : pass & ((uint64_t(1) << l) - 1);
+        const uint64_t index = (morton << l) | low;
+        const uint64_t key = (index >> 32) ^ ((pass >> l) * 0xD1B54A32D192ED03ull);
+        RefSobol r(0, 0, 0);
+        r.seed = uint32_t(ref_splitmix64(render_seed ^ ref_splitmix64(key + 0x2545F4914F6CDD1Dull)));
+        r.index = uint32_t(index);
+        return r;
+    }
     // Burley 2020's shuffle: a nested uniform scramble of the index's reversed bits.
     uint32_t shuffled(uint32_t* sx, uint32_t* sy) {
         const uint32_t h = ref_hash32(seed + dim++ * 0x9E3779B9u);
@@ -121,8 +136,24 @@ __kernel void draws(ulong seed, uint first_pixel, ulong first_pass, uint passes,
 }
 )CL";
 
+const char* kScreenWrappers = R"CL(
+/* The same for the screen-space layout of 2^l passes: work item i is pass first_pass + i % passes
+ * of pixel (x0 + q % w, y0 + q / w), q = i / passes. */
+__kernel void screen_draws(ulong seed, uint x0, uint y0, uint w, uint l, ulong first_pass, uint passes, uint draws,
+                           __global float* out) {
+    uint i = get_global_id(0), q = i / passes;
+    Sobol s = sobol_make_screen(seed, x0 + q % w, y0 + q / w, first_pass + i % passes, l);
+    for (uint k = 0; k < draws; ++k) {
+        bool two = k < 2 || (k - 2) % 5 == 1 || (k - 2) % 5 == 3;
+        float2 u = two ? sobol_2d(&s) : (float2)(sobol_1d(&s), 0.0f);
+        out[((size_t)i * draws + k) * 2] = u.x;
+        out[((size_t)i * draws + k) * 2 + 1] = u.y;
+    }
+}
+)CL";
+
 struct Device : KernelHarness {
-    Device() : KernelHarness(assemble_kernel_source("sobol.cl") + kWrappers) {}
+    Device() : KernelHarness(assemble_kernel_source("sobol.cl") + kWrappers + kScreenWrappers) {}
     // out[((p * passes + j) * draws + k) * 2 + c]
     std::vector<float> draws(uint64_t seed, uint32_t first_pixel, uint32_t pixels, uint64_t first_pass, uint32_t passes,
                              uint32_t draws) const {
@@ -131,6 +162,18 @@ struct Device : KernelHarness {
         cl::Kernel k(program, "draws");
         k.setArg(0, cl_ulong(seed)), k.setArg(1, cl_uint(first_pixel)), k.setArg(2, cl_ulong(first_pass));
         k.setArg(3, cl_uint(passes)), k.setArg(4, cl_uint(draws)), k.setArg(5, ob);
+        run(k, n);
+        return read<float>(ob, n * draws * 2);
+    }
+    // The w x h pixels from (x0, y0), screen-space layout of 2^l passes; the same order.
+    std::vector<float> screen_draws(uint64_t seed, uint32_t x0, uint32_t y0, uint32_t w, uint32_t h, uint32_t l,
+                                    uint64_t first_pass, uint32_t passes, uint32_t draws) const {
+        const size_t n = size_t(w) * h * passes;
+        cl::Buffer ob = output(n * draws * 2 * sizeof(float));
+        cl::Kernel k(program, "screen_draws");
+        k.setArg(0, cl_ulong(seed)), k.setArg(1, cl_uint(x0)), k.setArg(2, cl_uint(y0)), k.setArg(3, cl_uint(w));
+        k.setArg(4, cl_uint(l)), k.setArg(5, cl_ulong(first_pass)), k.setArg(6, cl_uint(passes));
+        k.setArg(7, cl_uint(draws)), k.setArg(8, ob);
         run(k, n);
         return read<float>(ob, n * draws * 2);
     }
@@ -271,6 +314,89 @@ TEST(Sobol, DrawsAndPixelsAreIndependent) {
     }
 }
 
+// The screen-space layout's points equal the host reference bit for bit: at the largest
+// coordinates, at L = 0 and L = 32, and past the planned passes (a new generation).
+TEST(Sobol, ScreenLayoutMatchesHostReferenceBitForBit) {
+    const Device& d = device();
+    const uint32_t draws = 13, passes = 8;
+    struct Case {
+        uint64_t seed;
+        uint32_t x0, y0, l;
+        uint64_t first_pass;
+    };
+    const Case cases[] = {{1, 0, 0, 3, 0},
+                          {0xffffffffffffffffull, 65532, 65534, 5, 30},
+                          {7, 1000, 3, 0, 5},
+                          {9, 65534, 0, 32, 0xffffffffull - 3},
+                          {3, 12, 40, 2, 0x100000000ull + 1}};
+    size_t mismatches = 0, checked = 0;
+    for (const Case& c : cases) {
+        const uint32_t w = 2, h = 2;
+        const std::vector<float> got = d.screen_draws(c.seed, c.x0, c.y0, w, h, c.l, c.first_pass, passes, draws);
+        for (uint32_t q = 0; q < w * h; ++q)
+            for (uint32_t j = 0; j < passes; ++j) {
+                RefSobol r = RefSobol::screen(c.seed, c.x0 + q % w, c.y0 + q / w, c.first_pass + j, c.l);
+                for (uint32_t k = 0; k < draws; ++k) {
+                    const size_t o = ((size_t(q) * passes + j) * draws + k) * 2;
+                    std::array<float, 2> u = draw_is_2d(k) ? r.get2() : std::array<float, 2>{r.get1(), 0.f};
+                    mismatches += got[o] != u[0] || got[o + 1] != u[1];
+                    ++checked;
+                }
+            }
+    }
+    EXPECT_EQ(mismatches, 0u) << "of " << checked;
+}
+
+// What the layout is for: with 2^l planned passes, each pixel's passes are a net as before, and so
+// are all the points of an aligned 2^k x 2^k block of pixels together (4^k 2^l of them), in every
+// Sobol' draw; the passes of the next generation again. A block that is not aligned is no net.
+TEST(Sobol, ScreenLayoutMakesAlignedBlocksOfPixelsNets) {
+    const Device& d = device();
+    const uint32_t l = 4, passes = 1u << l, side = 4, draws = kQmcDraws;
+    auto block_points = [&](const std::vector<float>& got, uint32_t k, uint32_t x, uint32_t y, uint32_t s,
+                            uint32_t stride) {
+        std::vector<std::array<float, 2>> pts;
+        for (uint32_t py = y; py < y + s; ++py)
+            for (uint32_t px = x; px < x + s; ++px)
+                for (uint32_t j = 0; j < passes; ++j) {
+                    const size_t o = (((size_t(py) * stride + px) * passes + j) * draws + k) * 2;
+                    pts.push_back({got[o], got[o + 1]});
+                }
+        return pts;
+    };
+    auto strata_ok = [](const std::vector<std::array<float, 2>>& pts) {
+        std::vector<int> strata(pts.size(), 0);
+        for (const auto& p : pts) ++strata[size_t(double(p[0]) * double(pts.size()))];
+        return std::count(strata.begin(), strata.end(), 1) == int(pts.size());
+    };
+    for (uint64_t generation : {uint64_t(0), uint64_t(3)}) {
+        const std::vector<float> got =
+            d.screen_draws(5, 8, 12, side, side, l, generation * passes, passes, draws); // (8, 12): aligned
+        for (uint32_t k = 0; k < draws; ++k) {
+            std::string why;
+            for (uint32_t s : {1u, 2u, 4u})
+                for (uint32_t y = 0; y < side; y += s)
+                    for (uint32_t x = 0; x < side; x += s) {
+                        const auto pts = block_points(got, k, x, y, s, side);
+                        const int m = int(l) + 2 * (s == 1 ? 0 : s == 2 ? 1 : 2);
+                        if (draw_is_2d(k)) {
+                            EXPECT_TRUE(is_net(pts, m, &why))
+                                << "generation " << generation << " draw " << k << ", " << s << "x" << s
+                                << " pixels at " << x << "," << y << ": " << why;
+                        }
+                        EXPECT_TRUE(strata_ok(pts)) << "draw " << k << ", " << s << "x" << s << " at " << x << "," << y;
+                    }
+        }
+    }
+    // The same pixels' blocks seen one pixel to the right straddle two aligned blocks.
+    const std::vector<float> off = d.screen_draws(5, 9, 12, side, side, l, 0, passes, 1);
+    std::vector<std::array<float, 2>> pts;
+    for (uint32_t q = 0; q < side * side; ++q)
+        for (uint32_t j = 0; j < passes; ++j) pts.push_back({off[(q * passes + j) * 2], off[(q * passes + j) * 2 + 1]});
+    std::string why;
+    EXPECT_FALSE(is_net(pts, int(l) + 4, &why));
+}
+
 // What the points are for: integrating a disc's indicator (an edge, as a shadow or a silhouette)
 // over the unit square with 1024 points, the root-mean-square error over 256 pixels' independent
 // randomisations is at most a third of Monte Carlo's sqrt(p (1 - p) / N), and the mean is
@@ -325,4 +451,11 @@ TEST(Sobol, PathTracerKeepsTheMeanAndLowersTheError) {
     const ImageDifference di = compare_images(independent, ref), ds = compare_images(sobol, ref);
     EXPECT_NEAR(ds.mean_a / ds.mean_b, 1.0, 0.005);
     EXPECT_LT(ds.rel_mse, 0.8 * di.rel_mse) << "Sobol' " << ds.rel_mse << ", independent " << di.rel_mse;
+    // Laid out on the screen: the same mean, and per pixel the same error as each pixel's own
+    // sequence (what it gains is across pixels: ScreenLayoutMakesAlignedBlocksOfPixelsNets).
+    s.sampler = Sampler::ZSobol;
+    s.planned_passes = 256;
+    const ImageDifference dz = compare_images(render_passes(scene, s, 256), ref);
+    EXPECT_NEAR(dz.mean_a / dz.mean_b, 1.0, 0.005);
+    EXPECT_LT(dz.rel_mse, 0.8 * di.rel_mse) << "zsobol " << dz.rel_mse << ", independent " << di.rel_mse;
 }

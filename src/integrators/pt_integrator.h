@@ -30,7 +30,10 @@ protected:
     bool sobol_passes() const override;
 
 private:
+    static uint32_t screen_layout_log2(const RenderSettings& settings, const dev::Camera& camera);
+
     cl::Kernel k_trace_;
+    uint32_t screen_log2_ = SOBOL_PER_PIXEL; // --sampler zsobol's L, else each pixel's own sequence
 };
 
 } // namespace clppm

@@ -13,6 +13,7 @@ const char* to_string(PixelFilter filter) {
 const char* to_string(Sampler sampler) {
     switch (sampler) {
     case Sampler::Sobol: return "sobol";
+    case Sampler::ZSobol: return "zsobol";
     case Sampler::Independent: return "independent";
     }
     return "?";

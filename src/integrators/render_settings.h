@@ -7,13 +7,13 @@
 
 namespace clppm {
 
-enum class DirectLighting { Photons, Sample }; // --direct photons|sample
-enum class PixelFilter { Box, Tent };          // --filter box|tent
-enum class Sampler { Sobol, Independent };     // --sampler sobol|independent (the path tracer's)
+enum class DirectLighting { Photons, Sample };     // --direct photons|sample
+enum class PixelFilter { Box, Tent };              // --filter box|tent
+enum class Sampler { Sobol, ZSobol, Independent }; // --sampler sobol|zsobol|independent (the path tracer's)
 
 const char* to_string(DirectLighting direct); // "photons", "sample"
 const char* to_string(PixelFilter filter);    // "box", "tent"
-const char* to_string(Sampler sampler);       // "sobol", "independent"
+const char* to_string(Sampler sampler);       // "sobol", "zsobol", "independent"
 
 // The one set of defaults for what shapes an image, whichever front end asks (the command line,
 // the Python module, the tests). The scene's part (camera, resolution, lens, path length) is the
@@ -32,6 +32,9 @@ struct RenderSettings : SceneSettings {
     // The path tracer's numbers: Owen-scrambled Sobol' points over the passes, or independent
     // random streams (bench/RESULTS.md, issue 36). The other integrators draw independent ones.
     Sampler sampler = Sampler::Sobol;
+    // The passes the render is planned for (the pass limit; 0: none), which --sampler zsobol's
+    // screen-space layout is cut for (kernels/sobol.cl sobol_make_screen). Set by the render job.
+    uint64_t planned_passes = 0;
     // PPM and SPPM: photon paths from Markov chains whose target is their visibility to the hit
     // points (Hachisuka and Jensen 2009; integrators/photon_chains.h), not independent ones.
     bool visual_importance = false;

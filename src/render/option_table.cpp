@@ -169,12 +169,15 @@ const std::vector<RenderOptionSpec>& render_option_table() {
         {"Integrator", "--max-bounces", nullptr, "N", "Longest eye or photon path", "an integer in 1..1024", "16",
          [](RenderOptions& o, const OptionArg& a) { o.settings.max_bounces = unsigned(parse_int(a, 1, 1024)); }},
         {"Integrator", "--sampler", nullptr, "NAME",
-         "The path tracer's numbers: sobol = Owen-scrambled Sobol' points over the passes (lower error at equal "
-         "time), independent = independent random streams; the other integrators draw independent ones",
-         "sobol or independent", "sobol",
+         "The path tracer's numbers: sobol = Owen-scrambled Sobol' points over each pixel's passes (lower error at "
+         "equal time), zsobol = the same points laid out over the screen for the planned --passes, so that "
+         "neighbouring pixels' errors cancel (needs a pass limit), independent = independent random streams; the "
+         "other integrators draw independent ones",
+         "sobol, zsobol or independent", "sobol",
          [](RenderOptions& o, const OptionArg& a) {
              const std::string v = lower(a.value);
              if (v == "sobol") o.settings.sampler = Sampler::Sobol;
+             else if (v == "zsobol") o.settings.sampler = Sampler::ZSobol;
              else if (v == "independent") o.settings.sampler = Sampler::Independent;
              else bad_value(a);
          }},

@@ -166,6 +166,7 @@ void RenderJob::build_kernels(const std::vector<DeviceInfo>& chosen) {
         integrator_build_options(s, d); // the same requirements (fp64) as the primary
         log_.note(std::string("sharing ") + unit + " with device [" + std::to_string(d.index) + "] " + d.name);
     }
+    options_.settings.planned_passes = pass_limit();
     integ_ = make_integrator(*dc_, *ds_, s, program_, secondaries);
     if (wants_error_estimate(options_)) {
         const char* asked = options_.target_error > 0 ? "--target-error" : "--error-output";
