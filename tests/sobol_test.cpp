@@ -121,18 +121,23 @@ struct RefSobol {
 bool draw_is_2d(uint32_t k) { return k < 2 || ((k - 2) % 5 == 1) || ((k - 2) % 5 == 3); }
 
 const char* kWrappers = R"CL(
+/* Work item i's draws in the path tracer's pattern, 2 floats each (the second 0 for a 1-D draw). */
+void write_draws(Sobol* s, uint i, uint draws, __global float* out) {
+    for (uint k = 0; k < draws; ++k) {
+        bool two = k < 2 || (k - 2) % 5 == 1 || (k - 2) % 5 == 3;
+        float2 u = two ? sobol_2d(s) : (float2)(sobol_1d(s), 0.0f);
+        out[((size_t)i * draws + k) * 2] = u.x;
+        out[((size_t)i * draws + k) * 2 + 1] = u.y;
+    }
+}
+
 /* For work item i = (pixel - first_pixel) * passes + j: pass first_pass + j of pixel, `draws`
  * draws in the path tracer's pattern, 2 floats each (the second 0 for a 1-D draw). */
 __kernel void draws(ulong seed, uint first_pixel, ulong first_pass, uint passes, uint draws, __global float* out) {
     uint i = get_global_id(0);
     uint pixel = first_pixel + i / passes;
     Sobol s = sobol_make(seed, pixel, first_pass + i % passes);
-    for (uint k = 0; k < draws; ++k) {
-        bool two = k < 2 || (k - 2) % 5 == 1 || (k - 2) % 5 == 3;
-        float2 u = two ? sobol_2d(&s) : (float2)(sobol_1d(&s), 0.0f);
-        out[((size_t)i * draws + k) * 2] = u.x;
-        out[((size_t)i * draws + k) * 2 + 1] = u.y;
-    }
+    write_draws(&s, i, draws, out);
 }
 )CL";
 
@@ -143,12 +148,7 @@ __kernel void screen_draws(ulong seed, uint x0, uint y0, uint w, uint l, ulong f
                            __global float* out) {
     uint i = get_global_id(0), q = i / passes;
     Sobol s = sobol_make_screen(seed, x0 + q % w, y0 + q / w, first_pass + i % passes, l);
-    for (uint k = 0; k < draws; ++k) {
-        bool two = k < 2 || (k - 2) % 5 == 1 || (k - 2) % 5 == 3;
-        float2 u = two ? sobol_2d(&s) : (float2)(sobol_1d(&s), 0.0f);
-        out[((size_t)i * draws + k) * 2] = u.x;
-        out[((size_t)i * draws + k) * 2 + 1] = u.y;
-    }
+    write_draws(&s, i, draws, out);
 }
 )CL";
 
