@@ -26,53 +26,18 @@ import base64
 import json
 import math
 import os
-import struct
 import sys
 import tempfile
 
 import mitsuba as mi
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from gltf_subset import quat_rotate, read_accessor, write_ply  # noqa: E402
+
 HERE = os.path.dirname(os.path.abspath(__file__))
 DATA = os.path.join(HERE, "..", "data")
 SCENES = ("ref_rough_glass", "ref_tinted_volume", "ref_textured", "ref_normal_panel")
 SIZE = 64
-
-
-def quat_rotate(q, v):
-    x, y, z, w = q
-    # v + 2 w (q x v) + 2 q x (q x v)
-    cx = (y * v[2] - z * v[1], z * v[0] - x * v[2], x * v[1] - y * v[0])
-    ccx = (y * cx[2] - z * cx[1], z * cx[0] - x * cx[2], x * cx[1] - y * cx[0])
-    return tuple(v[i] + 2 * w * cx[i] + 2 * ccx[i] for i in range(3))
-
-
-def read_accessor(doc, blob, index):
-    acc = doc["accessors"][index]
-    view = doc["bufferViews"][acc["bufferView"]]
-    comps = {"SCALAR": 1, "VEC2": 2, "VEC3": 3}[acc["type"]]
-    fmt = {5126: "f", 5121: "B", 5123: "H", 5125: "I"}[acc["componentType"]]
-    start = view.get("byteOffset", 0) + acc.get("byteOffset", 0)
-    n = acc["count"] * comps
-    vals = struct.unpack_from("<%d%s" % (n, fmt), blob, start)
-    return [vals[i:i + comps] for i in range(0, n, comps)] if comps > 1 else list(vals)
-
-
-def write_ply(path, tris, uvs=None):
-    """Triangles, and per-corner glTF uvs as they are: Mitsuba 3's bitmaps, like glTF, put v = 0
-    at the image's top row (flipped, the textured reference differs from clppm by a relative MSE
-    of 0.63; as is, 0.002)."""
-    with open(path, "wb") as f:
-        f.write(("ply\nformat binary_little_endian 1.0\nelement vertex %d\nproperty float x\n"
-                 "property float y\nproperty float z\n%selement face %d\nproperty list uchar int vertex_indices\n"
-                 "end_header\n" % (3 * len(tris), "property float u\nproperty float v\n" if uvs else "",
-                                    len(tris))).encode())
-        for k, t in enumerate(tris):
-            for j, p in enumerate(t):
-                f.write(struct.pack("<3f", *p))
-                if uvs:
-                    f.write(struct.pack("<2f", *uvs[k][j]))
-        for i in range(len(tris)):
-            f.write(struct.pack("<B3i", 3, 3 * i, 3 * i + 1, 3 * i + 2))
 
 
 def texture(doc, index, tmp, key, srgb=True, alpha_cutoff=None):
