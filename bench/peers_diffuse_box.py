@@ -18,9 +18,7 @@ timed render so that the render takes about SECONDS, and the time it took is rep
 wall time is its passes' (--stats-json render_seconds), Mitsuba's its render's, both without
 loading and kernel compilation; CPU times include them. Since the error falls as 1/time, MSE x CPU
 time compares the two at equal error."""
-import json
 import os
-import subprocess
 import sys
 import tempfile
 import time
@@ -30,8 +28,10 @@ import mitsuba as mi
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
+sys.path.insert(0, HERE)
 sys.path.insert(0, os.path.join(ROOT, "tests", "references"))
 import make_references  # noqa: E402
+from peer_runs import arguments, clppm_timed, compare, diffuse_box, print_report  # noqa: E402
 
 
 def render(scene, spp, seed):
@@ -71,45 +71,15 @@ def timed_render(scene, seconds, tmp, ref_factor, name):
     return out, ref, spp, wall, cpu
 
 
-def clppm_timed(command, stats):
-    """Runs clppm (`command`, which writes --stats-json `stats`): (wall s of its passes alone, as
-    Mitsuba's render is timed, and CPU s of the whole process)."""
-    c0 = os.times()
-    subprocess.run(command + ["--stats-json", stats], check=True)
-    c1 = os.times()
-    cpu = c1.children_user + c1.children_system - c0.children_user - c0.children_system
-    st = json.load(open(stats))
-    return st["render_seconds"], cpu, st["passes"]
-
-
-def compare(binary, image, ref):
-    out = subprocess.run([binary, "compare", image, ref, "--box", "4"], capture_output=True, text=True, check=True)
-    return json.loads(out.stdout)
-
-
 def main():
-    build = sys.argv[1] if len(sys.argv) > 1 else os.path.join(ROOT, "build")
-    seconds = float(sys.argv[2]) if len(sys.argv) > 2 else 15
-    size = int(sys.argv[3]) if len(sys.argv) > 3 else 128
-    ref_passes = int(sys.argv[4]) if len(sys.argv) > 4 else 40000
-    ref_factor = int(os.environ.get("REF_FACTOR", "20"))
-    binary = os.path.join(build, "clppm")
+    binary, seconds, size, ref_passes, ref_factor = arguments()
     try:
         mi.set_variant("llvm_ad_rgb")
     except Exception:  # no LLVM that Dr.Jit accepts
         mi.set_variant("scalar_rgb")
     rows = []
     with tempfile.TemporaryDirectory() as tmp:
-        scene_file = os.path.join(tmp, "cornell_diffuse.gltf")
-        subprocess.run([sys.executable, os.path.join(HERE, "cornell_diffuse.py"),
-                        os.path.join(ROOT, "scenes", "cornell_box.gltf"), scene_file], check=True)
-        common = [binary, scene_file, "--integrator", "pt", "--width", str(size), "--height", str(size), "--quiet",
-                  "--no-png"]
-        ref = os.environ.get("PEERS_REF", "")  # a cached reference of the same settings
-        if not os.path.isfile(ref):
-            ref = os.path.join(tmp, "ref.exr")
-            subprocess.run(common + ["--sampler", "independent", "--seed", "777", "--passes", str(ref_passes), "-o", ref],
-                           check=True)
+        scene_file, common, ref = diffuse_box(binary, tmp, size, ref_passes)
         for sampler in ("sobol", "independent"):
             img = os.path.join(tmp, "clppm_%s.exr" % sampler)
             wall, cpu, passes = clppm_timed(common + ["--sampler", sampler, "--time", str(seconds), "-o", img],
@@ -130,21 +100,9 @@ def main():
                          compare(binary, out, mi_ref)))
         cross = compare(binary, mi_ref, ref)
 
-    print("Diffuse Cornell box, %dx%d, about %g s each; references: clppm pt, %d independent passes, and Mitsuba, "
-          "%d times its spp; %d cores" % (size, size, seconds, ref_passes, ref_factor, os.cpu_count()))
-    print("The two references against each other: mean ratio %.4f, box-4 relative MSE %.2e, p90 %.4f"
-          % (cross["mean_ratio"], cross["box_rel_mse"], cross["p90_rel_error"]))
-    print()
-    # The error falls as 1/time: MSE x CPU time compares renderers at equal error (lower is better).
-    # MSE x spp is the error of one sample per pixel: how good each renderer's samples are, apart
-    # from how fast it draws them (spp / CPU s).
-    print("| renderer | spp | render wall s | CPU s | spp / CPU s | mean ratio | box-4 relative MSE | p90 relative "
-          "error | MSE x spp | MSE x CPU s |")
-    print("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
-    for name, spp, wall, cpu, c in rows:
-        print("| %s | %d | %.1f | %.1f | %.1f | %.4f | %.3e | %.4f | %.2e | %.2e |"
-              % (name, spp, wall, cpu, spp / cpu, c["mean_ratio"], c["box_rel_mse"], c["p90_rel_error"],
-                 c["box_rel_mse"] * spp, c["box_rel_mse"] * cpu))
+    title = ("Diffuse Cornell box, %dx%d, about %g s each; references: clppm pt, %d independent passes, and Mitsuba, "
+             "%d times its spp; %d cores" % (size, size, seconds, ref_passes, ref_factor, os.cpu_count()))
+    print_report(title, cross, rows)
 
 
 if __name__ == "__main__":

@@ -7,22 +7,22 @@ from PyPI (pyluxcore; CPython 3.11 wheels), run offline in a virtual environment
     python3 -m venv /tmp/mi && /tmp/mi/bin/pip install pyluxcore mitsuba numpy
     /tmp/mi/bin/python bench/peers_luxcore.py [BUILD_DIR] [SECONDS] [SIZE] [REF_PASSES]
 
-The scene reaches LuxCore as it reaches Mitsuba (tests/references/make_references.py writes the
-same triangles as PLY files): matte surfaces of the glTF base colours, which LuxCore reflects on
-both sides as clppm does, a one-sided emitter whose radiance is emissiveFactor times
-emissiveStrength (emission gain 1, power and efficacy 0: radiance as given), the glTF camera, a
-box pixel filter of one pixel, 17 path vertices (clppm's 16 bounces), every other setting at
-LuxCore's default. The reference is clppm's path tracer with independent numbers and another seed
-(REF_PASSES passes; PEERS_REF=FILE reuses one), and LuxCore's own of REF_FACTOR (20) times the time
-of its PATHCPU run, so that what differs between the renderers' models does not count as noise;
-the two references against each other say whether the renderers agree. Wall time is the
-renderers' (clppm's passes, --stats-json render_seconds; LuxCore's session from start to stop);
-CPU time is the process's, loading and compilation included. MSE x CPU s compares renderers at
-equal error (lower is better)."""
+The scene reaches LuxCore as it reaches Mitsuba, as the same triangles written to PLY files
+(tests/references/gltf_subset.py). Surfaces are matte of the glTF base colours, which LuxCore
+reflects on both sides as clppm does. The emitter is one-sided, of radiance emissiveFactor times
+emissiveStrength (emission gain 1, power and efficacy 0: the radiance as given). Then the glTF
+camera, a box pixel filter of one pixel, 17 path vertices (clppm's 16 bounces), and every other
+setting at LuxCore's default. The references are clppm's path tracer with independent numbers and
+another seed (REF_PASSES passes; PEERS_REF=FILE reuses one), and LuxCore's own of REF_FACTOR (20)
+times the time of its PATHCPU run (LUX_REF=FILE reuses one), so that what differs between the
+renderers' models does not count as noise; the two references against each other say whether the
+renderers agree. Wall time is the renderers' (clppm's passes, --stats-json render_seconds;
+LuxCore's session from start to stop); CPU time is the process's, loading and compilation included.
+MSE x CPU s compares renderers at equal error (lower is better)."""
+import base64
 import json
 import math
 import os
-import subprocess
 import sys
 import tempfile
 import time
@@ -36,8 +36,10 @@ import pyluxcore  # noqa: E402
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
+sys.path.insert(0, HERE)
 sys.path.insert(0, os.path.join(ROOT, "tests", "references"))
 import gltf_subset  # noqa: E402
+from peer_runs import arguments, clppm_timed, compare, diffuse_box, print_report  # noqa: E402
 
 
 def quiet(message):
@@ -52,7 +54,6 @@ def luxcore_scene(gltf, tmp, size):
     them, 0.0014 after the shift): its screen window moves up by one pixel (2 / size of its
     height of 2)."""
     doc = json.load(open(gltf))
-    import base64
     uri = doc["buffers"][0]["uri"]
     blob = base64.b64decode(uri[uri.index(",") + 1:])
     props = []
@@ -82,9 +83,10 @@ def luxcore_scene(gltf, tmp, size):
             gltf_subset.write_ply(path, tris)
             m = doc["materials"][prim["material"]]
             ext = m.get("extensions", {})
-            assert "KHR_materials_transmission" not in ext and m["pbrMetallicRoughness"].get("metallicFactor", 1) == 0, \
-                "diffuse surfaces only"
-            kd = m["pbrMetallicRoughness"].get("baseColorFactor", [1, 1, 1, 1])[:3]
+            pbr = m["pbrMetallicRoughness"]
+            diffuse = "KHR_materials_transmission" not in ext and pbr.get("metallicFactor", 1) == 0
+            assert diffuse, "diffuse surfaces only"
+            kd = pbr.get("baseColorFactor", [1, 1, 1, 1])[:3]
             props += ['scene.materials.%s.type = "matte"' % name, "scene.materials.%s.kd = %r %r %r" % (name, *kd)]
             if "emissiveFactor" in m:
                 s = ext.get("KHR_materials_emissive_strength", {}).get("emissiveStrength", 1.0)
@@ -127,44 +129,17 @@ def luxcore_render(scene_props, engine, size, seconds, out, seed=1):
     return spp, wall, cpu
 
 
-def compare(binary, image, ref):
-    out = subprocess.run([binary, "compare", image, ref, "--box", "4"], capture_output=True, text=True, check=True, env=CLPPM_ENV)
-    return json.loads(out.stdout)
-
-
-def clppm_timed(command, stats):
-    c0 = os.times()
-    subprocess.run(command + ["--stats-json", stats], check=True, env=CLPPM_ENV)
-    c1 = os.times()
-    cpu = c1.children_user + c1.children_system - c0.children_user - c0.children_system
-    st = json.load(open(stats))
-    return st["render_seconds"], cpu, st["passes"]
-
-
 def main():
-    build = sys.argv[1] if len(sys.argv) > 1 else os.path.join(ROOT, "build")
-    seconds = float(sys.argv[2]) if len(sys.argv) > 2 else 15
-    size = int(sys.argv[3]) if len(sys.argv) > 3 else 128
-    ref_passes = int(sys.argv[4]) if len(sys.argv) > 4 else 40000
-    ref_factor = int(os.environ.get("REF_FACTOR", "20"))
+    binary, seconds, size, ref_passes, ref_factor = arguments()
     engines = os.environ.get("LUX_ENGINES", "PATHCPU,BIDIRCPU").split(",")
-    binary = os.path.join(build, "clppm")
     pyluxcore.Init(quiet)
     rows = []
     with tempfile.TemporaryDirectory() as tmp:
-        scene_file = os.path.join(tmp, "cornell_diffuse.gltf")
-        subprocess.run([sys.executable, os.path.join(HERE, "cornell_diffuse.py"),
-                        os.path.join(ROOT, "scenes", "cornell_box.gltf"), scene_file], check=True)
-        common = [binary, scene_file, "--integrator", "pt", "--width", str(size), "--height", str(size), "--quiet",
-                  "--no-png"]
-        ref = os.environ.get("PEERS_REF", "")
-        if not os.path.isfile(ref):
-            ref = os.path.join(tmp, "ref.exr")
-            subprocess.run(common + ["--sampler", "independent", "--seed", "777", "--passes", str(ref_passes), "-o", ref],
-                           check=True, env=CLPPM_ENV)
+        scene_file, common, ref = diffuse_box(binary, tmp, size, ref_passes, CLPPM_ENV)
         img = os.path.join(tmp, "clppm.exr")
-        wall, cpu, passes = clppm_timed(common + ["--time", str(seconds), "-o", img], os.path.join(tmp, "stats.json"))
-        rows.append(("clppm pt (sobol)", passes, wall, cpu, compare(binary, img, ref)))
+        wall, cpu, passes = clppm_timed(common + ["--time", str(seconds), "-o", img],
+                                        os.path.join(tmp, "stats.json"), CLPPM_ENV)
+        rows.append(("clppm pt (sobol)", passes, wall, cpu, compare(binary, img, ref, CLPPM_ENV)))
         props = luxcore_scene(scene_file, tmp, size)
         lux_ref = os.environ.get("LUX_REF", "")
         if not os.path.isfile(lux_ref):
@@ -173,21 +148,13 @@ def main():
         for engine in engines:
             out = os.path.join(tmp, "lux_%s.exr" % engine)
             spp, wall, cpu = luxcore_render(props, engine, size, seconds, out)
-            rows.append(("LuxCore %s %s" % (pyluxcore.Version(), engine), spp, wall, cpu, compare(binary, out, lux_ref)))
-        cross = compare(binary, lux_ref, ref)
+            rows.append(("LuxCore %s %s" % (pyluxcore.Version(), engine), spp, wall, cpu,
+                         compare(binary, out, lux_ref, CLPPM_ENV)))
+        cross = compare(binary, lux_ref, ref, CLPPM_ENV)
 
-    print("Diffuse Cornell box, %dx%d, about %g s each; references: clppm pt, %d independent passes, and LuxCore "
-          "PATHCPU, %d times the time; %d cores" % (size, size, seconds, ref_passes, ref_factor, os.cpu_count()))
-    print("The two references against each other: mean ratio %.4f, box-4 relative MSE %.2e, p90 %.4f"
-          % (cross["mean_ratio"], cross["box_rel_mse"], cross["p90_rel_error"]))
-    print()
-    print("| renderer | spp | render wall s | CPU s | spp / CPU s | mean ratio | box-4 relative MSE | p90 relative "
-          "error | MSE x CPU s |")
-    print("|---|---:|---:|---:|---:|---:|---:|---:|---:|")
-    for name, spp, wall, cpu, c in rows:
-        print("| %s | %d | %.1f | %.1f | %.1f | %.4f | %.3e | %.4f | %.2e |"
-              % (name, spp, wall, cpu, spp / cpu, c["mean_ratio"], c["box_rel_mse"], c["p90_rel_error"],
-                 c["box_rel_mse"] * cpu))
+    title = ("Diffuse Cornell box, %dx%d, about %g s each; references: clppm pt, %d independent passes, and LuxCore "
+             "PATHCPU, %d times the time; %d cores" % (size, size, seconds, ref_passes, ref_factor, os.cpu_count()))
+    print_report(title, cross, rows)
 
 
 if __name__ == "__main__":

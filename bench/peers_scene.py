@@ -26,7 +26,8 @@ ROOT = os.path.dirname(HERE)
 sys.path.insert(0, HERE)
 sys.path.insert(0, os.path.join(ROOT, "tests", "references"))
 import make_references  # noqa: E402
-from peers_diffuse_box import clppm_timed, compare, timed_render  # noqa: E402
+from peer_runs import clppm_timed, compare  # noqa: E402
+from peers_diffuse_box import timed_render  # noqa: E402
 
 
 def main():
@@ -44,7 +45,7 @@ def main():
     rows = []
     with tempfile.TemporaryDirectory() as tmp:
         scene = mi.load_dict(make_references.mitsuba_scene(scene_file, tmp, size=size, max_depth=17))
-        mi_img, mi_ref, spp, wall, cpu = timed_render(scene, seconds, tmp, ref_factor)
+        mi_img, mi_ref, spp, wall, cpu = timed_render(scene, seconds, tmp, ref_factor, "mitsuba")
         ref = os.environ.get("PEERS_REF", "") or mi_ref
         rows.append(("Mitsuba %s path (%s, %d spp)" % (mi.__version__, mi.variant(), spp), wall, cpu,
                      compare(binary, mi_img, ref)))
@@ -55,7 +56,7 @@ def main():
         for m in methods:
             args = ["--integrator", m.split("+")[0]] + (["--visual-importance"] if m.endswith("+vi") else [])
             out = os.path.join(tmp, "clppm.exr")
-            wall, cpu = clppm_timed([binary, scene_file, "--width", str(size), "--height", str(size), "--quiet",
+            wall, cpu, _ = clppm_timed([binary, scene_file, "--width", str(size), "--height", str(size), "--quiet",
                                      "--no-png", "--time", str(seconds), "-o", out] + args,
                                     os.path.join(tmp, "stats.json"))
             rows.append(("clppm " + " ".join(args[1:]), wall, cpu, compare(binary, out, ref)))
