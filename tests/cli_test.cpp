@@ -52,8 +52,8 @@ TEST(Cli, RendersTheDefaultSceneToExrAndPng) {
 }
 
 // Without --integrator the scene decides (cli/default_integrator.h, measured in bench/RESULTS.md):
-// SPPM for a scene with lights, the path tracer, with 512 passes, for one lit only by the
-// default environment; the note says which and why.
+// VCM where glass casts caustics of the scene's lights (the built-in Cornell box), the path
+// tracer, with 512 passes, for a diffuse scene; the note says which and why.
 TEST(Cli, DefaultIntegratorDependsOnTheLights) {
     const std::string dir = make_temp_dir("cli");
     std::string out;
@@ -62,10 +62,10 @@ TEST(Cli, DefaultIntegratorDependsOnTheLights) {
                   &out),
         0)
         << out;
-    EXPECT_NE(out.find("integrator sppm: material glass (glass or smooth metal) casts caustics"), std::string::npos)
+    EXPECT_NE(out.find("integrator vcm: material glass (glass or smooth metal) casts caustics"), std::string::npos)
         << out;
     std::ifstream a(dir + "/a.json");
-    EXPECT_EQ(nlohmann::json::parse(a)["integrator"], "sppm");
+    EXPECT_EQ(nlohmann::json::parse(a)["integrator"], "vcm");
     // A diffuse plane under a point light: nothing casts a caustic.
     ASSERT_EQ(run_clppm(scene("plane_point_light.gltf") + " --width 8 --height 8 --no-png -o " + dir +
                             "/c.exr --stats-json " + dir + "/c.json",
@@ -347,7 +347,7 @@ TEST(Cli, KernelBuildFailurePrintsTheBuildLog) {
     std::string dir = make_temp_dir("kernels"), out;
     ASSERT_EQ(run_command("cp " + std::string(CLPPM_SOURCE_DIR) + "/kernels/* " + dir, &out), 0) << out;
     { std::ofstream(dir + "/gather.cl", std::ios::app) << "\nvoid broken(void) { this_is_not_opencl_c = 1; }\n"; }
-    EXPECT_EQ(run_clppm("--kernel-dir " + dir + " -o " + dir + "/x.exr --passes 1", &out), 1);
+    EXPECT_EQ(run_clppm("--integrator sppm --kernel-dir " + dir + " -o " + dir + "/x.exr --passes 1", &out), 1);
     EXPECT_NE(out.find("kernel build failed"), std::string::npos) << out;
     EXPECT_NE(out.find("this_is_not_opencl_c"), std::string::npos) << "no build log:\n" << out;
 }

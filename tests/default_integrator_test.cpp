@@ -1,6 +1,7 @@
-// The integrator a scene gets without --integrator (integrators/default_integrator.h): SPPM where
-// glass or smooth metal casts caustics of the scene's own lights (photons find them; the path
-// tracer misses those of point lights altogether), the path tracer everywhere else: a diffuse or
+// The integrator a scene gets without --integrator (integrators/default_integrator.h): VCM where
+// glass or smooth metal casts caustics of the scene's own lights (its merges find them; the path
+// tracer misses those of point lights altogether), SPPM there when VCM cannot render the view (an
+// orthographic camera, --filter tent), the path tracer everywhere else: a diffuse or
 // glossy scene under its own lights, or a scene lit only by its environment; SPPM (so that the
 // error is plain: "no lights") when there is no light at all; SPPM, with visual importance for a
 // directional light, where the lights reach almost nothing the camera sees (light through a gap).
@@ -40,12 +41,24 @@ TEST(DefaultIntegrator, ADiffuseSceneUnderItsOwnLightsGetsThePathTracer) {
               "pt"); // rough metal: no caustic to speak of
 }
 
-TEST(DefaultIntegrator, GlassOrSmoothMetalGetsPhotonMapping) {
+TEST(DefaultIntegrator, GlassOrSmoothMetalGetsVertexConnectionAndMerging) {
     for (const Scene& s : {plane_of(MAT_GLASS), plane_of(MAT_MIRROR), plane_of(MAT_METAL, 0.1f)}) {
         const IntegratorChoice c = default_integrator(s, RenderSettings{}, true);
-        EXPECT_EQ(c.integrator, "sppm");
+        EXPECT_EQ(c.integrator, "vcm");
         EXPECT_NE(c.reason.find("casts caustics"), std::string::npos) << c.reason;
     }
+    // Where VCM cannot render the view, photon mapping, and the note says why.
+    Scene ortho = plane_of(MAT_GLASS);
+    ASSERT_FALSE(ortho.cameras.empty());
+    ortho.cameras[0].orthographic = true;
+    IntegratorChoice c = default_integrator(ortho, RenderSettings{}, true);
+    EXPECT_EQ(c.integrator, "sppm");
+    EXPECT_NE(c.reason.find("the camera is orthographic"), std::string::npos) << c.reason;
+    RenderSettings tent;
+    tent.filter = PixelFilter::Tent;
+    c = default_integrator(plane_of(MAT_GLASS), tent, true);
+    EXPECT_EQ(c.integrator, "sppm");
+    EXPECT_NE(c.reason.find("--filter tent"), std::string::npos) << c.reason;
     // An unused glass material casts nothing.
     Scene s = plane_under_point_light(0.5f, 10.f, 1.f);
     add_material(s, 1.f, 1.f, 1.f, 0.f, false, MAT_GLASS);

@@ -121,9 +121,9 @@ TEST(RenderSession, SceneOutsideTheFloatRangeIsRefusedNamingItsScale) {
 TEST(RenderSession, InterruptInALongPassStopsAtTheNextBatch) {
     std::string d = make_temp_dir("long_pass"), out;
     const int guard = int(60 * time_scale());
-    const std::string run = "timeout " + std::to_string(guard) + " " + clppm_binary() +
-                            " --width 16 --height 16 --quiet --no-png --photons 1000000000 --passes 2 -o " + d +
-                            "/l.exr";
+    const std::string run =
+        "timeout " + std::to_string(guard) + " " + clppm_binary() +
+        " --integrator sppm --width 16 --height 16 --quiet --no-png --photons 1000000000 --passes 2 -o " + d + "/l.exr";
     const std::string script = run + " & pid=$!; sleep 4; kill -INT $pid; wait $pid; echo \"status=$?\"";
     ASSERT_EQ(run_command("bash -c '" + script + "'", &out), 0) << out;
     EXPECT_NE(out.find("status=130"), std::string::npos) << "stopped by the signal, not by the guard: " << out;

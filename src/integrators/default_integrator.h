@@ -1,6 +1,7 @@
 // The integrator a render gets when --integrator is not given (or is "auto"), chosen by
-// measurement (bench/default_integrator.sh, bench/visual_importance.sh, bench/RESULTS.md): SPPM
-// where glass or smooth metal casts caustics of the scene's own lights; SPPM where those lights
+// measurement (bench/default_integrator.sh, bench/visual_importance.sh, bench/RESULTS.md): VCM
+// where glass or smooth metal casts caustics of the scene's own lights (SPPM where VCM cannot
+// render the view: an orthographic camera, --filter tent); SPPM where those lights
 // reach almost nothing the camera sees directly (light through a gap; with visual importance when
 // a directional light's photons cover the scene's bounding disc); the path tracer everywhere else,
 // and for a scene lit only by an environment.

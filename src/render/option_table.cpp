@@ -1,5 +1,6 @@
 #include "render/option_table.h"
 
+#include <algorithm>
 #include <climits>
 #include <cstdint>
 
@@ -33,16 +34,18 @@ const std::string& integrator_help() {
 }
 
 const std::string& default_passes_text() {
+    // "64 (ppm, sppm, pppm), 512 (pt), 16 (vcm, bpt)": the integrators grouped by their default.
     static const std::string s = [] {
-        std::string photons, pixels;
-        uint64_t photon_passes = 0, pixel_passes = 0;
+        std::vector<std::pair<uint64_t, std::string>> groups;
         for (const IntegratorRow& row : integrator_table()) {
-            std::string& list = row.unit == WorkUnit::Photons ? photons : pixels;
-            list += (list.empty() ? "" : ", ") + std::string(row.name);
-            (row.unit == WorkUnit::Photons ? photon_passes : pixel_passes) = row.default_passes;
+            auto g = std::find_if(groups.begin(), groups.end(),
+                                  [&](const auto& p) { return p.first == row.default_passes; });
+            if (g == groups.end()) groups.emplace_back(row.default_passes, row.name);
+            else g->second += std::string(", ") + row.name;
         }
-        return std::to_string(photon_passes) + " (" + photons + "), " + std::to_string(pixel_passes) + " (" + pixels +
-               "); unlimited with --time";
+        std::string text;
+        for (const auto& [passes, names] : groups) text += std::to_string(passes) + " (" + names + "), ";
+        return text + "unlimited with --time";
     }();
     return s;
 }

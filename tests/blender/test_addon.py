@@ -205,10 +205,10 @@ def test_the_header_line_reads_a_commands_progress(tmp_path):
                         "-o", str(tmp_path / "p.exr"), "--no-png"], capture_output=True, text=True, timeout=300)
     assert p.returncode == 0, p.stderr
     status = runner.parse_progress(p.stdout + p.stderr)
-    assert status["integrator"] == "sppm" and status["pass"] >= 1 and status["photons"].endswith("k"), status
+    assert status["integrator"] == "vcm" and status["pass"] >= 1 and status["photons"].endswith("k"), status
     assert status["error"] is not None and 0 < status["error"] < 10, status
     text = runner.status_text(status)
-    assert text.startswith("clppm sppm | pass ") and " photons | error " in text, text
+    assert text.startswith("clppm vcm | pass ") and " photons | error " in text, text
     assert runner.status_text({"pass": None}) == "clppm: preparing"
 
 

@@ -15,7 +15,8 @@ SCRIPT = textwrap.dedent(
     import sys, clppm
     mode, out = sys.argv[1], sys.argv[2]
     # Batches of 1000 photons: a stop request is answered within one.
-    r = clppm.Renderer(width=40, height=30, photons=200000, passes=100000, quiet=True, output=out, no_png=True)
+    r = clppm.Renderer(integrator="sppm", width=40, height=30, photons=200000, passes=100000, quiet=True, output=out,
+                       no_png=True)
     print("ready", flush=True)
     try:
         if mode == "render":
@@ -76,7 +77,7 @@ def test_cancel_from_another_thread_stops_the_pass_and_keeps_the_last_one(monkey
     """What a GUI's Cancel button does: the Renderer iterates in one thread, cancel() comes from another."""
     import threading
     monkeypatch.setenv("CLPPM_PHOTON_BATCH", "1000")
-    r = clppm.Renderer(width=40, height=30, photons=200000, passes=100000, quiet=True)
+    r = clppm.Renderer(integrator="sppm", width=40, height=30, photons=200000, passes=100000, quiet=True)
     timer = threading.Timer(1.5, r.cancel)
     timer.start()
     passes, raised = 0, None

@@ -41,17 +41,19 @@ def test_visual_importance_by_keyword(cli_image):
 def test_the_defaults_are_the_command_lines():
     with clppm.Renderer(**SMALL) as r:
         s = r.settings
-        assert s["integrator"] == "sppm"  # auto: the scene has lights of its own
-        assert s["pass_limit"] == 64 and s["photons"] == 5000 and s["alpha"] == 0.7
+        assert s["integrator"] == "vcm"  # auto: the built-in scene's glass casts caustics of its lights
+        assert s["pass_limit"] == 16 and s["photons"] == 5000 and s["alpha"] == 0.7
         assert s["output"] == ""  # nothing is written unless asked
     with clppm.Renderer(**dict(SMALL, integrator="pt")) as r:
         assert r.settings["pass_limit"] == 512
+    with clppm.Renderer(**dict(SMALL, integrator="sppm")) as r:
+        assert r.settings["pass_limit"] == 64
     with clppm.Renderer(**dict(SMALL, time=5)) as r:
         assert r.settings["pass_limit"] == 0  # unlimited: the time bounds it
 
 
 def test_renderer_steps_and_reports(tmp_path):
-    with clppm.Renderer(**dict(SMALL, passes=3)) as r:
+    with clppm.Renderer(**dict(SMALL, integrator="sppm", passes=3)) as r:
         assert r.passes == 0
         assert r.run_pass() == 1
         first = r.image()
@@ -96,7 +98,7 @@ def test_the_gil_is_released_while_passes_run():
             ticks.append(time.perf_counter())
             time.sleep(0.005)
 
-    with clppm.Renderer(**dict(SMALL, photons=200000, passes=4)) as r:
+    with clppm.Renderer(**dict(SMALL, integrator="sppm", photons=200000, passes=4)) as r:
         r.run_pass()  # the first pass builds what it needs
         t = threading.Thread(target=tick)
         t.start()
