@@ -39,10 +39,18 @@ struct Args {
     double confidence = 0.95;
 };
 
-std::string parse_integrator(const std::string& name) {
+// An integrator's name; "+vi" after ppm or sppm adds visual importance (--visual-importance).
+std::string parse_integrator(const std::string& name, bool* visual_importance = nullptr) {
+    const bool vi = name.size() > 3 && name.compare(name.size() - 3, 3, "+vi") == 0;
+    const std::string base = vi ? name.substr(0, name.size() - 3) : name;
     for (const char* i : {"ppm", "sppm", "pppm", "pt", "vcm", "bpt"})
-        if (name == i) return i;
-    throw Error("--integrators: " + name + " is not ppm, sppm, pppm, pt, vcm or bpt");
+        if (base == i && (!vi || (visual_importance && (base == "ppm" || base == "sppm")))) {
+            if (visual_importance) *visual_importance = vi;
+            return i;
+        }
+    throw Error("--integrators: " + name +
+                " is not ppm, sppm, pppm, pt, vcm or bpt (ppm+vi and sppm+vi: with "
+                "visual importance)");
 }
 
 // A file name part for a scene name or path.
@@ -129,7 +137,7 @@ int main(int argc, char** argv) {
                          (unsigned long long)a.ref_passes, (unsigned long long)s.photons);
 
             for (const std::string& name : split(a.integrators)) {
-                s.integrator = parse_integrator(name);
+                s.integrator = parse_integrator(name, &s.visual_importance);
                 s.photons = a.photons;
                 s.seed = 1;
                 if (s.integrator == "ppm") s.spp = 4;

@@ -377,10 +377,11 @@ TEST(ErrorEstimate, PixelSampleIntegratorsEstimateTheirNoise) {
 
 // The estimate's statistics are part of a checkpoint: a resumed render estimates exactly what an
 // uninterrupted one does (PPM keeps them per pixel over its fixed hit points, SPPM per visible
-// point, the path tracer, VCM and BPT per pixel over their running sums).
+// point, with visual importance also the chains' state count its passes' estimates divide by,
+// the path tracer, VCM and BPT per pixel over their running sums).
 TEST(ErrorEstimate, ResumedEstimateMatchesAnUninterruptedOne) {
     const std::string dir = make_temp_dir("error_resume");
-    for (const char* integrator : {"ppm", "sppm", "pt", "vcm", "bpt"}) {
+    for (const char* integrator : {"ppm", "sppm", "sppm --visual-importance", "pt", "vcm", "bpt"}) {
         const std::string common = std::string(" --integrator ") + integrator +
                                    " --width 24 --height 24 --photons 5000 --quiet --no-png --target-error 0.0001"
                                    " --stats-json " +

@@ -26,7 +26,7 @@ struct IntegratorChoice {
 constexpr double kGapReach = 0.05;
 
 // `scene` after apply_environment; settings for the camera; chains_allowed: visual importance may
-// be chosen (one device, one process, no error estimate).
+// be chosen (one device, one process).
 IntegratorChoice default_integrator(const Scene& scene, const RenderSettings& settings, bool chains_allowed);
 
 // The rule above in a line, for --help.

@@ -251,7 +251,8 @@ void ErrorEstimator::update(const cl::Buffer& passflux, const cl::Buffer& hitpoi
     ++passes_;
 }
 
-ErrorImage ErrorEstimator::estimate(double confidence, int width, int height, const std::vector<float>* min_sigma) {
+ErrorImage ErrorEstimator::estimate(double confidence, int width, int height, const std::vector<float>* min_sigma,
+                                    double scale_variance) {
     if (!(confidence > 0 && confidence < 1)) throw Error("error estimate: the confidence must be in (0, 1)");
     const double t = confidence_multiplier(confidence, passes_);
     set_args(k_bound_, 0, error_stats_, cl_uint(n_), cl_double(t), bound_);
@@ -269,6 +270,12 @@ ErrorImage ErrorEstimator::estimate(double confidence, int width, int height, co
         e.sigma[i] = b[i].s[5];
         if (min_sigma && (*min_sigma)[i] > e.sigma[i]) {
             e.sigma[i] = (*min_sigma)[i];
+            e.noise[i] = float(t * double(e.sigma[i]));
+            e.absolute[i] = std::fabs(e.bias[i]) + e.noise[i];
+        }
+        if (scale_variance > 0) {
+            const double l = e.luminance[i];
+            e.sigma[i] = float(std::sqrt(double(e.sigma[i]) * e.sigma[i] + scale_variance * l * l));
             e.noise[i] = float(t * double(e.sigma[i]));
             e.absolute[i] = std::fabs(e.bias[i]) + e.noise[i];
         }

@@ -78,7 +78,11 @@ public:
                 double power_per_photon);
     // The bounds at `confidence` in (0, 1). min_sigma: per pixel, a lower limit on the standard
     // deviation of its error that the passes' spread cannot see (PPM's fixed samples).
-    ErrorImage estimate(double confidence, int width, int height, const std::vector<float>* min_sigma = nullptr);
+    // scale_variance: the relative variance of a factor common to every pixel that the passes
+    // share, so their spread cannot see it either (visual importance's estimated visible fraction,
+    // PhotonMappingIntegrator::normalization_variance): sigma_i^2 gains scale_variance L_i^2.
+    ErrorImage estimate(double confidence, int width, int height, const std::vector<float>* min_sigma = nullptr,
+                        double scale_variance = 0);
 
     std::vector<dev::ErrorStats> read() const;
     const cl::Buffer& statistics() const { return error_stats_; }

@@ -56,7 +56,8 @@ void IntegratorBase::enable_error_estimation() {
 
 ErrorImage IntegratorBase::error_estimate(double confidence) {
     if (!errors_) throw Error("the " + name() + " integrator does not estimate its error here");
-    return errors_->estimate(confidence, int(scene_.camera.width), int(scene_.camera.height));
+    return errors_->estimate(confidence, int(scene_.camera.width), int(scene_.camera.height), nullptr,
+                             normalization_variance());
 }
 
 void IntegratorBase::save_error_stats(Checkpoint& ck) const {

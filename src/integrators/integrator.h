@@ -47,6 +47,9 @@ public:
     // Both throw Error where the integrator has none.
     virtual void enable_error_estimation();
     virtual ErrorImage error_estimate(double confidence);
+    // The relative variance of a scale common to the whole image that the error statistics'
+    // passes cannot see (ErrorEstimator::estimate); 0 unless an integrator has one.
+    virtual double normalization_variance() const { return 0; }
 
 protected:
     IntegratorBase(const DeviceContext& dc, const DeviceScene& scene, const RenderSettings& settings,

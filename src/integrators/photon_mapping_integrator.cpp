@@ -1,5 +1,8 @@
 #include "integrators/photon_mapping_integrator.h"
 
+#include <cmath>
+#include <limits>
+
 #include "integrators/checkpoint_checks.h"
 #include "integrators/direct_light.h"
 #include "integrators/progressive_update.h"
@@ -26,10 +29,31 @@ void PhotonMappingIntegrator::direct_light(uint64_t pass, uint32_t n) {
 }
 
 void PhotonMappingIntegrator::progressive_update(uint32_t n) {
-    if (errors_) errors_->update(passflux_, hitpoints_, stats_buf_, 0.0, power_per_photon());
+    if (errors_) errors_->update(passflux_, hitpoints_, stats_buf_, 0.0, error_power_per_photon());
+    states_before_pass_ = stats_.chain_counts[CHAIN_STATES];
     auto [mean, mx] = enqueue_ppm_update(dc_, k_update_, passflux_, hitpoints_, stats_buf_, n, settings_.alpha,
                                          radius_partials_, stats_);
     if (n > 0) stats_.mean_radius = typical_radius_ = mean, max_radius_ = mx;
+}
+
+// Called before the pass's counters grow (stats_.passes, photons_emitted), after its chains ended.
+// The film divides the sum of all passes' flux by N_states N_U / V_c; this pass's share of that
+// count is its own states' (the chains deposit fewer while they look for their first), with the
+// visible fraction as now estimated.
+double PhotonMappingIntegrator::error_power_per_photon() const {
+    if (!photons_->chains()) return power_per_photon();
+    const uint64_t states = stats_.chain_counts[CHAIN_STATES] - states_before_pass_;
+    const uint64_t visible = stats_.chain_counts[CHAIN_UNIFORM_VISIBLE];
+    if (states == 0 || visible == 0) return 0.0;
+    const double uniform = double(stats_.photons_emitted + settings_.photons);
+    return double(scene_.info.total_power) / (double(states) * uniform / double(visible));
+}
+
+double PhotonMappingIntegrator::normalization_variance() const {
+    const PhotonChains* chains = photons_->chains();
+    if (!chains) return 0;
+    const uint64_t visible = stats_.chain_counts[CHAIN_UNIFORM_VISIBLE];
+    return visible > 0 ? 1.0 / double(visible) : std::numeric_limits<double>::infinity();
 }
 
 double PhotonMappingIntegrator::film_photons() const {
@@ -57,6 +81,7 @@ void PhotonMappingIntegrator::restore(const Checkpoint& ck) {
     typical_radius_ = checkpoint_number(ck, "typical_radius", 0, r0 * (1 + 1e-9));
     max_radius_ = checkpoint_number(ck, "max_radius", 0, r0 * (1 + 1e-9));
     if (PhotonChains* chains = photons_->chains()) chains->restore(ck);
+    states_before_pass_ = stats_.chain_counts[CHAIN_STATES];
     restore_error_stats(ck, stats_buf_);
     restore_state(ck);
 }

@@ -36,6 +36,14 @@ protected:
     double film_photons() const;
     // Phi / M: the power each photon of a pass carries.
     double power_per_photon() const { return double(scene_.info.total_power) / double(settings_.photons); }
+    // What a photon of the pass now ending carries in the error statistics: Phi / M, or with
+    // --visual-importance Phi over the pass's share of the chains' effective count after it, so
+    // that the mean of the passes' estimates is the film's image.
+    double error_power_per_photon() const;
+    // With --visual-importance the film divides by the chains' effective count, N_states N_U / V_c:
+    // the visible fraction V_c / N_U is estimated, one factor for every pixel and pass, with
+    // relative variance (1 - p) / V_c ~ 1 / V_c (binomial). 0 without chains.
+    double normalization_variance() const override;
 
     std::unique_ptr<PhotonPasses> photons_;
     cl::Kernel k_eye_, k_direct_, k_update_, k_film_;
@@ -43,6 +51,7 @@ protected:
     uint32_t hit_slots_ = 0;    // entries the hit point buffers hold
     double typical_radius_ = 0; // mean R over hit points: sizes the next grid's cells
     double max_radius_ = 0;
+    uint64_t states_before_pass_ = 0; // the chains' deposited states before this pass (error_power_per_photon)
 };
 
 } // namespace clppm

@@ -76,11 +76,12 @@ void PpmIntegrator::make_error_estimator() {
 ErrorImage PpmIntegrator::error_estimate(double confidence) {
     if (!errors_) throw Error("error estimation is not enabled");
     set_args(k_spread_, 0, stats_buf_, pixel_first_, hit_sample_, sample_y_, cl_uint(num_pixels_),
-             cl_uint(settings_.spp), cl_double(scene_.info.total_power), cl_double(double(stats_.photons_emitted)),
+             cl_uint(settings_.spp), cl_double(scene_.info.total_power), cl_double(film_photons()),
              cl_double(double(settings_.direct == DirectLighting::Sample ? stats_.passes : 0)), spread_);
     enqueue_1d(dc_.queue, k_spread_, num_pixels_);
     const std::vector<float> spread = read_buffer<float>(dc_.queue, spread_, num_pixels_);
-    return errors_->estimate(confidence, int(scene_.camera.width), int(scene_.camera.height), &spread);
+    return errors_->estimate(confidence, int(scene_.camera.width), int(scene_.camera.height), &spread,
+                             normalization_variance());
 }
 
 // Sec. 4.1: hit points for every pixel sample, compacted on the host in pixel order so each

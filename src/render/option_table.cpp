@@ -187,7 +187,7 @@ const std::vector<RenderOptionSpec>& render_option_table() {
         {"Integrator", "--visual-importance", nullptr, nullptr,
          "PPM and SPPM: photon paths from Markov chains whose target is their visibility to the hit points "
          "(Hachisuka and Jensen 2009), so that photons go where the camera sees; for light that reaches what the "
-         "camera sees through a gap or a window. One device, no error estimate",
+         "camera sees through a gap or a window. One device",
          nullptr, nullptr, [](RenderOptions& o, const OptionArg&) { o.settings.visual_importance = true; }},
         {"Integrator", "--seed", nullptr, "S", "Random seed", "an integer in 0..18446744073709551615", "1",
          [](RenderOptions& o, const OptionArg& a) { o.settings.seed = parse_u64(a); }},
@@ -291,9 +291,6 @@ void check_render_options(const RenderOptions& o) {
     if (o.progressive_output > 0 && o.output.empty()) throw Error("--progressive-output: needs an output image");
     if (o.settings.visual_importance && o.settings.integrator != "sppm" && o.settings.integrator != "ppm")
         throw Error("--visual-importance: needs --integrator sppm or ppm (photon paths that the chains guide)");
-    if (o.settings.visual_importance && wants_error_estimate(o))
-        throw Error("--visual-importance: the error estimate assumes independent passes; drop --target-error and "
-                    "--error-output");
 }
 
 } // namespace clppm

@@ -87,7 +87,7 @@ void RenderJob::load_scene() {
 void RenderJob::choose_integrator(size_t devices) {
     RenderSettings& s = options_.settings;
     if (s.integrator == "auto") {
-        const bool chains_allowed = !wants_error_estimate(options_) && !cluster().distributed() && devices == 1;
+        const bool chains_allowed = !cluster().distributed() && devices == 1;
         const IntegratorChoice choice = default_integrator(scene_, s, chains_allowed);
         s.integrator = choice.integrator;
         s.visual_importance = choice.visual_importance;
