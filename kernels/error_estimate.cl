@@ -23,7 +23,8 @@
  * the pass's Laplacian estimate (error_update). One writer per hit point. */
 __kernel void error_gather(__constant GridInfo* g, __global const Photon* sorted, __global const uint* starts,
                            __global const HitPoint* hitpoints, __global const HitStats* stats, uint num_hitpoints,
-                           float global_r2, uint accumulate, __global long* out, ulong seed, ulong pass) {
+                           float global_r2, uint accumulate, __global long* out, ulong seed, ulong pass,
+                           __global const float2* coverage) {
     uint i = get_global_id(0);
     if (i >= num_hitpoints) return;
     __global const HitPoint* hp = &hitpoints[i];
@@ -37,12 +38,13 @@ __kernel void error_gather(__constant GridInfo* g, __global const Photon* sorted
                              hp->weight[2] * (float)ERROR_LUMINANCE_B);
         const PassWavelength pw = pass_wavelength(seed, pass);
         const bool hp_dispersed = hitpoint_dispersed(hp);
+        const float inv_cover = 1.0f / coverage[i].x, d2_mean = coverage[i].y;
         GATHER_FOR_EACH_PHOTON(g, sorted, starts, x, n, brdf.both_sides, r2, {
             float3 f = hitpoint_brdf(&brdf, wi);
-            float3 phi = load3_dispersed(ph->flux);
+            float3 phi = load3_dispersed(ph->flux) * inv_cover;
             if (HAS_DISPERSION) phi *= merge_dispersion(hp_dispersed, is_dispersed(ph->flux[0]), &pw);
             float y = dot(wy, f * phi);
-            acc += convert_long_rte((double)(y * (2.0f * d2 / r2 - 1.0f)) * FLUX_FIXED_SCALE);
+            acc += convert_long_rte((double)(y * (2.0f * d2 / r2 - d2_mean)) * FLUX_FIXED_SCALE);
         });
     }
     out[i] = acc;

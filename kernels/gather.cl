@@ -8,7 +8,8 @@
 
 __kernel void gather(__constant GridInfo* g, __global const Photon* sorted, __global const uint* starts,
                      __global const HitPoint* hitpoints, __global const HitStats* stats, uint num_hitpoints,
-                     float global_r2, uint accumulate, __global PassFlux* out, ulong seed, ulong pass) {
+                     float global_r2, uint accumulate, __global PassFlux* out, ulong seed, ulong pass,
+                     __global const float2* coverage) {
     uint i = get_global_id(0);
     if (i >= num_hitpoints) return;
     __global const HitPoint* hp = &hitpoints[i];
@@ -27,10 +28,12 @@ __kernel void gather(__constant GridInfo* g, __global const Photon* sorted, __gl
     uint m = 0;
     const PassWavelength pw = pass_wavelength(seed, pass);
     const bool hp_dispersed = hitpoint_dispersed(hp);
+    /* the disc's covered fraction (disc_coverage.cl): what was collected, as if over the whole disc */
+    const float inv_cover = 1.0f / coverage[i].x;
     GATHER_FOR_EACH_PHOTON(g, sorted, starts, x, n, brdf.both_sides, r2, {
         /* tau_M += f(x, w_p, w_o) Phi_p (Eq. 9); the path throughput is applied later. */
         float3 f = hitpoint_brdf(&brdf, wi);
-        float3 phi = load3_dispersed(ph->flux);
+        float3 phi = load3_dispersed(ph->flux) * inv_cover;
         if (HAS_DISPERSION) phi *= merge_dispersion(hp_dispersed, is_dispersed(ph->flux[0]), &pw);
         acc0 += convert_long_rte((double)(f.x * phi.x) * FLUX_FIXED_SCALE);
         acc1 += convert_long_rte((double)(f.y * phi.y) * FLUX_FIXED_SCALE);

@@ -20,6 +20,13 @@ bool grid_within(__constant GridInfo* g, __global const GRID_ELEM* ph, float3 x,
     return pc.x == cell.x && pc.y == cell.y && pc.z == cell.z;
 }
 
+/* Surfaces whose normals are more than acos(GATHER_MIN_NORMAL_COS), about 84 degrees, apart are
+ * different surfaces: the gather refuses one's photons at the other, and disc_coverage.cl counts
+ * such a surface as the end of the disc. With a bound of 0 a perpendicular wall's photons counted or
+ * not by the rounding of the octahedral normals (a decoded axis is off by 1.5e-5): the floor of a
+ * box took the back wall's photons near the corner but not the side walls'. */
+#define GATHER_MIN_NORMAL_COS 0.1f
+
 /* The gather's acceptance beyond grid_within: arriving from the front of a hit point with shading
  * normal n, and lying on a surface that faces the same way. A hit point that transmits diffusely
  * (both_sides, KHR_materials_diffuse_transmission) also takes photons that arrived from behind,
@@ -29,9 +36,9 @@ bool gather_faces(__global const GRID_ELEM* ph, float3 n, bool both_sides, float
     *wi = oct_decode(ph->wi_oct);
     bool front = dot(n, *wi) > 0.0f;
     if (HAS_DIFFUSE_TRANSMISSION && both_sides && !front)
-        return dot(n, *wi) < 0.0f && dot(n, oct_decode(ph->normal_oct)) < 0.0f;
+        return dot(n, *wi) < 0.0f && dot(n, oct_decode(ph->normal_oct)) < -GATHER_MIN_NORMAL_COS;
     if (!front) return false;
-    return dot(n, oct_decode(ph->normal_oct)) > 0.0f;
+    return dot(n, oct_decode(ph->normal_oct)) > GATHER_MIN_NORMAL_COS;
 }
 
 /* The host sizes grid cells to at least a quarter of the largest radius (PhotonMap::build_grid), so

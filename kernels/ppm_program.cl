@@ -6,6 +6,7 @@
 #endif
 #include "hash_grid.cl"
 #include "gather.cl"
+#include "disc_coverage.cl"
 #include "direct_light.cl"
 #include "ppm_update.cl"
 #include "film.cl"

@@ -63,5 +63,6 @@ Rng rng_make(ulong seed, ulong pass, ulong index, uint purpose) {
 #define RNG_VCM_LIGHT 5u
 #define RNG_VCM_CAMERA 6u
 #define RNG_PHOTON_TAIL 7u
+#define RNG_DISC_COVERAGE 8u
 
 #endif

@@ -342,7 +342,14 @@ TEST(DispersionBox, IntegratorsAgreeAndTheCausticShowsColouredFringes) {
     for (const char* integrator : {"vcm", "bpt", "sppm", "pppm"}) {
         const Image img = render_box(scene, integrator, passes);
         const std::array<double, 3> s = box_mean(img, 27, 32, 38, 41), c = box_mean(img, 28, 42, 37, 44);
-        for (int k = 0; k < 3; ++k) EXPECT_NEAR(s[k] / sphere[k], 1.0, 0.025) << integrator << ", channel " << k;
+        // The view through the sphere is the whole room, minified: SPPM's and PPPM's gather discs
+        // there reach over its corners. Since they count only the covered part of each disc
+        // (kernels/disc_coverage.cl) the estimate keeps the density gradient towards a corner, a
+        // first-order bias: +1.2% there on the box without dispersion against BPT (before, the
+        // truncated discs made it -0.3% by cancelling it), and here, with SPPM's blue excess of
+        // dispersion, +0.2%, +1.1% and +3.0% (VCM, BPT and a second path tracer within 0.6%).
+        const double tolerance = std::string(integrator) == "sppm" || std::string(integrator) == "pppm" ? 0.04 : 0.025;
+        for (int k = 0; k < 3; ++k) EXPECT_NEAR(s[k] / sphere[k], 1.0, tolerance) << integrator << ", channel " << k;
         // The caustic: the path tracer finds it noisily, and a density estimate blurs
         // it (on the box without dispersion SPPM keeps 0.94 of the path tracer's there, PPPM 0.92,
         // VCM 0.96): a loose check that it is there, with about the right power.

@@ -1,6 +1,7 @@
 // The hashed-grid gather (kernels/hash_grid.cl, kernels/gather.cl) against a brute-force gather
 // over all photons: the same photons counted, the same flux sums to the last fixed-point unit,
-// for radii smaller than, equal to and larger than a cell, and hit points on cell boundaries.
+// for radii smaller than, equal to and larger than a cell, and hit points on cell boundaries; each
+// hit point's sum divided by its disc's covered fraction (kernels/disc_coverage.cl).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -30,6 +31,7 @@ struct GatherCase {
     std::vector<dev::Photon> photons;
     std::vector<dev::HitPoint> hitpoints;
     std::vector<dev::HitStats> stats;
+    std::vector<cl_float2> coverage; // (f, g) per hit point; the gather divides by f
     dev::GridInfo grid{};
 };
 
@@ -69,6 +71,7 @@ GatherCase make_case(float cell, float radius, uint32_t n_photons, uint32_t n_hi
         c.hitpoints.push_back(h);
         float r = radius * (0.5f + u01(rng)); // radii vary around the nominal one
         c.stats.push_back(dev::HitStats{double(r) * r, 0, {0, 0, 0}, {0, 0, 0}});
+        c.coverage.push_back(cl_float2{{i % 3 == 0 ? 1.0f : 0.125f + 0.875f * u01(rng), 1.0f}});
     }
     c.grid.origin[0] = c.grid.origin[1] = c.grid.origin[2] = -1.25f;
     c.grid.inv_cell = 1.f / cell;
@@ -92,7 +95,9 @@ std::vector<dev::PassFlux> brute_force(const GatherCase& c) {
             bool wi_up = (p.wi_oct >> 16) > 32768, n_up = (p.normal_oct >> 16) > 32768;
             if (!wi_up || !n_up) continue;
             const float f = 1.0f * 0.31830988618379067154f; // albedo 1 / pi, in float as the kernel
-            for (int k = 0; k < 3; ++k) out[i].flux[k] += std::llrint(double(f * p.flux[k]) * FLUX_FIXED_SCALE);
+            const float inv_cover = 1.0f / c.coverage[i].s[0];
+            for (int k = 0; k < 3; ++k)
+                out[i].flux[k] += std::llrint(double(f * (p.flux[k] * inv_cover)) * FLUX_FIXED_SCALE);
             out[i].m += 1;
         }
     }
@@ -116,6 +121,7 @@ std::vector<dev::PassFlux> device_gather(const GatherCase& c) {
     cl::Buffer hps = buf(c.hitpoints.data(), c.hitpoints.size() * sizeof(dev::HitPoint));
     cl::Buffer stats = buf(c.stats.data(), c.stats.size() * sizeof(dev::HitStats));
     cl::Buffer out(ctx, CL_MEM_READ_WRITE, c.hitpoints.size() * sizeof(dev::PassFlux));
+    cl::Buffer coverage = buf(c.coverage.data(), c.coverage.size() * sizeof(cl_float2));
     cl::Kernel count(program, "grid_count"), scan(program, "grid_scan"), scatter(program, "grid_scatter"),
         gather(program, "gather");
     count.setArg(0, grid), count.setArg(1, photons), count.setArg(2, counts);
@@ -125,6 +131,7 @@ std::vector<dev::PassFlux> device_gather(const GatherCase& c) {
     gather.setArg(0, grid), gather.setArg(1, sorted), gather.setArg(2, starts), gather.setArg(3, hps);
     gather.setArg(4, stats), gather.setArg(5, cl_uint(c.hitpoints.size())), gather.setArg(6, cl_float(0));
     gather.setArg(7, cl_uint(0)), gather.setArg(8, out), gather.setArg(9, cl_ulong(1)), gather.setArg(10, cl_ulong(1));
+    gather.setArg(11, coverage);
     dc.queue.enqueueNDRangeKernel(count, cl::NullRange, cl::NDRange(c.photons.size()));
     dc.queue.enqueueNDRangeKernel(scan, cl::NullRange, cl::NDRange(256), cl::NDRange(256));
     dc.queue.enqueueNDRangeKernel(scatter, cl::NullRange, cl::NDRange(c.photons.size()));

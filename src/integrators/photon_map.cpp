@@ -30,6 +30,7 @@ PhotonMap::PhotonMap(const DeviceContext& dc, const DeviceScene& scene, const Re
         k_photon_ = cl::Kernel(program, "photon_trace");
     }
     k_gather_ = cl::Kernel(program, "gather");
+    k_coverage_ = cl::Kernel(program, "disc_coverage");
 }
 
 size_t PhotonMap::memory_needed(const RenderSettings& settings, const DeviceInfo& device, uint64_t hitpoints) {
@@ -54,6 +55,7 @@ void PhotonMap::run_pass(uint64_t pass, uint32_t first_photon, uint32_t count_ph
         if (n > 0) dc_.queue.enqueueFillBuffer(out, cl_uchar(0), 0, size_t(n) * sizeof(dev::PassFlux));
         return;
     }
+    measure_coverage(pass, hitpoints, stats, n, global_r2);
     if (chains_) { // where hit points may gather: cells of the initial radius
         const double cell = std::max(max_radius, 2.0 * scene_.info.radius / double(1 << 20));
         chains_->mark(hitpoints, stats, n, global_r2, scene_.bounds_min, cell);
@@ -108,10 +110,31 @@ void PhotonMap::enqueue_gather(cl::Kernel& kernel, uint64_t pass, const cl::Buff
                                uint32_t n, float global_r2, bool accumulate, const cl::Buffer& out,
                                const std::string& phase) {
     set_args(kernel, 0, grid_.info(), trace_.sorted(), grid_.starts(), hitpoints, stats, cl_uint(n),
-             cl_float(global_r2), cl_uint(accumulate ? 1 : 0), out, cl_ulong(settings_.seed), cl_ulong(pass));
+             cl_float(global_r2), cl_uint(accumulate ? 1 : 0), out, cl_ulong(settings_.seed), cl_ulong(pass),
+             coverage_);
     cl::Event ev;
     enqueue_1d(dc_.queue, kernel, n, &ev);
     add_event_time(stats_, phase, ev);
+}
+
+// Each hit point's covered fraction of its gather disc at this pass's radius, which the gathers
+// divide by (kernels/disc_coverage.cl), or every disc whole (1) where --disc-coverage says so.
+void PhotonMap::measure_coverage(uint64_t pass, const cl::Buffer& hitpoints, const cl::Buffer& stats, uint32_t n,
+                                 float global_r2) {
+    if (n == 0) return;
+    if (n > coverage_capacity_) {
+        coverage_ = cl::Buffer(dc_.context, CL_MEM_READ_WRITE, size_t(n) * sizeof(cl_float2));
+        coverage_capacity_ = n;
+    }
+    if (!disc_coverage_wanted(settings_.disc_coverage, n, settings_.photons)) {
+        dc_.queue.enqueueFillBuffer(coverage_, cl_float2{{1.0f, 1.0f}}, 0, size_t(n) * sizeof(cl_float2));
+        return;
+    }
+    set_args(k_coverage_, scene_.set_scene_args(k_coverage_), hitpoints, stats, cl_uint(n), cl_float(global_r2),
+             cl_ulong(settings_.seed), cl_ulong(pass), coverage_);
+    cl::Event ev;
+    enqueue_1d(dc_.queue, k_coverage_, n, &ev);
+    add_event_time(stats_, "disc coverage", ev);
 }
 
 void PhotonMap::set_second_gather(const cl::Kernel& kernel, const cl::Buffer& out, const std::string& phase) {

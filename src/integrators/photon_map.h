@@ -65,12 +65,16 @@ private:
                 bool accumulate, const cl::Buffer& out);
     void enqueue_gather(cl::Kernel& kernel, uint64_t pass, const cl::Buffer& hitpoints, const cl::Buffer& stats,
                         uint32_t n, float global_r2, bool accumulate, const cl::Buffer& out, const std::string& phase);
+    void measure_coverage(uint64_t pass, const cl::Buffer& hitpoints, const cl::Buffer& stats, uint32_t n,
+                          float global_r2);
 
     const DeviceContext& dc_;
     const DeviceScene& scene_;
     const RenderSettings& settings_;
     IntegratorStats& stats_;
-    cl::Kernel k_photon_, k_gather_;
+    cl::Kernel k_photon_, k_gather_, k_coverage_;
+    cl::Buffer coverage_; // per hit point: the covered fraction of its gather disc (kernels/disc_coverage.cl)
+    uint32_t coverage_capacity_ = 0;
     HashGrid grid_;
     cl::Kernel k_second_;
     cl::Buffer second_out_;

@@ -19,6 +19,20 @@ const char* to_string(Sampler sampler) {
     return "?";
 }
 
+const char* to_string(DiscCoverage coverage) {
+    switch (coverage) {
+    case DiscCoverage::Auto: return "auto";
+    case DiscCoverage::On: return "on";
+    case DiscCoverage::Off: return "off";
+    }
+    return "?";
+}
+
+bool disc_coverage_wanted(DiscCoverage mode, uint64_t hitpoints, uint64_t photons) {
+    if (mode != DiscCoverage::Auto) return mode == DiscCoverage::On;
+    return hitpoints * 8 <= photons;
+}
+
 const char* to_string(DirectLighting direct) {
     switch (direct) {
     case DirectLighting::Photons: return "photons";

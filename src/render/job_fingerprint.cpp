@@ -37,7 +37,8 @@ Json job_fingerprint(const RenderOptions& o, const DeviceScene& ds, uint64_t sce
             {"--aperture", s.aperture},
             {"--focus-distance", s.focus_distance},
             {"--sampler", to_string(s.sampler)},
-            {"--visual-importance", s.visual_importance}};
+            {"--visual-importance", s.visual_importance},
+            {"--disc-coverage", to_string(s.disc_coverage)}};
 }
 
 Checkpoint open_resume(const std::string& path, const Json& fingerprint) {

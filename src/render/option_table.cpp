@@ -160,6 +160,16 @@ const std::vector<RenderOptionSpec>& render_option_table() {
          }},
         {"Integrator", "--spp", nullptr, "N", "Hit points (samples) per pixel per pass", "an integer in 1..256", "4",
          [](RenderOptions& o, const OptionArg& a) { o.settings.spp = unsigned(parse_int(a, 1, 256)); }},
+        {"Integrator", "--disc-coverage", nullptr, "MODE",
+         "PPM, SPPM, PPPM: divide each gather by the part of its disc on its surface (no dark edges and corners)",
+         "auto, on or off", "auto",
+         [](RenderOptions& o, const OptionArg& a) {
+             const std::string v = lower(a.value);
+             if (v == "auto") o.settings.disc_coverage = DiscCoverage::Auto;
+             else if (v == "on") o.settings.disc_coverage = DiscCoverage::On;
+             else if (v == "off") o.settings.disc_coverage = DiscCoverage::Off;
+             else bad_value(a);
+         }},
         {"Integrator", "--direct", nullptr, "MODE",
          "Direct light from photons (density estimate) or by sampling lights at hit points", "photons or sample",
          "sample",
