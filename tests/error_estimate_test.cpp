@@ -283,6 +283,37 @@ TEST(ErrorEstimate, BoundCoversTheActualErrorOnTheAnalyticPlane) {
     }
 }
 
+// The de-noised bias (kernels/error_bound.cl) counts only a bias estimate at least two of its own
+// standard deviations from zero, shrunk by that much, with its sign; sqrt(Var(B_est)) comes back
+// beside it. Statistics made by hand: 5 passes, the bias estimates' spread giving Var(B_est) = 1.
+TEST(ErrorEstimate, BiasCountsOnlyWhereItIsSignificant) {
+    DeviceContext dc(test::test_device());
+    cl::Program program(dc.context, assemble_kernel_source("error_estimate.cl"));
+    program.build({dc.info.device}, "-cl-std=CL1.2");
+    IntegratorStats stats;
+    const std::vector<double> bias = {0.0, 1.0, 1.9, 2.5, -3.0, 10.0};
+    ErrorEstimator est(dc, program, uint32_t(bias.size()), stats);
+    std::vector<dev::ErrorStats> v(bias.size());
+    for (size_t i = 0; i < v.size(); ++i) {
+        v[i].n = 5;
+        v[i].mean_l = 1.0;
+        v[i].m2_l = 0.2;
+        v[i].mean_bias = bias[i];
+        v[i].m2_bias = 20.0; // Var(B_est) = m2 / (n - 1) / n = 1
+    }
+    est.write(v);
+    const ErrorImage e = est.estimate(0.95, int(v.size()), 1);
+    for (size_t i = 0; i < v.size(); ++i) {
+        const double b = bias[i], expected = std::copysign(std::sqrt(std::max(0.0, b * b - 4.0)), b);
+        EXPECT_NEAR(e.bias_clean[i], expected, 1e-6) << "bias estimate " << b;
+        EXPECT_NEAR(e.bias_sigma[i], 1.0, 1e-6);
+        EXPECT_NEAR(e.sigma[i], 0.1, 1e-6); // sqrt(0.2 / 4 / 5)
+    }
+    EXPECT_EQ(e.bias_clean[1], 0.0f); // one standard deviation: noise, not bias
+    EXPECT_EQ(e.bias_clean[2], 0.0f);
+    EXPECT_NEAR(e.bias_clean[3], 1.5, 1e-6);
+}
+
 // --target-error stops the render once the estimate is below the target, and not before; an
 // unreachable target runs to --passes; --error-bound stops on the bound instead.
 TEST(ErrorEstimate, TargetErrorHaltsTheRender) {

@@ -260,7 +260,8 @@ ErrorImage ErrorEstimator::estimate(double confidence, int width, int height, co
     std::vector<cl_float8> b = read_buffer<cl_float8>(dc_.queue, bound_, n_);
     ErrorImage e;
     e.width = width, e.height = height, e.passes = passes_;
-    for (auto* v : {&e.absolute, &e.luminance, &e.bias, &e.noise, &e.bias_clean, &e.sigma}) v->resize(n_);
+    for (auto* v : {&e.absolute, &e.luminance, &e.bias, &e.noise, &e.bias_clean, &e.sigma, &e.bias_sigma})
+        v->resize(n_);
     for (uint32_t i = 0; i < n_; ++i) {
         e.absolute[i] = b[i].s[0];
         e.luminance[i] = b[i].s[1];
@@ -268,6 +269,7 @@ ErrorImage ErrorEstimator::estimate(double confidence, int width, int height, co
         e.noise[i] = b[i].s[3];
         e.bias_clean[i] = b[i].s[4];
         e.sigma[i] = b[i].s[5];
+        e.bias_sigma[i] = layout_.path_traced ? 0.0f : b[i].s[6]; // pt_error_bound keeps other data there
         if (min_sigma && (*min_sigma)[i] > e.sigma[i]) {
             e.sigma[i] = (*min_sigma)[i];
             e.noise[i] = float(t * double(e.sigma[i]));
@@ -297,13 +299,14 @@ ErrorImage ErrorEstimator::estimate(double confidence, int width, int height, co
     }
     e.relative = relative_bounds(e.absolute, e.luminance);
     e.image_error = image_error(e.relative);
+    const double calibration = layout_.path_traced ? kErrorCalibration : kPhotonErrorCalibration;
     if (passes_ >= 2) {
         std::vector<float> sigma = e.sigma;
         const double k = 1 / c4(passes_);
         for (float& s : sigma) s = float(s * k);
-        e.expected_error = kErrorCalibration * expected_image_error(sigma, e.bias_clean, e.luminance);
+        e.expected_error = calibration * expected_image_error(sigma, e.bias_clean, e.luminance);
     }
-    if (min_sigma) e.sample_floor = kErrorCalibration * expected_image_error(*min_sigma, {}, e.luminance);
+    if (min_sigma) e.sample_floor = calibration * expected_image_error(*min_sigma, {}, e.luminance);
     return e;
 }
 

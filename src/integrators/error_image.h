@@ -27,11 +27,12 @@ struct ErrorImage {
     std::vector<float> noise;      // t sqrt(V_i / i)
     std::vector<float> sigma;      // sqrt(V_i / i): the estimated standard deviation of L_i (+Inf before two passes)
     std::vector<float> bias_clean; // B_i with the bias estimate's own noise taken out (error_bound)
+    std::vector<float> bias_sigma; // sqrt(Var(B_est)), the bias estimate's own noise (0 without a bias term)
     std::vector<float> relative;   // E / max(L, floor): the per-pixel error image
     double image_error = std::numeric_limits<double>::infinity(); // kErrorPercentile of `relative`: the bound
     // The calibrated estimate of the image's actual error by the same measure (kErrorPercentile of
     // |L_i - L| / max(L, floor)): expected_image_error of the noise and de-noised bias, times
-    // kErrorCalibration (error_estimate.h).
+    // kErrorCalibration or kPhotonErrorCalibration (error_estimate.h).
     double expected_error = std::numeric_limits<double>::infinity();
     // PPM: the calibrated estimate from the spread of its fixed samples alone, an error more
     // passes do not remove (0 for the others).
