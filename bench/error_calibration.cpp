@@ -10,7 +10,7 @@
 // never fails on a number.
 //
 //   error_calibration [--out PREFIX] [--scenes A,B] [--integrators ppm,sppm,pppm] [--size N]
-//                     [--photons M] [--passes N] [--ref-passes N] [--ref-photon-factor K]
+//                     [--photons M] [--passes N] [--ref-passes N] [--ref-photon-factor K] [--ref-renders K]
 //                     [--ref-cache DIR] [--confidence P] [--device SPEC] [--quick]
 #include <algorithm>
 #include <cmath>
@@ -36,6 +36,7 @@ struct Args {
     std::string ref_integrator = "sppm"; // pt: an unbiased reference (its passes are one sample each)
     unsigned size = 48;
     uint64_t photons = 50000, passes = 200, ref_passes = 1600, ref_photon_factor = 4, pt_pass_factor = 16;
+    uint64_t ref_renders = 1; // the reference is the mean of this many renders, seeds 1000, 2000, ...
     double confidence = 0.95;
 };
 
@@ -96,6 +97,7 @@ int main(int argc, char** argv) {
         else if (k == "--device") a.device = next();
         else if (k == "--ref-cache") a.ref_cache = next();
         else if (k == "--ref-photon-factor") a.ref_photon_factor = std::stoull(next());
+        else if (k == "--ref-renders") a.ref_renders = std::max<uint64_t>(1, std::stoull(next()));
         else if (k == "--integrators") a.integrators = next();
         else if (k == "--pt-pass-factor") a.pt_pass_factor = std::stoull(next());
         else if (k == "--ref-integrator") a.ref_integrator = next();
@@ -117,24 +119,35 @@ int main(int argc, char** argv) {
             s.integrator = parse_integrator(a.ref_integrator);
             s.width = s.height = a.size;
             s.photons = a.photons * a.ref_photon_factor;
-            s.seed = 1000;
-            const std::string cache = a.ref_cache.empty()
-                                          ? std::string()
-                                          : a.ref_cache + "/" + scene_tag(scene) + "_" + a.ref_integrator + "_" +
-                                                std::to_string(a.size) + "_" + std::to_string(s.photons) + "x" +
-                                                std::to_string(a.ref_passes) + ".exr";
-            std::vector<float> ref_y;
-            if (!cache.empty() && std::ifstream(cache).good()) {
-                ref_y = luminance(read_exr(cache));
-            } else {
-                Render ref(device, scene, s);
-                for (uint64_t p = 0; p < a.ref_passes; ++p) ref.integ->run_pass();
-                const Image img = ref.integ->image();
-                if (!cache.empty()) write_exr(cache, img);
-                ref_y = luminance(img);
+            // A reference whose own error matters (the path tracer's in a scene lit through a gap)
+            // averages --ref-renders renders of seeds 1000, 2000, 3000, ...; each is cached.
+            Image ref_img;
+            for (uint64_t k = 0; k < a.ref_renders; ++k) {
+                s.seed = 1000 * (k + 1);
+                const std::string cache = a.ref_cache.empty()
+                                              ? std::string()
+                                              : a.ref_cache + "/" + scene_tag(scene) + "_" + a.ref_integrator + "_" +
+                                                    std::to_string(a.size) + "_" + std::to_string(s.photons) + "x" +
+                                                    std::to_string(a.ref_passes) +
+                                                    (k ? "_seed" + std::to_string(s.seed) : std::string()) + ".exr";
+                Image img;
+                if (!cache.empty() && std::ifstream(cache).good()) {
+                    img = read_exr(cache);
+                } else {
+                    Render ref(device, scene, s);
+                    for (uint64_t p = 0; p < a.ref_passes; ++p) ref.integ->run_pass();
+                    img = ref.integ->image();
+                    if (!cache.empty()) write_exr(cache, img);
+                }
+                if (k == 0) ref_img = img;
+                else
+                    for (size_t j = 0; j < img.rgb.size(); ++j) ref_img.rgb[j] += img.rgb[j];
             }
-            std::fprintf(stderr, "%s: reference of %llu passes of %llu photons\n", scene_tag(scene).c_str(),
-                         (unsigned long long)a.ref_passes, (unsigned long long)s.photons);
+            for (float& v : ref_img.rgb) v = float(double(v) / double(a.ref_renders));
+            const std::vector<float> ref_y = luminance(ref_img);
+            std::fprintf(stderr, "%s: reference of %llu x %llu passes of %llu photons\n", scene_tag(scene).c_str(),
+                         (unsigned long long)a.ref_renders, (unsigned long long)a.ref_passes,
+                         (unsigned long long)s.photons);
 
             for (const std::string& name : split(a.integrators)) {
                 s.integrator = parse_integrator(name, &s.visual_importance);
@@ -190,8 +203,9 @@ int main(int argc, char** argv) {
         std::ostringstream md;
         md << "Device: " << device.name << "; " << a.size << "x" << a.size << ", " << a.photons
            << " photons per pass (PPM: --spp 4), alpha 0.7; reference: " << a.ref_integrator << ", " << a.ref_passes
-           << " passes of " << a.photons * a.ref_photon_factor << " photons (seed 1000); confidence " << a.confidence
-           << "; total " << int(now_s() - t_start) << " s.\n\n"
+           << " passes of " << a.photons * a.ref_photon_factor << " photons (mean of " << a.ref_renders
+           << " renders, seeds 1000, 2000, ...); confidence " << a.confidence << "; total " << int(now_s() - t_start)
+           << " s.\n\n"
            << "| scene | integrator | pass | s | bound (p90) | noise only (p90) | noise and bias (p90) | calibrated "
               "estimate (p90) "
               "| actual (p90) | calibrated / actual | pixels within bound | median actual/bound |\n"
