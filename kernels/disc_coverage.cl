@@ -110,10 +110,138 @@ float2 disc_coverage_at(SCENE_PARAMS, float3 p, float3 n, float r, float u) {
     return (float2)(fmax(sum / DISC_DIRECTIONS, DISC_MIN_COVERAGE), sum > 0.0f ? sum4 / sum : 1.0f);
 }
 
+/* ---- the whole disc, seen without rays --------------------------------------------------------
+ * Most hit points lie well inside a flat surface, where disc_coverage_at's rays all find f = 1 and
+ * g = 1. One query of the BVH sees that instead: if every triangle within DISC_BALL_MARGIN R of p
+ * is flat with the hit point's plane (within DISC_FLAT_SIN of its normal and DISC_FLAT_HEIGHT R of
+ * p), opaque, and has no open edge (src/scene/open_edges.cpp) within that ball, the flat triangles
+ * cover the disc without a gap and nothing rises from it. Then no probe can meet a surface: the
+ * flat ones stay below DISC_FLAT_HEIGHT R + DISC_BALL_MARGIN R DISC_FLAT_SIN, about 0.04 R, under the
+ * probes' DISC_PROBE_HEIGHT R, and every point a probe or a chord reaches lies within 1.005 R of p,
+ * inside the ball. And every chord meets a flat triangle facing the hit point's side. So the rays
+ * would give exactly (1, 1), and the result is the same number, for about the cost of one ray
+ * instead of at least 2 DISC_DIRECTIONS. Anything else in the ball (a wall, an occluder, a curved
+ * or transmissive surface, an open edge, a T-junction) leaves the measurement to the rays. */
+#define DISC_BALL_MARGIN 1.02f
+#define DISC_FLAT_SIN 0.02f
+#define DISC_FLAT_HEIGHT 0.02f
+
+/* Squared distance from p to triangle abc (Ericson 2005, Real-Time Collision Detection, 5.1.5). */
+float disc_triangle_dist2(float3 p, float3 a, float3 b, float3 c) {
+    const float3 ab = b - a, ac = c - a, ap = p - a;
+    const float d1 = dot(ab, ap), d2 = dot(ac, ap);
+    if (d1 <= 0.0f && d2 <= 0.0f) return dot(ap, ap);
+    const float3 bp = p - b;
+    const float d3 = dot(ab, bp), d4 = dot(ac, bp);
+    if (d3 >= 0.0f && d4 <= d3) return dot(bp, bp);
+    const float vc = d1 * d4 - d3 * d2;
+    if (vc <= 0.0f && d1 >= 0.0f && d3 <= 0.0f) {
+        const float3 q = a + ab * (d1 / (d1 - d3)) - p;
+        return dot(q, q);
+    }
+    const float3 cp = p - c;
+    const float d5 = dot(ab, cp), d6 = dot(ac, cp);
+    if (d6 >= 0.0f && d5 <= d6) return dot(cp, cp);
+    const float vb = d5 * d2 - d1 * d6;
+    if (vb <= 0.0f && d2 >= 0.0f && d6 <= 0.0f) {
+        const float3 q = a + ac * (d2 / (d2 - d6)) - p;
+        return dot(q, q);
+    }
+    const float va = d3 * d6 - d5 * d4;
+    if (va <= 0.0f && (d4 - d3) >= 0.0f && (d5 - d6) >= 0.0f) {
+        const float3 q = b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6))) - p;
+        return dot(q, q);
+    }
+    const float denom = 1.0f / (va + vb + vc);
+    const float3 q = a + ab * (vb * denom) + ac * (vc * denom) - p;
+    return dot(q, q);
+}
+
+/* Squared distance from p to the segment ab. */
+float disc_segment_dist2(float3 p, float3 a, float3 b) {
+    const float3 ab = b - a;
+    const float len2 = dot(ab, ab);
+    const float s = len2 > 0.0f ? clamp(dot(p - a, ab) / len2, 0.0f, 1.0f) : 0.0f;
+    const float3 q = a + ab * s - p;
+    return dot(q, q);
+}
+
+/* Whether the disc of radius r around p on the plane of normal n lies whole on one flat, opaque
+ * surface with nothing else within its ball (above). open_edges: per triangle, bit k when its edge
+ * from vertex k to vertex k + 1 is open. */
+bool disc_is_whole(SCENE_PARAMS, __global const uchar* open_edges, float3 p, float3 n, float r) {
+    const float rb = DISC_BALL_MARGIN * r, rb2 = rb * rb;
+    const float flat_cos2 = 1.0f - DISC_FLAT_SIN * DISC_FLAT_SIN;
+    const float height2 = (DISC_FLAT_HEIGHT * r) * (DISC_FLAT_HEIGHT * r);
+    const bvh_floatw px = (bvh_floatw)(p.x), py = (bvh_floatw)(p.y), pz = (bvh_floatw)(p.z);
+    int stack_node[BVH_STACK_SIZE];
+    uint stack_count[BVH_STACK_SIZE];
+    int sp = 0;
+    int cur = 0;
+    uint cur_count = 0;
+    bool flat_found = false;
+    for (;;) {
+        if (cur >= 0) {
+            /* every child whose box reaches into the ball (empty slots: an inverted box, never) */
+            __global const bvh_floatw* row = (__global const bvh_floatw*)(bvh_nodes + cur);
+            const bvh_floatw zero = (bvh_floatw)(0.0f);
+            const bvh_floatw dx = fmax(fmax(row[0] - px, px - row[3]), zero);
+            const bvh_floatw dy = fmax(fmax(row[1] - py, py - row[4]), zero);
+            const bvh_floatw dz = fmax(fmax(row[2] - pz, pz - row[5]), zero);
+            int mask = bvh_lane_mask(islessequal(dx * dx + dy * dy + dz * dz, (bvh_floatw)(rb2)));
+            __global const int* c = (__global const int*)(row + 6);
+            __global const uint* cnt = (__global const uint*)(row + 7);
+            for (; mask != 0; mask &= mask - 1) {
+                const int i = 31 - clz(mask & -mask);
+                stack_node[sp] = c[i];
+                stack_count[sp] = cnt[i];
+                ++sp;
+            }
+        } else {
+            const uint first = (uint)(~cur);
+            for (uint b = first; b < first + (cur_count + BVH_TRI_BLOCK - 1) / BVH_TRI_BLOCK; ++b) {
+                __global const bvh_floatb* v = (__global const bvh_floatb*)(tri_blocks + b);
+                const bvh_floatb zero = (bvh_floatb)(0.0f);
+                const bvh_floatb lox = fmin(fmin(v[0], v[3]), v[6]), hix = fmax(fmax(v[0], v[3]), v[6]);
+                const bvh_floatb loy = fmin(fmin(v[1], v[4]), v[7]), hiy = fmax(fmax(v[1], v[4]), v[7]);
+                const bvh_floatb loz = fmin(fmin(v[2], v[5]), v[8]), hiz = fmax(fmax(v[2], v[5]), v[8]);
+                const bvh_floatb dx = fmax(fmax(lox - p.x, p.x - hix), zero);
+                const bvh_floatb dy = fmax(fmax(loy - p.y, p.y - hiy), zero);
+                const bvh_floatb dz = fmax(fmax(loz - p.z, p.z - hiz), zero);
+                int lanes = bvh_block_mask(islessequal(dx * dx + dy * dy + dz * dz, (bvh_floatb)(rb2)));
+                for (; lanes != 0; lanes &= lanes - 1) {
+                    const int i = 31 - clz(lanes & -lanes);
+                    float vf[9];
+                    for (int k = 0; k < 9; ++k) vf[k] = ((__global const float*)(v + k))[i];
+                    const float3 a = (float3)(vf[0], vf[1], vf[2]), bb = (float3)(vf[3], vf[4], vf[5]),
+                                 cc = (float3)(vf[6], vf[7], vf[8]);
+                    if (!(disc_triangle_dist2(p, a, bb, cc) <= rb2)) continue;
+                    const uint prim = tri_blocks[b].prim[i];
+                    const float3 nt = cross(bb - a, cc - a);
+                    const float len2 = dot(nt, nt), dn = dot(nt, n), h = dot(a - p, nt);
+                    const bool flat = len2 > 0.0f && dn * dn >= flat_cos2 * len2 && h * h <= height2 * len2;
+                    if (!flat || !disc_opaque(SCENE_ARGS, prim)) return false;
+                    if (HAS_ALPHA && materials[shading[prim].material].alpha_mode != ALPHA_OPAQUE) return false;
+                    const uint open = open_edges[prim];
+                    if ((open & 1u) && disc_segment_dist2(p, a, bb) <= rb2) return false;
+                    if ((open & 2u) && disc_segment_dist2(p, bb, cc) <= rb2) return false;
+                    if ((open & 4u) && disc_segment_dist2(p, cc, a) <= rb2) return false;
+                    flat_found = true;
+                }
+            }
+        }
+        if (sp == 0) return flat_found;
+        --sp;
+        cur = stack_node[sp];
+        cur_count = stack_count[sp];
+    }
+}
+
 /* coverage[i] for every hit point, with this pass's radius: each hit point's own R (PPM, SPPM) or
  * PPPM's global one (global_r2 > 0). 1 where a pixel has no hit point. */
-__kernel void disc_coverage(SCENE_PARAMS, __global const HitPoint* hitpoints, __global const HitStats* stats,
-                            uint num_hitpoints, float global_r2, ulong seed, ulong pass, __global float2* coverage) {
+__kernel void disc_coverage(SCENE_PARAMS, __global const uchar* open_edges, __global const HitPoint* hitpoints,
+                            __global const HitStats* stats, uint num_hitpoints, float global_r2, ulong seed, ulong pass,
+                            __global float2* coverage) {
     uint i = get_global_id(0);
     if (i >= num_hitpoints) return;
     __global const HitPoint* hp = &hitpoints[i];
@@ -123,8 +251,11 @@ __kernel void disc_coverage(SCENE_PARAMS, __global const HitPoint* hitpoints, __
         return;
     }
     Rng rng = rng_make(seed, pass, i, RNG_DISC_COVERAGE);
-    float3 n = oct_decode(hp->ng_oct);
-    coverage[i] = disc_coverage_at(SCENE_ARGS, load3g(hp->pos), n, sqrt(r2), rng_float(&rng));
+    const float3 n = oct_decode(hp->ng_oct), p = load3g(hp->pos);
+    const float r = sqrt(r2);
+    coverage[i] = disc_is_whole(SCENE_ARGS, open_edges, p, n, r)
+                      ? (float2)(1.0f, 1.0f)
+                      : disc_coverage_at(SCENE_ARGS, p, n, r, rng_float(&rng));
 }
 
 #endif

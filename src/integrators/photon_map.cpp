@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "device/kernel_launch.h"
+#include "scene/open_edges.h"
 
 namespace clppm {
 
@@ -130,8 +131,17 @@ void PhotonMap::measure_coverage(uint64_t pass, const cl::Buffer& hitpoints, con
         dc_.queue.enqueueFillBuffer(coverage_, cl_float2{{1.0f, 1.0f}}, 0, size_t(n) * sizeof(cl_float2));
         return;
     }
-    set_args(k_coverage_, scene_.set_scene_args(k_coverage_), hitpoints, stats, cl_uint(n), cl_float(global_r2),
-             cl_ulong(settings_.seed), cl_ulong(pass), coverage_);
+    if (!open_edges_()) { // the scene's open edges, from the blocks as the device has them
+        const size_t bytes = scene_.tri_blocks_buf.getInfo<CL_MEM_SIZE>();
+        std::vector<dev::BvhTriBlock> blocks(bytes / sizeof(dev::BvhTriBlock));
+        dc_.queue.enqueueReadBuffer(scene_.tri_blocks_buf, CL_TRUE, 0, blocks.size() * sizeof(dev::BvhTriBlock),
+                                    blocks.data());
+        std::vector<uint8_t> open = open_edges(blocks, scene_.info.num_tris);
+        if (open.empty()) open.push_back(0); // a buffer cannot be empty
+        open_edges_ = cl::Buffer(dc_.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, open.size(), open.data());
+    }
+    set_args(k_coverage_, scene_.set_scene_args(k_coverage_), open_edges_, hitpoints, stats, cl_uint(n),
+             cl_float(global_r2), cl_ulong(settings_.seed), cl_ulong(pass), coverage_);
     cl::Event ev;
     enqueue_1d(dc_.queue, k_coverage_, n, &ev);
     add_event_time(stats_, "disc coverage", ev);

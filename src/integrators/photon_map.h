@@ -75,6 +75,7 @@ private:
     cl::Kernel k_photon_, k_gather_, k_coverage_;
     cl::Buffer coverage_; // per hit point: the covered fraction of its gather disc (kernels/disc_coverage.cl)
     uint32_t coverage_capacity_ = 0;
+    cl::Buffer open_edges_; // per triangle: its open edges (scene/open_edges.h), made when first measured
     HashGrid grid_;
     cl::Kernel k_second_;
     cl::Buffer second_out_;
