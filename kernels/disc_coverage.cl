@@ -111,20 +111,23 @@ float2 disc_coverage_at(SCENE_PARAMS, float3 p, float3 n, float r, float u) {
 }
 
 /* ---- the whole disc, seen without rays --------------------------------------------------------
- * Most hit points lie well inside a flat surface, where disc_coverage_at's rays all find f = 1 and
+ * Most hit points lie well inside a surface, where disc_coverage_at's rays all find f = 1 and
  * g = 1. One query of the BVH sees that instead: if every triangle within DISC_BALL_MARGIN R of p
- * is flat with the hit point's plane (within DISC_FLAT_SIN of its normal and DISC_FLAT_HEIGHT R of
- * p), opaque, and has no open edge (src/scene/open_edges.cpp) within that ball, the flat triangles
- * cover the disc without a gap and nothing rises from it. Then no probe can meet a surface: the
- * flat ones stay below DISC_FLAT_HEIGHT R + DISC_BALL_MARGIN R DISC_FLAT_SIN, about 0.04 R, under the
- * probes' DISC_PROBE_HEIGHT R, and every point a probe or a chord reaches lies within 1.005 R of p,
- * inside the ball. And every chord meets a flat triangle facing the hit point's side. So the rays
- * would give exactly (1, 1), and the result is the same number, for about the cost of one ray
- * instead of at least 2 DISC_DIRECTIONS. Anything else in the ball (a wall, an occluder, a curved
- * or transmissive surface, an open edge, a T-junction) leaves the measurement to the rays. */
+ * is opaque, stays within DISC_FLAT_HEIGHT R of the hit point's tangent plane inside that ball
+ * (its plane's distance from p plus DISC_BALL_MARGIN R times the sine of its tilt from n), and has
+ * no open edge (src/scene/open_edges.cpp) within the ball, then those triangles join into one
+ * surface that covers the disc without a gap (a gap would need an open edge, a tilt of 90 degrees,
+ * or a surface leaving the ball through the slab's faces), and nothing rises from it. No probe
+ * can meet a surface: every point a probe or a chord reaches lies within 1.005 R of p, inside the
+ * ball, and the slab is below the probes' height of DISC_PROBE_HEIGHT R. Every chord, at least
+ * 0.43 R long each way, meets the slab's surface facing the hit point's side. So the rays would
+ * give exactly (1, 1), and the result is the same number, for about the cost of one ray instead
+ * of at least 2 DISC_DIRECTIONS. Gently curved surfaces pass too once R is small against their
+ * radius of curvature rho (the slab is about 1.5 R^2 / rho thick). Anything else in the ball (a
+ * wall, an occluder, a sharply curved or transmissive surface, an open edge, a T-junction) leaves
+ * the measurement to the rays. */
 #define DISC_BALL_MARGIN 1.02f
-#define DISC_FLAT_SIN 0.02f
-#define DISC_FLAT_HEIGHT 0.02f
+#define DISC_FLAT_HEIGHT 0.05f
 
 /* Squared distance from p to triangle abc (Ericson 2005, Real-Time Collision Detection, 5.1.5). */
 float disc_triangle_dist2(float3 p, float3 a, float3 b, float3 c) {
@@ -171,8 +174,6 @@ float disc_segment_dist2(float3 p, float3 a, float3 b) {
  * from vertex k to vertex k + 1 is open. */
 bool disc_is_whole(SCENE_PARAMS, __global const uchar* open_edges, float3 p, float3 n, float r) {
     const float rb = DISC_BALL_MARGIN * r, rb2 = rb * rb;
-    const float flat_cos2 = 1.0f - DISC_FLAT_SIN * DISC_FLAT_SIN;
-    const float height2 = (DISC_FLAT_HEIGHT * r) * (DISC_FLAT_HEIGHT * r);
     const bvh_floatw px = (bvh_floatw)(p.x), py = (bvh_floatw)(p.y), pz = (bvh_floatw)(p.z);
     int stack_node[BVH_STACK_SIZE];
     uint stack_count[BVH_STACK_SIZE];
@@ -218,8 +219,9 @@ bool disc_is_whole(SCENE_PARAMS, __global const uchar* open_edges, float3 p, flo
                     if (!(disc_triangle_dist2(p, a, bb, cc) <= rb2)) continue;
                     const uint prim = tri_blocks[b].prim[i];
                     const float3 nt = cross(bb - a, cc - a);
-                    const float len2 = dot(nt, nt), dn = dot(nt, n), h = dot(a - p, nt);
-                    const bool flat = len2 > 0.0f && dn * dn >= flat_cos2 * len2 && h * h <= height2 * len2;
+                    const float len = length(nt), cos_tilt = fabs(dot(nt, n)) / len;
+                    const float sin_tilt = sqrt(fmax(1.0f - cos_tilt * cos_tilt, 0.0f));
+                    const bool flat = fabs(dot(a - p, nt)) / len + rb * sin_tilt <= DISC_FLAT_HEIGHT * r;
                     if (!flat || !disc_opaque(SCENE_ARGS, prim)) return false;
                     if (HAS_ALPHA && materials[shading[prim].material].alpha_mode != ALPHA_OPAQUE) return false;
                     const uint open = open_edges[prim];

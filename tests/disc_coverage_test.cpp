@@ -8,6 +8,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <map>
 #include <random>
 
 #include "device/kernel_program.h"
@@ -15,6 +16,7 @@
 #include "scene/device_scene.h"
 #include "scene/gltf/gltf_load.h"
 #include "scene/open_edges.h"
+#include "scene_builders.h"
 #include "test_util.h"
 
 using namespace clppm;
@@ -199,7 +201,7 @@ TEST(DiscCoverage, AutoWhereItCostsLittle) {
 namespace {
 
 // disc_is_whole's question answered by brute force over every triangle, in double: open edges by
-// comparing every edge with every other triangle's, distances by projecting onto each triangle.
+// an ordered map of the edges' endpoints, distances by projecting onto each triangle.
 struct BruteForceScene {
     std::vector<std::array<V3, 3>> tri;
     std::vector<bool> solid; // opaque, without alpha
@@ -216,25 +218,31 @@ struct BruteForceScene {
             const dev::Material& m = s.materials[s.shading[t].material];
             solid.push_back(m.transmission == 0 && m.diffuse_transmission == 0 && m.alpha_mode == ALPHA_OPAQUE);
         }
+        using P = std::array<double, 3>;
+        std::map<std::pair<P, P>, std::vector<std::pair<size_t, int>>> edges;
+        auto key = [&](size_t t, int e) {
+            P a{tri[t][size_t(e)].x, tri[t][size_t(e)].y, tri[t][size_t(e)].z};
+            const V3& w = tri[t][size_t((e + 1) % 3)];
+            P b{w.x, w.y, w.z};
+            return a < b ? std::make_pair(a, b) : std::make_pair(b, a);
+        };
+        for (size_t t = 0; t < tri.size(); ++t)
+            for (int e = 0; e < 3; ++e) edges[key(t, e)].push_back({t, e});
         open.assign(tri.size(), 0);
         for (size_t t = 0; t < tri.size(); ++t)
             for (int e = 0; e < 3; ++e) {
-                const V3 a = tri[t][size_t(e)], b = tri[t][size_t((e + 1) % 3)], c = tri[t][size_t((e + 2) % 3)];
-                const V3 n = cross(sub(tri[t][1], tri[t][0]), sub(tri[t][2], tri[t][0]));
-                int sharing = 0;
+                const auto& uses = edges[key(t, e)];
                 bool across = false;
-                for (size_t u = 0; u < tri.size(); ++u)
-                    for (int f = 0; u != t && f < 3; ++f) {
-                        const V3 p = tri[u][size_t(f)], q = tri[u][size_t((f + 1) % 3)];
-                        if (!((same(p, a) && same(q, b)) || (same(p, b) && same(q, a)))) continue;
-                        ++sharing;
-                        const V3 far = tri[u][size_t((f + 2) % 3)];
-                        across = dot(cross(sub(b, a), sub(c, a)), n) * dot(cross(sub(b, a), sub(far, a)), n) < 0;
-                    }
-                if (!(sharing == 1 && across)) open[t] |= 1 << e;
+                if (uses.size() == 2) {
+                    const auto [u, f] = uses[0].first == t && uses[0].second == e ? uses[1] : uses[0];
+                    const V3 a = tri[t][size_t(e)], b = tri[t][size_t((e + 1) % 3)], c = tri[t][size_t((e + 2) % 3)];
+                    const V3 n = cross(sub(tri[t][1], tri[t][0]), sub(tri[t][2], tri[t][0]));
+                    const V3 far = tri[u][size_t((f + 2) % 3)];
+                    across = u != t && dot(cross(sub(b, a), sub(c, a)), n) * dot(cross(sub(b, a), sub(far, a)), n) < 0;
+                }
+                if (!across) open[t] |= 1 << e;
             }
     }
-    static bool same(V3 a, V3 b) { return a.x == b.x && a.y == b.y && a.z == b.z; }
     static V3 sub(V3 a, V3 b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
     static double dot(V3 a, V3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
     static V3 cross(V3 a, V3 b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
@@ -253,9 +261,9 @@ struct BruteForceScene {
         if (b1 >= 0 && b2 >= 0 && b1 + b2 <= 1) return h * h * n2;
         return std::min({segment_dist2(p, v[0], v[1]), segment_dist2(p, v[1], v[2]), segment_dist2(p, v[2], v[0])});
     }
-    // ball: the ball's radius over r (disc_coverage.cl's DISC_BALL_MARGIN); flat_sin and height
-    // (over r): how far a triangle may tilt from n and lie from p and still count as the same plane.
-    bool whole(V3 p, V3 n, double r, double ball, double flat_sin, double height) const {
+    // ball: the ball's radius over r (disc_coverage.cl's DISC_BALL_MARGIN); height: how far (over
+    // r) a triangle may reach from p's tangent plane inside the ball (DISC_FLAT_HEIGHT).
+    bool whole(V3 p, V3 n, double r, double ball, double height) const {
         const double rb2 = (ball * r) * (ball * r);
         bool found = false;
         for (size_t t = 0; t < tri.size(); ++t) {
@@ -263,7 +271,7 @@ struct BruteForceScene {
             const V3 nt = cross(sub(tri[t][1], tri[t][0]), sub(tri[t][2], tri[t][0]));
             const double len = std::sqrt(dot(nt, nt)), cos = std::abs(dot(nt, n)) / len;
             const double off = std::abs(dot(sub(tri[t][0], p), nt)) / len;
-            if (!(cos * cos >= 1 - flat_sin * flat_sin && off <= height * r) || !solid[t]) return false;
+            if (!(off + ball * r * std::sqrt(std::max(1 - cos * cos, 0.0)) <= height * r) || !solid[t]) return false;
             for (int e = 0; e < 3; ++e)
                 if ((open[t] >> e & 1) && segment_dist2(p, tri[t][size_t(e)], tri[t][size_t((e + 1) % 3)]) <= rb2)
                     return false;
@@ -283,93 +291,115 @@ __kernel void whole_at(SCENE_PARAMS, __global const uchar* open_edges, __global 
 }
 )CL";
 
+struct WholeCounts {
+    int whole = 0, cut = 0, unsure = 0, whole_on_curves = 0;
+};
+
+// 600 random discs on the scene's surfaces (two thirds by area, a third by triangle: the curved
+// surfaces' many facets), radii r_min to 60 r_min: the kernel's answer against brute force, and the
+// rays where it says whole. curved: the material of the surfaces counted apart.
+WholeCounts check_whole_query(Scene s, const std::string& what, double r_min, uint32_t curved = ~0u) {
+    WholeCounts counts;
+    DeviceContext dc(test_device());
+    DeviceScene ds = upload_scene(dc, s, RenderSettings{}); // s now in leaf order
+    const BruteForceScene brute(s);
+    const size_t bytes = ds.tri_blocks_buf.getInfo<CL_MEM_SIZE>();
+    std::vector<dev::BvhTriBlock> blocks(bytes / sizeof(dev::BvhTriBlock));
+    dc.queue.enqueueReadBuffer(ds.tri_blocks_buf, CL_TRUE, 0, bytes, blocks.data());
+    std::vector<uint8_t> open = open_edges(blocks, s.num_triangles());
+    for (size_t t = 0; t < open.size(); ++t) EXPECT_EQ(int(open[t]), brute.open[t]) << what << " triangle " << t;
+
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<double> uni(0, 1);
+    std::vector<double> area;
+    for (const auto& v : brute.tri) {
+        const V3 c = BruteForceScene::cross(BruteForceScene::sub(v[1], v[0]), BruteForceScene::sub(v[2], v[0]));
+        area.push_back(std::sqrt(BruteForceScene::dot(c, c)));
+    }
+    std::discrete_distribution<size_t> by_area(area.begin(), area.end());
+    std::uniform_int_distribution<size_t> by_index(0, brute.tri.size() - 1);
+    struct Q {
+        V3 p, n;
+        double r, u;
+        size_t tri;
+    };
+    std::vector<Q> qs;
+    for (int i = 0; i < 600; ++i) {
+        const size_t t = i % 3 == 0 ? by_index(rng) : by_area(rng);
+        const auto& v = brute.tri[t];
+        double b1 = uni(rng), b2 = uni(rng);
+        if (b1 + b2 > 1) b1 = 1 - b1, b2 = 1 - b2;
+        const V3 p = v[0] + BruteForceScene::sub(v[1], v[0]) * b1 + BruteForceScene::sub(v[2], v[0]) * b2;
+        V3 n = BruteForceScene::cross(BruteForceScene::sub(v[1], v[0]), BruteForceScene::sub(v[2], v[0]));
+        n = n * ((uni(rng) < 0.5 ? -1 : 1) / std::sqrt(BruteForceScene::dot(n, n)));
+        qs.push_back({p, n, r_min * std::pow(60.0, uni(rng)), uni(rng), t});
+    }
+    std::vector<cl_float4> in;
+    for (const Q& q : qs) {
+        in.push_back({{float(q.p.x), float(q.p.y), float(q.p.z), float(q.r)}});
+        in.push_back({{float(q.n.x), float(q.n.y), float(q.n.z), float(q.u)}});
+    }
+    cl::Program program = build_test_program(dc, assemble_kernel_source("disc_coverage.cl") + kWholeWrapper);
+    cl::Buffer inb(dc.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, in.size() * sizeof(cl_float4), in.data());
+    cl::Buffer openb(dc.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, open.size(), open.data());
+    cl::Buffer wholeb(dc.context, CL_MEM_WRITE_ONLY, qs.size() * sizeof(cl_int));
+    cl::Buffer raysb(dc.context, CL_MEM_WRITE_ONLY, qs.size() * sizeof(cl_float2));
+    cl::Kernel k(program, "whole_at");
+    int a = ds.set_scene_args(k);
+    k.setArg(a++, openb), k.setArg(a++, inb), k.setArg(a++, wholeb), k.setArg(a++, raysb);
+    dc.queue.enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(qs.size()));
+    std::vector<cl_int> whole(qs.size());
+    std::vector<cl_float2> rays(qs.size());
+    dc.queue.enqueueReadBuffer(wholeb, CL_TRUE, 0, whole.size() * sizeof(cl_int), whole.data());
+    dc.queue.enqueueReadBuffer(raysb, CL_TRUE, 0, rays.size() * sizeof(cl_float2), rays.data());
+    for (size_t i = 0; i < qs.size(); ++i) {
+        const Q& q = qs[i];
+        const bool want = brute.whole(q.p, q.n, q.r, 1.02, 0.05);
+        // answers that a rounding of the thresholds could flip are not held against the kernel
+        const bool sure = want == brute.whole(q.p, q.n, q.r, 1.02 * (1 + 1e-4), 0.05 * (1 - 1e-3)) &&
+                          want == brute.whole(q.p, q.n, q.r, 1.02 * (1 - 1e-4), 0.05 * (1 + 1e-3));
+        if (!sure) {
+            ++counts.unsure;
+            continue;
+        }
+        EXPECT_EQ(whole[i] != 0, want) << what << " query " << i << " r " << q.r;
+        if (whole[i]) {
+            ++counts.whole;
+            counts.whole_on_curves += s.shading[q.tri].material == curved;
+            EXPECT_EQ(rays[i].s[0], 1.0f) << what << " query " << i << " r " << q.r << ": the rays found a cut disc";
+            EXPECT_EQ(rays[i].s[1], 1.0f) << what << " query " << i;
+        } else {
+            counts.cut += rays[i].s[0] < 1.0f;
+        }
+    }
+    std::printf("%s: %d of %zu discs whole (%d on the curved surface), %d cut by the rays, %d on a threshold\n",
+                what.c_str(), counts.whole, qs.size(), counts.whole_on_curves, counts.cut, counts.unsure);
+    return counts;
+}
+
 } // namespace
 
-// disc_is_whole, the one BVH query that skips the rays, against brute force over every triangle
-// at random points on the box's walls and on its glass sphere, radii 0.01 to 0.6 (the box is 2
-// wide); and wherever it says whole, the rays it skips find exactly the whole disc.
+// disc_is_whole, the one BVH query that skips the rays, against brute force over every triangle,
+// and wherever it says whole, the rays it skips find exactly the whole disc: in the dispersion box
+// (walls, an open front, a glass sphere) and the Cornell box at radii 0.01 to 0.6 (the boxes are 2
+// wide), and a finely divided sphere of radius 1 on a floor at radii 0.002 to 0.12, whose discs
+// are whole where R is small against its facets' turn (1.9 degrees from one to the next).
 TEST(DiscCoverage, TheWholeDiscQueryMatchesBruteForceAndTheRays) {
-    for (const char* file : {"dispersion_box_plain.gltf", "cornell_box.gltf"}) {
-        const std::string path =
-            std::string(file) == "cornell_box.gltf" ? std::string(CLPPM_SCENES_DIR) + "/" + file : data(file);
-        Scene s = load_gltf(path);
-        DeviceContext dc(test_device());
-        DeviceScene ds = upload_scene(dc, s, RenderSettings{}); // s now in leaf order
-        const BruteForceScene brute(s);
-        const size_t bytes = ds.tri_blocks_buf.getInfo<CL_MEM_SIZE>();
-        std::vector<dev::BvhTriBlock> blocks(bytes / sizeof(dev::BvhTriBlock));
-        dc.queue.enqueueReadBuffer(ds.tri_blocks_buf, CL_TRUE, 0, bytes, blocks.data());
-        std::vector<uint8_t> open = open_edges(blocks, s.num_triangles());
-        for (size_t t = 0; t < open.size(); ++t) ASSERT_EQ(int(open[t]), brute.open[t]) << file << " triangle " << t;
-
-        std::mt19937 rng(7);
-        std::uniform_real_distribution<double> uni(0, 1);
-        std::vector<double> area;
-        for (const auto& v : brute.tri) {
-            const V3 c = BruteForceScene::cross(BruteForceScene::sub(v[1], v[0]), BruteForceScene::sub(v[2], v[0]));
-            area.push_back(std::sqrt(BruteForceScene::dot(c, c)));
-        }
-        std::discrete_distribution<size_t> by_area(area.begin(), area.end());
-        std::uniform_int_distribution<size_t> by_index(0, brute.tri.size() - 1);
-        struct Q {
-            V3 p, n;
-            double r, u;
-        };
-        std::vector<Q> qs;
-        for (int i = 0; i < 600; ++i) {
-            const size_t t = i % 3 == 0 ? by_index(rng) : by_area(rng); // a third by index: the sphere's facets
-            const auto& v = brute.tri[t];
-            double b1 = uni(rng), b2 = uni(rng);
-            if (b1 + b2 > 1) b1 = 1 - b1, b2 = 1 - b2;
-            const V3 p = v[0] + BruteForceScene::sub(v[1], v[0]) * b1 + BruteForceScene::sub(v[2], v[0]) * b2;
-            V3 n = BruteForceScene::cross(BruteForceScene::sub(v[1], v[0]), BruteForceScene::sub(v[2], v[0]));
-            n = n * ((uni(rng) < 0.5 ? -1 : 1) / std::sqrt(BruteForceScene::dot(n, n)));
-            qs.push_back({p, n, 0.01 * std::pow(60.0, uni(rng)), uni(rng)});
-        }
-        std::vector<cl_float4> in;
-        for (const Q& q : qs) {
-            in.push_back({{float(q.p.x), float(q.p.y), float(q.p.z), float(q.r)}});
-            in.push_back({{float(q.n.x), float(q.n.y), float(q.n.z), float(q.u)}});
-        }
-        cl::Program program = build_test_program(dc, assemble_kernel_source("disc_coverage.cl") + kWholeWrapper);
-        cl::Buffer inb(dc.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, in.size() * sizeof(cl_float4), in.data());
-        cl::Buffer openb(dc.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, open.size(), open.data());
-        cl::Buffer wholeb(dc.context, CL_MEM_WRITE_ONLY, qs.size() * sizeof(cl_int));
-        cl::Buffer raysb(dc.context, CL_MEM_WRITE_ONLY, qs.size() * sizeof(cl_float2));
-        cl::Kernel k(program, "whole_at");
-        int a = ds.set_scene_args(k);
-        k.setArg(a++, openb), k.setArg(a++, inb), k.setArg(a++, wholeb), k.setArg(a++, raysb);
-        dc.queue.enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(qs.size()));
-        std::vector<cl_int> whole(qs.size());
-        std::vector<cl_float2> rays(qs.size());
-        dc.queue.enqueueReadBuffer(wholeb, CL_TRUE, 0, whole.size() * sizeof(cl_int), whole.data());
-        dc.queue.enqueueReadBuffer(raysb, CL_TRUE, 0, rays.size() * sizeof(cl_float2), rays.data());
-        int wholes = 0, cut = 0, unsure = 0;
-        for (size_t i = 0; i < qs.size(); ++i) {
-            const Q& q = qs[i];
-            const bool want = brute.whole(q.p, q.n, q.r, 1.02, 0.02, 0.02);
-            // answers that a rounding of the thresholds could flip are not held against the kernel
-            const bool sure =
-                want == brute.whole(q.p, q.n, q.r, 1.02 * (1 + 1e-4), 0.02 * (1 - 1e-3), 0.02 * (1 - 1e-3)) &&
-                want == brute.whole(q.p, q.n, q.r, 1.02 * (1 - 1e-4), 0.02 * (1 + 1e-3), 0.02 * (1 + 1e-3));
-            if (!sure) {
-                ++unsure;
-                continue;
-            }
-            EXPECT_EQ(whole[i] != 0, want) << file << " query " << i << " r " << q.r;
-            if (whole[i]) {
-                ++wholes;
-                EXPECT_EQ(rays[i].s[0], 1.0f) << file << " query " << i << ": the rays found a cut disc";
-                EXPECT_EQ(rays[i].s[1], 1.0f) << file << " query " << i;
-            } else {
-                cut += rays[i].s[0] < 1.0f;
-            }
-        }
-        std::printf("%s: %d of %zu discs whole, %d cut by the rays, %d on a threshold\n", file, wholes, qs.size(), cut,
-                    unsure);
-        // the case must hold both answers, many times over
-        EXPECT_GT(wholes, 100) << file;
-        EXPECT_GT(cut, 100) << file;
-        EXPECT_LE(unsure, 6) << file;
+    for (const std::string& path :
+         {data("dispersion_box_plain.gltf"), std::string(CLPPM_SCENES_DIR) + "/cornell_box.gltf"}) {
+        const WholeCounts c = check_whole_query(load_gltf(path), path, 0.01);
+        EXPECT_GT(c.whole, 100) << path; // the case must hold both answers, many times over
+        EXPECT_GT(c.cut, 100) << path;
+        EXPECT_LE(c.unsure, 6) << path;
     }
+    Scene s;
+    s.source = "<sphere on a floor>";
+    const uint32_t floor = add_material(s, 0.5f, 0.5f, 0.5f), ball = add_material(s, 0.7f, 0.7f, 0.7f);
+    add_quad(s, {-2, 0, -2}, {-2, 0, 2}, {2, 0, 2}, {2, 0, -2}, floor);
+    add_sphere(s, {0, 1, 0}, 1.0f, 96, 192, ball);
+    add_point_light(s, {0, 4, 2}, 50.f);
+    const WholeCounts c = check_whole_query(s, s.source, 0.002, ball);
+    EXPECT_GT(c.whole_on_curves, 40) << "gently curved discs must pass";
+    EXPECT_LT(c.whole, 500) << "the floor's edges, where the sphere stands and larger discs are not whole";
+    EXPECT_LE(c.unsure, 6);
 }
