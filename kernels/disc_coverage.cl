@@ -112,22 +112,31 @@ float2 disc_coverage_at(SCENE_PARAMS, float3 p, float3 n, float r, float u) {
 
 /* ---- the whole disc, seen without rays --------------------------------------------------------
  * Most hit points lie well inside a surface, where disc_coverage_at's rays all find f = 1 and
- * g = 1. One query of the BVH sees that instead: if every triangle within DISC_BALL_MARGIN R of p
- * is opaque, stays within DISC_FLAT_HEIGHT R of the hit point's tangent plane inside that ball
- * (its plane's distance from p plus DISC_BALL_MARGIN R times the sine of its tilt from n), and has
- * no open edge (src/scene/open_edges.cpp) within the ball, then those triangles join into one
- * surface that covers the disc without a gap (a gap would need an open edge, a tilt of 90 degrees,
- * or a surface leaving the ball through the slab's faces), and nothing rises from it. No probe
- * can meet a surface: every point a probe or a chord reaches lies within 1.005 R of p, inside the
- * ball, and the slab is below the probes' height of DISC_PROBE_HEIGHT R. Every chord, at least
- * 0.43 R long each way, meets the slab's surface facing the hit point's side. So the rays would
- * give exactly (1, 1), and the result is the same number, for about the cost of one ray instead
- * of at least 2 DISC_DIRECTIONS. Gently curved surfaces pass too once R is small against their
- * radius of curvature rho (the slab is about 1.5 R^2 / rho thick). Anything else in the ball (a
- * wall, an occluder, a sharply curved or transmissive surface, an open edge, a T-junction) leaves
- * the measurement to the rays. */
+ * g = 1. One query of the BVH sees that instead, from the triangles within DISC_BALL_MARGIN R of p
+ * (the ball: every point a probe or a chord reaches lies within 1.005 R of p). It says whole when
+ * they are all opaque, none has an open edge (src/scene/open_edges.cpp) within the ball, and either
+ * - all are flat: each stays within DISC_FLAT_HEIGHT R of the tangent plane inside the ball (its
+ *   plane's distance from p plus the ball's radius times the sine of its tilt from n). Flat
+ *   triangles with no open edge in the ball cover the disc without a gap, and lie below the
+ *   probes' height DISC_PROBE_HEIGHT R; or
+ * - they form one surface over the disc, like a terrain: each faces the same way along n, at least
+ *   DISC_GRAPH_COS of the way (as wound; no edge in the ball is wound against its neighbour), and
+ *   stays between DISC_GRAPH_LOW R below and DISC_GRAPH_HIGH R above the tangent plane inside the
+ *   ball (the lesser of its vertices' extremes and the plane bound above). Seen down n, such
+ *   triangles lie side by side across every edge, so with no open edge they cover the disc as a
+ *   single sheet that cannot leave the ball over it; all of it is below the probes.
+ * Either way no probe meets a surface, and every chord, which runs from 0.43 R above the plane to
+ * 0.43 R below it, first meets a triangle of the sheet facing the hit point's side (cosine at
+ * least DISC_GRAPH_COS > GATHER_MIN_NORMAL_COS). So the rays would give exactly (1, 1), and the
+ * query returns that, for about the cost of one ray instead of at least 2 DISC_DIRECTIONS. Curved
+ * surfaces pass once R is small against their curvature (the sheet is about R^2 / (2 rho) high).
+ * Anything else in the ball (a wall, an occluder, a transmissive surface, an open edge, a fold,
+ * a T-junction) leaves the measurement to the rays. */
 #define DISC_BALL_MARGIN 1.02f
 #define DISC_FLAT_HEIGHT 0.05f
+#define DISC_GRAPH_COS 0.15f
+#define DISC_GRAPH_HIGH 0.08f
+#define DISC_GRAPH_LOW 0.2f
 
 /* Squared distance from p to triangle abc (Ericson 2005, Real-Time Collision Detection, 5.1.5). */
 float disc_triangle_dist2(float3 p, float3 a, float3 b, float3 c) {
@@ -169,9 +178,10 @@ float disc_segment_dist2(float3 p, float3 a, float3 b) {
     return dot(q, q);
 }
 
-/* Whether the disc of radius r around p on the plane of normal n lies whole on one flat, opaque
- * surface with nothing else within its ball (above). open_edges: per triangle, bit k when its edge
- * from vertex k to vertex k + 1 is open. */
+/* Whether the disc of radius r around p on the plane of normal n lies whole on one opaque surface,
+ * flat or a sheet over it, with nothing else within its ball (above). open_edges: per triangle, bit
+ * k when its edge from vertex k to vertex k + 1 is open, bit 3 + k when it is wound against the
+ * triangle across it. */
 bool disc_is_whole(SCENE_PARAMS, __global const uchar* open_edges, float3 p, float3 n, float r) {
     const float rb = DISC_BALL_MARGIN * r, rb2 = rb * rb;
     const bvh_floatw px = (bvh_floatw)(p.x), py = (bvh_floatw)(p.y), pz = (bvh_floatw)(p.z);
@@ -180,7 +190,8 @@ bool disc_is_whole(SCENE_PARAMS, __global const uchar* open_edges, float3 p, flo
     int sp = 0;
     int cur = 0;
     uint cur_count = 0;
-    bool flat_found = false;
+    bool found = false, all_flat = true, graph = true;
+    float facing = 0.0f; /* the sign of the first triangle's cosine to n, as wound */
     for (;;) {
         if (cur >= 0) {
             /* every child whose box reaches into the ball (empty slots: an inverted box, never) */
@@ -218,21 +229,33 @@ bool disc_is_whole(SCENE_PARAMS, __global const uchar* open_edges, float3 p, flo
                                  cc = (float3)(vf[6], vf[7], vf[8]);
                     if (!(disc_triangle_dist2(p, a, bb, cc) <= rb2)) continue;
                     const uint prim = tri_blocks[b].prim[i];
-                    const float3 nt = cross(bb - a, cc - a);
-                    const float len = length(nt), cos_tilt = fabs(dot(nt, n)) / len;
-                    const float sin_tilt = sqrt(fmax(1.0f - cos_tilt * cos_tilt, 0.0f));
-                    const bool flat = fabs(dot(a - p, nt)) / len + rb * sin_tilt <= DISC_FLAT_HEIGHT * r;
-                    if (!flat || !disc_opaque(SCENE_ARGS, prim)) return false;
+                    if (!disc_opaque(SCENE_ARGS, prim)) return false;
                     if (HAS_ALPHA && materials[shading[prim].material].alpha_mode != ALPHA_OPAQUE) return false;
-                    const uint open = open_edges[prim];
-                    if ((open & 1u) && disc_segment_dist2(p, a, bb) <= rb2) return false;
-                    if ((open & 2u) && disc_segment_dist2(p, bb, cc) <= rb2) return false;
-                    if ((open & 4u) && disc_segment_dist2(p, cc, a) <= rb2) return false;
-                    flat_found = true;
+                    const uint edges = open_edges[prim];
+                    const bool near0 = (edges & 9u) && disc_segment_dist2(p, a, bb) <= rb2;
+                    const bool near1 = (edges & 18u) && disc_segment_dist2(p, bb, cc) <= rb2;
+                    const bool near2 = (edges & 36u) && disc_segment_dist2(p, cc, a) <= rb2;
+                    if ((near0 && (edges & 1u)) || (near1 && (edges & 2u)) || (near2 && (edges & 4u))) return false;
+                    const float3 nt = cross(bb - a, cc - a);
+                    const float len = length(nt), cos_tilt = dot(nt, n) / len;
+                    const float sin_tilt = sqrt(fmax(1.0f - cos_tilt * cos_tilt, 0.0f));
+                    const float plane = fabs(dot(a - p, nt)) / len + rb * sin_tilt; /* |height| in the ball */
+                    all_flat = all_flat && plane <= DISC_FLAT_HEIGHT * r;
+                    if (graph) {
+                        const float ha = dot(a - p, n), hb = dot(bb - p, n), hc = dot(cc - p, n);
+                        const float high = fmin(fmax(fmax(ha, hb), hc), plane);
+                        const float low = fmax(fmin(fmin(ha, hb), hc), -plane);
+                        if (facing == 0.0f) facing = copysign(1.0f, cos_tilt);
+                        graph = cos_tilt * facing >= DISC_GRAPH_COS && high <= DISC_GRAPH_HIGH * r &&
+                                low >= -DISC_GRAPH_LOW * r && !(near0 && (edges & 8u)) && !(near1 && (edges & 16u)) &&
+                                !(near2 && (edges & 32u));
+                    }
+                    if (!all_flat && !graph) return false;
+                    found = true;
                 }
             }
         }
-        if (sp == 0) return flat_found;
+        if (sp == 0) return found;
         --sp;
         cur = stack_node[sp];
         cur_count = stack_count[sp];

@@ -40,10 +40,16 @@ TEST(OpenEdges, ASquareIsOpenOnlyAtItsSides) {
 // three triangles and a T-junction all leave the edge open.
 TEST(OpenEdges, WhatCountsAsContinued) {
     // two meshes, the second with -0 where the first has 0, meeting at x = 0 (a flat floor)
-    const std::vector<Tri> welded = {Tri{{{-1, 0, 0}, {0, 0, 0}, {0, 0, 1}}}, Tri{{{-0.0f, 0, 1}, {0, -0.0f, 0}, {1, 0, 0.5f}}}};
+    const std::vector<Tri> welded = {Tri{{{-1, 0, 0}, {0, 0, 0}, {0, 0, 1}}},
+                                     Tri{{{-0.0f, 0, 1}, {0, -0.0f, 0}, {1, 0, 0.5f}}}};
     std::vector<uint8_t> open = open_edges(blocks_of(welded), 2);
     EXPECT_EQ(open[0], 1 | 4) << "the shared edge (0,0,0)-(0,0,1) is closed";
     EXPECT_EQ(open[1], 2 | 4);
+    // the second triangle wound the other way: the edge still continues the surface, but flipped
+    const std::vector<Tri> rewound = {welded[0], Tri{{{0, -0.0f, 0}, {-0.0f, 0, 1}, {1, 0, 0.5f}}}};
+    open = open_edges(blocks_of(rewound), 2);
+    EXPECT_EQ(open[0], 1 | 4 | (kFlippedEdgeBit0 << 1));
+    EXPECT_EQ(open[1], 2 | 4 | kFlippedEdgeBit0);
     // the same second triangle folded back onto the first one's side of the shared edge
     const std::vector<Tri> folded = {welded[0], Tri{{{0, 0, 1}, {0, 0, 0}, {-0.5f, 0, 0.5f}}}};
     open = open_edges(blocks_of(folded), 2);

@@ -68,6 +68,16 @@ bool continues(const std::vector<Triangle>& tri, uint32_t u, uint32_t v) {
     return own * other < 0;
 }
 
+// Whether triangles u and v (uses as 3 triangle + edge) run along their shared edge in the same
+// direction: u's edge starts where v's does.
+bool same_direction(const std::vector<Triangle>& tri, uint32_t u, uint32_t v) {
+    const Vertex& a = tri[u / 3][u % 3];
+    const Vertex& b = tri[v / 3][v % 3];
+    for (size_t k = 0; k < 3; ++k)
+        if (coordinate_bits(a[k]) != coordinate_bits(b[k])) return false;
+    return true;
+}
+
 } // namespace
 
 std::vector<uint8_t> open_edges(const std::vector<dev::BvhTriBlock>& blocks, size_t num_tris) {
@@ -95,8 +105,10 @@ std::vector<uint8_t> open_edges(const std::vector<dev::BvhTriBlock>& blocks, siz
         for (int e = 0; seen[t] && e < 3; ++e) {
             const EdgeUses& u = uses.at(edge_key(tri[t], e));
             const uint32_t self = 3 * t + uint32_t(e);
-            const bool closed = u.count == 2 && continues(tri, self, u.use[0] == self ? u.use[1] : u.use[0]);
+            const uint32_t other = u.use[0] == self ? u.use[1] : u.use[0];
+            const bool closed = u.count == 2 && continues(tri, self, other);
             if (!closed) open[t] |= uint8_t(kOpenEdgeBit0 << e);
+            else if (same_direction(tri, self, other)) open[t] |= uint8_t(kFlippedEdgeBit0 << e);
         }
     }
     return open;
