@@ -30,7 +30,7 @@ const char* to_string(DiscCoverage coverage) {
 
 bool disc_coverage_wanted(DiscCoverage mode, uint64_t hitpoints, uint64_t photons) {
     if (mode != DiscCoverage::Auto) return mode == DiscCoverage::On;
-    return hitpoints * 8 <= photons;
+    return hitpoints <= 2 * photons;
 }
 
 const char* to_string(DirectLighting direct) {

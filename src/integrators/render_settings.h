@@ -42,8 +42,9 @@ struct RenderSettings : SceneSettings {
     bool visual_importance = false;
     // PPM, SPPM, PPPM: divide what each hit point gathers by the part of its disc that lies on its
     // surface (kernels/disc_coverage.cl), which removes the darkening where surfaces meet or end.
-    // About 17 short rays a hit point a pass: auto measures it where that is at most an eighth of
-    // the photons traced (disc_coverage_wanted).
+    // One BVH query a hit point a pass, and about 17 short rays where that query cannot see the disc
+    // whole: auto measures it where the hit points number at most twice the photons traced
+    // (disc_coverage_wanted).
     DiscCoverage disc_coverage = DiscCoverage::Auto;
     // VCM and BPT: one technique alone (VCM_MODE_* of kernels/vcm_mis.h), for the tests that
     // compare the techniques; -1: the integrator's own.
@@ -51,10 +52,13 @@ struct RenderSettings : SceneSettings {
 };
 
 // Whether a pass of `hitpoints` hit points and `photons` photons measures its discs' coverage:
-// always (on), never (off), or (auto) where the hit points number at most an eighth of the photons.
-// A hit point's coverage costs about two photons' tracing (0.7 against 0.35 us on the two-core
-// PoCL CPU), so auto keeps it under a quarter of the photon tracing: on at 128 x 128 with the
-// default 200k photons (+10% a pass), off at 512 x 512 (where it would nearly triple a pass).
+// always (on), never (off), or (auto) where the hit points number at most twice the photons. A hit
+// point inside a flat surface costs one BVH query (about 0.09 us on the two-core PoCL CPU), one
+// near an edge or where a scanned mesh turns sharply about 17 short rays (0.7 us). At equal time
+// the coverage lowered SPPM's box-4 error 2.3x on the Cornell box where hit points were 1.3 times
+// the photons, and left the skylit room and a blob of 100k triangles about level; at 4 and 10
+// times it was mixed (bench/RESULTS.md, "Gather discs measured at every size"): on at 512 x 512
+// with the default 200k photons, off at 1024 x 1024.
 bool disc_coverage_wanted(DiscCoverage mode, uint64_t hitpoints, uint64_t photons);
 
 } // namespace clppm
