@@ -4,9 +4,9 @@ from the glTF scenes tests/data/make_test_gltf.py writes (reference_scenes). Run
 CI:
     python3 -m venv /tmp/mi && /tmp/mi/bin/pip install mitsuba numpy
     /tmp/mi/bin/python tests/references/make_references.py [spp [scene ...]]
-The scenes are read from the glTF files themselves (the small subset those files use: one mesh
-of float positions and 16-bit indices, node translation and rotation, a perspective camera), so
-both renderers see the same triangles. Mapping to Mitsuba: baseColorTexture is a bilinear `bitmap` (sRGB) with the sampler's wrap mode,
+The scenes are read from the glTF files themselves (the small subset those files use:
+tests/references/gltf_subset.py; mesh nodes translated and scaled, a perspective camera), so both
+renderers see the same triangles. Mapping to Mitsuba: baseColorTexture is a bilinear `bitmap` (sRGB) with the sampler's wrap mode,
 normalTexture a `normalmap` (linear bitmap) around the diffuse BSDF, with Mitsuba's own additions
 switched off (since 3.7.1 it multiplies by the terminator shadowing of Conty Estevez et al. 2019,
 which glTF does not have: with it a constant map of one tilt renders 0.927 times the same tilt
@@ -17,9 +17,13 @@ texel); diffuse surfaces are `twosided`, as clppm's reflect on both sides; a mat
 KHR_materials_transmission is `roughdielectric` (GGX, alpha = roughness^2, visible-normal
 sampling) or `dielectric` at roughness 0, of the glTF ior against 1.0; KHR_materials_volume's
 attenuation becomes an interior `homogeneous` medium of albedo 0 and sigma_t = -ln(colour) /
-distance (integrator `volpath`); everything else is `diffuse` with the base colour (these scenes
-give diffuse surfaces specularFactor 0) and emissive surfaces are one-sided `area` emitters of
-radiance emissiveFactor times emissiveStrength. Box pixel filter, as clppm's uniform jitter;
+distance (integrator `volpath`); a smooth metal (metallicFactor 1, roughness 0) is a `conductor`
+whose Fresnel curve follows glTF's Schlick curve from F0 = the base colour (schlick_conductor);
+everything else is `diffuse` with the base colour (these scenes give diffuse surfaces
+specularFactor 0) and emissive surfaces are one-sided `area` emitters of radiance emissiveFactor
+times emissiveStrength. KHR_lights_punctual's directional lights are `directional` emitters of
+that irradiance; the world is a `constant` emitter of the scene's clppm_environment colour, or of
+radiance 1 (clppm's default white world) when the scene has none. Box pixel filter, as clppm's uniform jitter;
 unbounded path length with Russian roulette.
 """
 import base64
@@ -32,7 +36,7 @@ import tempfile
 import mitsuba as mi
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from gltf_subset import quat_rotate, read_accessor, write_ply  # noqa: E402
+from gltf_subset import quat_rotate, read_accessor, read_buffers, write_ply  # noqa: E402
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 DATA = os.path.join(HERE, "..", "data")
@@ -63,14 +67,49 @@ def texture(doc, index, tmp, key, srgb=True, alpha_cutoff=None):
     return {"type": "bitmap", "bitmap": bmp, "raw": not srgb, "filter_type": filt, "wrap_mode": wrap}
 
 
-def mitsuba_scene(name, tmp, size=SIZE, max_depth=-1):
-    """name: a scene of tests/data, or the path of a .gltf file (bench/peers_diffuse_box.py)."""
+def conductor_fresnel(eta, k, cos_i):
+    """The unpolarised Fresnel reflectance of a conductor of complex index eta + i k."""
+    n = complex(eta, k)
+    cos_t = (1 - (1 - cos_i * cos_i) / (n * n)) ** 0.5
+    rs = (cos_i - n * cos_t) / (cos_i + n * cos_t)
+    rp = (n * cos_i - cos_t) / (n * cos_i + cos_t)
+    return (abs(rs) ** 2 + abs(rp) ** 2) / 2
+
+
+def schlick_conductor(f0):
+    """(eta, k) of the conductor whose Fresnel curve is closest to Schlick's of F0 (glTF's metal):
+    over eta in 0.01..2, k keeps the normal-incidence reflectance at F0, and the largest relative
+    difference over incidence angles is least (0.2% for F0 = 0.95, at eta 0.08, k 2.29)."""
+    assert 0 < f0 < 1, "a metal's base colour within (0, 1)"
+    angles = [math.cos(math.radians(d / 10)) for d in range(0, 900, 5)]
+    best = None
+    for i in range(1, 200):
+        eta = i * 0.01
+        k2 = (f0 * (eta + 1) ** 2 - (eta - 1) ** 2) / (1 - f0)
+        if k2 <= 0:
+            continue
+        k = math.sqrt(k2)
+        err = max(abs(conductor_fresnel(eta, k, c) / (f0 + (1 - f0) * (1 - c) ** 5) - 1) for c in angles)
+        if best is None or err < best[0]:
+            best = (err, eta, k)
+    return best[1], best[2]
+
+
+def mitsuba_scene(name, tmp, size=SIZE, max_depth=-1, vertex_normals=False):
+    """name: a scene of tests/data, or the path of a .gltf file (bench/peers_*.py). vertex_normals:
+    shade with the file's NORMALs (as clppm does) rather than the facets' (the committed references
+    were made with facet normals, on flat quads where the two are the same)."""
     path = name if name.endswith(".gltf") else os.path.join(DATA, name + ".gltf")
     name = os.path.splitext(os.path.basename(path))[0]
     doc = json.load(open(path))
-    uri = doc["buffers"][0]["uri"]
-    blob = base64.b64decode(uri[uri.index(",") + 1:])
+    blob = read_buffers(doc, path)
     scene = {"type": "scene", "integrator": {"type": "path", "max_depth": max_depth}}
+    # The world (README.md, "Environment"): the scene's extras.clppm_environment colour, else the
+    # default uniform white of radiance 1; a black one is no emitter.
+    world = doc["scenes"][doc.get("scene", 0)].get("extras", {}).get("clppm_environment", {"color": [1, 1, 1]})
+    assert "color" in world, "only a uniform world is mapped"
+    if max(world["color"]) > 0:
+        scene["world"] = {"type": "constant", "radiance": {"type": "rgb", "value": list(world["color"])}}
     has_medium = False
     mesh_nodes = 0
     for node in (doc["nodes"][i] for i in doc["scenes"][doc.get("scene", 0)]["nodes"]):
@@ -99,25 +138,43 @@ def mitsuba_scene(name, tmp, size=SIZE, max_depth=-1):
             continue
         if "mesh" not in node:
             continue
-        assert "rotation" not in node and "scale" not in node, "mesh nodes are translated only"
+        assert "rotation" not in node, "mesh nodes are scaled and translated only"
+        sc = node.get("scale", [1, 1, 1])
         tag = name if mesh_nodes == 0 else "%s_n%d" % (name, mesh_nodes)  # the first keeps the old names
         mesh_nodes += 1
         for k, prim in enumerate(doc["meshes"][node["mesh"]]["primitives"]):
             pos = read_accessor(doc, blob, prim["attributes"]["POSITION"])
             idx = read_accessor(doc, blob, prim["indices"])
-            tris = [tuple(tuple(pos[idx[i + j]][c] + t[c] for c in range(3)) for j in range(3))
+            tris = [tuple(tuple(pos[idx[i + j]][c] * sc[c] + t[c] for c in range(3)) for j in range(3))
                     for i in range(0, len(idx), 3)]
+            nrm = None
+            if vertex_normals and "NORMAL" in prim["attributes"]:
+                # Normals take the inverse transpose of the scale, then unit length.
+                raw = read_accessor(doc, blob, prim["attributes"]["NORMAL"])
+                unit = []
+                for n in raw:
+                    m = [n[c] / sc[c] for c in range(3)]
+                    ln = math.sqrt(sum(x * x for x in m)) or 1.0
+                    unit.append(tuple(x / ln for x in m))
+                nrm = [tuple(unit[idx[i + j]] for j in range(3)) for i in range(0, len(idx), 3)]
             uvs = None
             if "TEXCOORD_0" in prim["attributes"]:
                 uv = read_accessor(doc, blob, prim["attributes"]["TEXCOORD_0"])
                 uvs = [tuple(uv[idx[i + j]] for j in range(3)) for i in range(0, len(idx), 3)]
             path = os.path.join(tmp, "%s_%d.ply" % (tag, k))
-            write_ply(path, tris, uvs)
+            write_ply(path, tris, uvs, nrm)
             m = doc["materials"][prim["material"]]
             ext = m.get("extensions", {})
             pbr = m["pbrMetallicRoughness"]
-            shape = {"type": "ply", "filename": path, "face_normals": True}
-            if "KHR_materials_transmission" in ext:
+            shape = {"type": "ply", "filename": path, "face_normals": nrm is None}
+            if pbr.get("metallicFactor", 1.0) == 1.0 and "KHR_materials_transmission" not in ext:
+                # A smooth glTF metal: Schlick's Fresnel from F0 = the base colour, as Mitsuba's
+                # `conductor` of the complex index closest to it (schlick_conductor).
+                assert pbr.get("roughnessFactor", 1.0) == 0.0, "only smooth metals are mapped"
+                eta_k = [schlick_conductor(f) for f in pbr.get("baseColorFactor", [1, 1, 1, 1])[:3]]
+                shape["bsdf"] = {"type": "conductor", "eta": {"type": "rgb", "value": [e for e, _ in eta_k]},
+                                 "k": {"type": "rgb", "value": [k for _, k in eta_k]}}
+            elif "KHR_materials_transmission" in ext:
                 ior = ext.get("KHR_materials_ior", {}).get("ior", 1.5)
                 r = pbr.get("roughnessFactor", 1.0)
                 if r > 0:
