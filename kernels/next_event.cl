@@ -48,11 +48,18 @@ float3 next_event_u(SCENE_PARAMS, const Bsdf* b, float3 p, float3 wo, uint mask,
 }
 
 /* The MIS weight of emission found at surface sf by a ray along dir that was sampled with
- * solid-angle density bsdf_pdf (not a delta lobe, not a camera ray). */
-float emission_mis(SCENE_PARAMS, const Surface* sf, float3 dir, float bsdf_pdf) {
+ * solid-angle density bsdf_pdf (not a delta lobe, not a camera ray), where light samples pick
+ * lights with their probabilities divided by pick_share (kernels/path_trace.cl: a uniform world
+ * left to the BSDF's samples; 1 elsewhere). */
+float emission_mis_share(SCENE_PARAMS, const Surface* sf, float3 dir, float bsdf_pdf, float pick_share) {
     float light_pdf = area_light_pdf(SCENE_ARGS, emitter_power_per_area(SCENE_ARGS, sf->prim, sf->material),
                                      sf->t * sf->t * dot(dir, dir), fabs(dot(dir, sf->ng)) / length(dir));
-    return power_heuristic(bsdf_pdf, light_pdf);
+    /* pick_share 0: no light samples are drawn, and the BSDF's sample takes the whole weight. */
+    return pick_share > 0.0f ? power_heuristic(bsdf_pdf, light_pdf / pick_share) : 1.0f;
+}
+
+float emission_mis(SCENE_PARAMS, const Surface* sf, float3 dir, float bsdf_pdf) {
+    return emission_mis_share(SCENE_ARGS, sf, dir, bsdf_pdf, 1.0f);
 }
 
 /* What a ray along unit dir that leaves the scene sees: the environment, weighted by MIS

@@ -7,13 +7,17 @@
 // under a map with a small bright sun.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <random>
 #include <string>
+#include <vector>
 
+#include <nlohmann/json.hpp>
 #include <stb_image.h>
 #include <stb_image_write.h>
 #include <unistd.h>
@@ -307,6 +311,75 @@ TEST(Environment, FurnaceUnderEveryKindOfUniformEnvironment) {
                 EXPECT_NEAR(region_mean(img, 0, 0, 4, 4, c), want, 1e-6 * want) << "background, channel " << c;
             }
         }
+}
+
+// A uniform world as the only light is found by the path tracer's BSDF samples alone, in full
+// (kernels/path_trace.cl, world_by_bsdf): on the convex Lambertian sphere, whose cosine samples
+// all leave the scene, one pass shows exactly albedo x L in every pixel of its middle, with no
+// noise at all. With light samples weighed against BSDF samples by MIS, as before, some pixel
+// there was off by 98% after one pass. A map, even a constant one, keeps its light samples (its
+// mean is checked above).
+TEST(Environment, AUniformWorldAloneIsFoundByTheBsdfWithoutNoise) {
+    for (const auto& [env, L] : std::vector<std::pair<std::string, std::array<double, 3>>>{
+             {"", {1.0, 1.0, 1.0}}, {"--env-color 0.25,0.5,0.125 --env-strength 4", {1.0, 2.0, 0.5}}}) {
+        SCOPED_TRACE(env);
+        const Image img = render("env_sphere.gltf", env + " --integrator pt --passes 1");
+        double worst = 0;
+        for (int y = 18; y < 30; ++y)
+            for (int x = 18; x < 30; ++x)
+                for (int c = 0; c < 3; ++c)
+                    worst = std::max(worst, std::abs(img.rgb[3 * (size_t(y) * img.width + x) + c] / (0.5 * L[c]) - 1));
+        EXPECT_LT(worst, 1e-5);
+    }
+    // A constant map of the same radiance keeps its light samples: one pass is noisy there.
+    const std::string d = make_temp_dir("env_one_pass");
+    write_map(d + "/one.exr", 8, 4, [](int, int) { return 1.f; });
+    const Image img = render("env_sphere.gltf", "--env " + d + "/one.exr --integrator pt --passes 1");
+    double worst = 0;
+    for (int y = 18; y < 30; ++y)
+        for (int x = 18; x < 30; ++x)
+            worst = std::max(worst, std::abs(img.rgb[3 * (size_t(y) * img.width + x)] / 0.5 - 1));
+    EXPECT_GT(worst, 0.01);
+}
+
+// Beside other lights the uniform world is still left to the BSDF's samples, and light samples go
+// to the other lights alone, their picks divided by their share of the power (pick_share). The
+// floor of albedo 0.8 under the default world and a directional light of 2 lux from straight above
+// shows 0.8 (1 + 2 / pi) in every pixel after one pass, with no noise. With the world among the
+// lights it samples, one pass was off by 240% in some pixel. The means stay those of
+// BPT, which keeps its light samples of the world: on punctual lights and on an emissive triangle
+// under a grey world (--env-color overrides the files' black ones).
+TEST(Environment, AUniformWorldBesideOtherLightsIsLeftToTheBsdf) {
+    const std::string d = make_temp_dir("env_beside");
+    nlohmann::json g = nlohmann::json::parse(slurp(data("env_floor.gltf")));
+    g["extensionsUsed"].push_back("KHR_lights_punctual");
+    g["extensions"]["KHR_lights_punctual"]["lights"] = {{{"type", "directional"}, {"intensity", 2.0}}};
+    // glTF directional lights shine along the node's -Z: turned by -90 degrees about X, along -Y.
+    g["nodes"].push_back({{"name", "sun"},
+                          {"rotation", {-0.70710678, 0.0, 0.0, 0.70710678}},
+                          {"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}});
+    g["scenes"][0]["nodes"].push_back(g["nodes"].size() - 1);
+    std::ofstream(d + "/sun_floor.gltf") << g.dump();
+    auto run = [&](const std::string& scene, const std::string& args) {
+        std::string out;
+        EXPECT_EQ(run_clppm(scene + " --width 32 --height 32 --quiet --no-png " + args + " -o " + d + "/out.exr", &out),
+                  0)
+            << out;
+        return read_exr(d + "/out.exr");
+    };
+    const Image one = run(d + "/sun_floor.gltf", "--integrator pt --passes 1");
+    const double want = 0.8 * (1 + 2 / M_PI);
+    double worst = 0;
+    for (float v : one.rgb) worst = std::max(worst, std::abs(v / want - 1));
+    EXPECT_LT(worst, 1e-5);
+
+    for (const char* scene : {"lights.gltf", "emissive_split.gltf"}) {
+        SCOPED_TRACE(scene);
+        const std::string world = data(scene) + " --env-color 0.5,0.5,0.5";
+        const double pt = region_mean(run(world, "--integrator pt --passes 1024"), 0, 0, 32, 32);
+        const double bpt = region_mean(run(world, "--integrator bpt --passes 128"), 0, 0, 32, 32);
+        EXPECT_NEAR(pt / bpt, 1.0, 0.005);
+    }
 }
 
 // Photons from the environment carry its power: with direct light from photons (no light
