@@ -283,6 +283,33 @@ bool sample_light_u(SCENE_PARAMS, float3 x, float u_pick, float2 u, LightSample*
     return sample_chosen_light(SCENE_ARGS, x, pick_light(SCENE_ARGS, u_pick), u, s);
 }
 
+/* A light picked by u->x in proportion to power among the lights below share of the CDF, and
+ * u->x rescaled into the light's own range of it for the light's point (pbrt-v4's SampleDiscrete
+ * reuse): the 2-D pair (a stratified or low-discrepancy point) then stays well spread over all the
+ * lights together, where picking with a number of its own leaves each light's points stratified
+ * apart. A light picked with probability under LIGHT_REUSE_MIN keeps too few of u->x's bits in its
+ * range: it takes u_spare instead (uniform and independent of u->y given the light, so either way
+ * the point is uniform and the estimate unbiased). */
+#define LIGHT_REUSE_MIN (1.0f / 4096.0f)
+uint pick_light_reuse(SCENE_PARAMS, float share, float2* u, float u_spare) {
+    float v = u->x * share;
+    if (!(v < share)) v = nextafter(share, 0.0f);
+    uint l = pick_light(SCENE_ARGS, v);
+    float c0 = light_cdf[l], w = light_cdf[l + 1u] - c0;
+    u->x = w >= LIGHT_REUSE_MIN * share ? fmin((v - c0) / w, 0.99999994f) : u_spare;
+    return l;
+}
+
+/* A light and its sample from one 2-D point u (pick_light_reuse). */
+bool sample_light_reuse(SCENE_PARAMS, float3 x, float share, float2 u, float u_spare, LightSample* s) {
+    s->pdf_w = s->emission_pdf_w = 0.0f;
+    s->cos_light = 1.0f;
+    s->delta = true;
+    if (info->num_lights == 0) return false;
+    uint l = pick_light_reuse(SCENE_ARGS, share, &u, u_spare);
+    return sample_chosen_light(SCENE_ARGS, x, l, u, s);
+}
+
 /* The same from a random stream, which gives up the point's two numbers only to lights that take
  * them. */
 bool sample_light_full(SCENE_PARAMS, float3 x, Rng* rng, LightSample* s) {

@@ -99,8 +99,10 @@ __kernel void path_trace(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong
             LightSample ls;
             bool ok;
 #if PATH_QMC
-            float u_pick = path_1d(&ps);
-            ok = sample_light_u(SCENE_ARGS, sf.p, share_pick(u_pick, pick_share), path_2d(&ps), &ls);
+            /* The light and its point from one 2-D point (pick_light_reuse): 3.7% less error at equal
+             * passes in the diffuse box, whose light is two triangles (bench/RESULTS.md). */
+            float u_spare = path_1d(&ps);
+            ok = sample_light_reuse(SCENE_ARGS, sf.p, pick_share, path_2d(&ps), u_spare, &ls);
 #else
             if (world_by_bsdf) {
                 float u_pick = rng_float(&ps);

@@ -9,6 +9,8 @@
 
 #include <cmath>
 #include <map>
+#include <numeric>
+#include <random>
 
 #include "device/kernel_program.h"
 #include "scene/device_scene.h"
@@ -53,6 +55,14 @@ __kernel void sample_light_many(SCENE_PARAMS, ulong seed, float px, float py, fl
     }
     __global double* o = &out[7 * (size_t)i];
     o[0] = sum.x; o[1] = sum.y; o[2] = sum.z; o[3] = sum_sq.x; o[4] = sum_sq.y; o[5] = sum_sq.z; o[6] = min_dist;
+}
+/* pick_light_reuse for the uniforms u[3 i .. 3 i + 2] (u.x, u.y, u_spare): the light, and the pair
+ * it leaves for the light's point. */
+__kernel void pick_reuse_many(SCENE_PARAMS, float share, __global const float* u, __global float* out) {
+    uint i = get_global_id(0);
+    float2 uv = (float2)(u[3 * i], u[3 * i + 1]);
+    uint l = pick_light_reuse(SCENE_ARGS, share, &uv, u[3 * i + 2]);
+    out[3 * i] = (float)l; out[3 * i + 1] = uv.x; out[3 * i + 2] = uv.y;
 }
 )CL";
 
@@ -566,6 +576,63 @@ TEST(LightEmission, SampleLightEstimatesIrradiance) {
                     << ", " << pr.x.z << ") channel " << c;
             }
             EXPECT_GT(min_dist, 0.0) << "a shadow ray of non-positive length was returned as valid";
+        }
+    }
+}
+
+// pick_light_reuse (the path tracer's light samples from one 2-D point) against a host reference:
+// the light whose range of the CDF holds share * u.x, u.x rescaled to [0, 1) within that range,
+// u.y untouched; with share < 1 (a uniform world left to the BSDF) only the lights below it. Given
+// the light, the rescaled u.x is uniform (chi-square over 16 bins per light), so each light's
+// point is as uniform as with a number of its own.
+TEST(LightEmission, OnePointPicksTheLightAndPlacesIt) {
+    Fixture& f = fixture();
+    const size_t n = 200000;
+    std::vector<float> u(3 * n);
+    std::mt19937 rng(17);
+    std::uniform_real_distribution<float> uni(0.0f, 1.0f);
+    for (float& x : u) x = std::min(uni(rng), 0.99999994f);
+    const std::vector<float>& cdf = f.ds.light_cdf;
+    const size_t lights = f.ds.lights.size();
+    for (const float share : {1.0f, cdf[lights - 2]}) {
+        cl::Buffer ub(f.dc.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, u.size() * sizeof(float), u.data());
+        cl::Buffer out(f.dc.context, CL_MEM_WRITE_ONLY, 3 * n * sizeof(float));
+        cl::Kernel k(f.program, "pick_reuse_many");
+        int a = f.ds.set_scene_args(k);
+        k.setArg(a++, share), k.setArg(a++, ub), k.setArg(a++, out);
+        f.dc.queue.enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(n));
+        const std::vector<float> got = f.read<float>(out, 3 * n);
+        std::vector<std::vector<double>> bins(lights, std::vector<double>(16, 0));
+        int wrong_light = 0;
+        double worst = 0;
+        for (size_t i = 0; i < n; ++i) {
+            const double v = double(u[3 * i]) * share;
+            size_t l = 0;
+            while (l + 1 < lights && double(cdf[l + 1]) <= v) ++l;
+            const size_t dl = size_t(got[3 * i]);
+            ASSERT_LT(dl, lights);
+            EXPECT_LT(double(cdf[dl]), share) << "a light above the share was picked";
+            if (dl != l) { // v on a range's edge, rounded the other way
+                ++wrong_light;
+                continue;
+            }
+            const double w = double(cdf[l + 1]) - double(cdf[l]);
+            const double want = w >= share / 4096.0 ? (v - double(cdf[l])) / w : double(u[3 * i + 2]);
+            worst = std::max(worst, std::fabs(got[3 * i + 1] - want));
+            EXPECT_EQ(got[3 * i + 2], u[3 * i + 1]);
+            bins[l][std::min(15, int(got[3 * i + 1] * 16))] += 1;
+        }
+        EXPECT_LE(wrong_light, 2) << "share " << share;
+        EXPECT_LT(worst, 2e-4) << "share " << share; // float v - cdf over a range of width w >= 1/4096
+        for (size_t l = 0; l < lights; ++l) {
+            const double total = std::accumulate(bins[l].begin(), bins[l].end(), 0.0);
+            if (double(cdf[l]) >= share) {
+                EXPECT_EQ(total, 0) << "light " << l << " lies above share " << share;
+                continue;
+            }
+            if (total < 16 * 20) continue;
+            const Chi2Result r = chi2_test(bins[l], std::vector<double>(16, total / 16));
+            EXPECT_GT(r.p_value, 1e-4) << "light " << l << ", share " << share << ": chi2 " << r.chi2;
         }
     }
 }
