@@ -3,7 +3,9 @@
  * diffuse scenes. At every vertex with non-delta lobes, one light sample (next-event
  * estimation) and the BSDF sample that continues the path both count emission, weighted by the
  * power heuristic (Veach 1997, Sec. 9.2); emission found after a delta lobe counts in full.
- * One sample per pixel per pass, accumulated in double. Its numbers come from Owen-scrambled
+ * One sample per pixel per pass, accumulated in double; one launch may run several consecutive
+ * passes (their samples added in pass order, so the sums are those of one launch a pass, bit for
+ * bit, whatever the batch). Its numbers come from Owen-scrambled
  * Sobol' points over the passes (sobol.cl; `--sampler sobol`, the default) or from independent
  * random streams (`--sampler independent`); `--sampler zsobol` lays the pixels' points out on
  * the screen (sobol.cl, sobol_make_screen). */
@@ -42,10 +44,8 @@ float share_pick(float u_pick, float share) {
 #define PATH_RR_DEPTH 5
 #define PATH_RR_MAX_SURVIVAL 0.95f
 
-__kernel void path_trace(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong pass, uint num_pixels,
-                         uint screen_log2, __global double* accum) {
-    uint pixel = get_global_id(0);
-    if (pixel >= num_pixels) return;
+/* Pixel `pixel`'s sample of pass `pass` (counted from 1). */
+float3 path_sample(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong pass, uint pixel, uint screen_log2) {
 #if PATH_QMC
     /* passes count from 1: nets from index 0. screen_log2: L of sobol_make_screen's layout, or
      * SOBOL_PER_PIXEL for each pixel's own sequence */
@@ -141,7 +141,22 @@ __kernel void path_trace(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong
         if (!(max3(beta) > 0.0f)) break;
     }
     if (!all(isfinite(L))) L = (float3)(0.0f); /* never let one bad sample poison a pixel */
-    accum[3 * pixel] += L.x;
-    accum[3 * pixel + 1] += L.y;
-    accum[3 * pixel + 2] += L.z;
+    return L;
+}
+
+/* Passes first_pass .. first_pass + passes - 1 of the pixels below num_pixels. */
+__kernel void path_trace(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong first_pass, uint passes,
+                         uint num_pixels, uint screen_log2, __global double* accum) {
+    uint pixel = get_global_id(0);
+    if (pixel >= num_pixels) return;
+    double3 sum = (double3)(accum[3 * pixel], accum[3 * pixel + 1], accum[3 * pixel + 2]);
+    for (uint j = 0u; j < passes; ++j) {
+        float3 L = path_sample(SCENE_ARGS, cam, seed, first_pass + j, pixel, screen_log2);
+        sum.x += L.x;
+        sum.y += L.y;
+        sum.z += L.z;
+    }
+    accum[3 * pixel] = sum.x;
+    accum[3 * pixel + 1] = sum.y;
+    accum[3 * pixel + 2] = sum.z;
 }

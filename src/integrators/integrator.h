@@ -32,7 +32,11 @@ public:
     std::string name() const { return settings_.integrator; }
     // Everything before the first refinement pass (PPM: the eye pass).
     virtual void prepare() = 0;
+    // One pass, or, where the integrator batches passes and allow_passes() allowed more, up to
+    // that many in one launch (the path tracer: the same image bit for bit, fewer launches).
     virtual void run_pass() = 0;
+    // The most passes the next run_pass() may run (at least 1; 1 until said otherwise).
+    void allow_passes(uint64_t n) { pass_allowance_ = n > 0 ? n : 1; }
     virtual Image image() = 0;
     const IntegratorStats& stats() const { return stats_; }
 
@@ -66,6 +70,7 @@ protected:
     const uint32_t num_pixels_;
     IntegratorStats stats_;
     std::unique_ptr<ErrorEstimator> errors_; // when estimating
+    uint64_t pass_allowance_ = 1;            // allow_passes()
 };
 
 // Device memory an integrator will allocate for its own buffers (hit points or per-pixel

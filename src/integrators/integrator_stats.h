@@ -26,6 +26,7 @@ struct IntegratorStats {
     std::vector<uint32_t> device_photons;        // photons each device traced in the last pass, primary first
     std::vector<uint32_t> rank_photons;          // photons (path tracer: pixels) each MPI rank took in the last pass
     uint64_t local_work = 0;                     // photons (path tracer: pixel samples) this process traced
+    uint64_t pass_launches = 0;                  // the path tracer: launches its passes took (it batches short ones)
     // --visual-importance (integrators/photon_chains.h): the chains' counts over all passes
     // (kernels/shared_types.h CHAIN_*): visible uniform paths, states deposited, mutations
     // accepted and proposed.

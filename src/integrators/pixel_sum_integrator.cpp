@@ -7,6 +7,7 @@
 #include "device/kernel_launch.h"
 #include "integrators/checkpoint_checks.h"
 #include "integrators/film.h"
+#include "util/error.h"
 
 namespace clppm {
 
@@ -57,7 +58,10 @@ PixelRanges PixelSumIntegrator::begin_pass() {
 
 // Each pixel's sample depends on (seed, pass, pixel) alone, so any split of the pixels gives the
 // same sums; with several processes the ranks share the error statistics as the sums.
-void PixelSumIntegrator::end_pass(const PixelRanges& ranges) {
+bool PixelSumIntegrator::passes_batchable() const { return !errors_ && !cluster().distributed(); }
+
+void PixelSumIntegrator::end_pass(const PixelRanges& ranges, uint64_t passes) {
+    if (passes != 1 && !passes_batchable()) throw Error("internal: a batch of passes where each must stand alone");
     if (errors_ && ranges.count > 0) {
         errors_->update_accum(accum_, ranges.first, ranges.count);
         collect_event_times(stats_);
@@ -71,8 +75,8 @@ void PixelSumIntegrator::end_pass(const PixelRanges& ranges) {
                          num_pixels_);
         stats_.rank_photons.assign(ranges.counts.begin(), ranges.counts.end());
     }
-    stats_.local_work += ranges.count;
-    stats_.passes += 1;
+    stats_.local_work += ranges.count * passes;
+    stats_.passes += passes;
 }
 
 void PixelSumIntegrator::save_sum(Checkpoint& ck) const {

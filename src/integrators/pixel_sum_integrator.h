@@ -34,8 +34,12 @@ protected:
     // This process's pixels of the next pass (all of them without MPI); times the pass.
     PixelRanges begin_pass();
     // Once the pass's samples are in the sum: the error statistics take them, every rank receives
-    // every range of the sum and of the statistics, the pass is counted.
-    void end_pass(const PixelRanges& ranges);
+    // every range of the sum and of the statistics, the pass is counted (`passes` of them for a
+    // batch, which neither error statistics nor several ranks allow: passes_batchable()).
+    void end_pass(const PixelRanges& ranges, uint64_t passes = 1);
+    // Whether several passes may run in one launch: not while estimating the error (its
+    // statistics take each pass's samples apart) nor across processes (they exchange every pass).
+    bool passes_batchable() const;
     // The sum (and the error statistics) into a checkpoint and back, checked finite and >= 0.
     void save_sum(Checkpoint& ck) const;
     void restore_sum(const Checkpoint& ck);

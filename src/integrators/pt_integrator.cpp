@@ -1,6 +1,7 @@
 #include "integrators/pt_integrator.h"
 
 #include <algorithm>
+#include <chrono>
 
 #include "device/kernel_launch.h"
 #include "integrators/checkpoint_checks.h"
@@ -50,17 +51,26 @@ bool PtIntegrator::sobol_passes() const { return settings_.sampler != Sampler::I
 
 void PtIntegrator::prepare() { allocate_sum(); }
 
+// Each pixel's sample depends on (seed, pass, pixel) alone and the kernel adds a batch's samples in
+// pass order, so the batch size, chosen here from the time a pass took, never changes the image.
 void PtIntegrator::run_pass() {
+    const uint64_t passes = passes_batchable() ? std::min(batch_, pass_allowance_) : 1;
+    const auto start = std::chrono::steady_clock::now();
     const PixelRanges ranges = begin_pass();
     if (ranges.count > 0) {
         set_args(k_trace_, scene_.set_scene_args(k_trace_), scene_.camera_buf, cl_ulong(settings_.seed),
-                 cl_ulong(stats_.passes + 1), cl_uint(ranges.first + ranges.count), cl_uint(screen_log2_), accum_);
+                 cl_ulong(stats_.passes + 1), cl_uint(passes), cl_uint(ranges.first + ranges.count),
+                 cl_uint(screen_log2_), accum_);
         cl::Event ev;
         enqueue_1d_range(dc_.queue, k_trace_, ranges.first, ranges.count, &ev);
         add_event_time(stats_, "path_trace", ev);
     }
     collect_event_times(stats_); // waits for the pass
-    end_pass(ranges);
+    const double per_pass =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() / double(passes);
+    batch_ = per_pass > 0 ? uint64_t(std::clamp(kLaunchSeconds / per_pass, 1.0, double(kMaxBatch))) : 1;
+    stats_.pass_launches += 1;
+    end_pass(ranges, passes);
 }
 
 void PtIntegrator::save(Checkpoint& ck) {

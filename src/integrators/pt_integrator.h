@@ -32,7 +32,15 @@ protected:
 private:
     static uint32_t screen_layout_log2(const RenderSettings& settings, const dev::Camera& camera);
 
+    // A launch of the path tracer's passes is meant to take about this long: a pass of a small
+    // image is over in a few milliseconds, and each launch costs PoCL about half of one (its worker
+    // threads woken and the tail of the pass left to one of them), measured 15% of the render at
+    // 128x128 (bench/RESULTS.md, "Several passes in one launch").
+    static constexpr double kLaunchSeconds = 0.02;
+    static constexpr uint64_t kMaxBatch = 64;
+
     cl::Kernel k_trace_;
+    uint64_t batch_ = 1;                     // passes the next launch may run, from the last launch's time a pass
     uint32_t screen_log2_ = SOBOL_PER_PIXEL; // --sampler zsobol's L, else each pixel's own sequence
 };
 

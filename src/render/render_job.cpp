@@ -195,7 +195,8 @@ void RenderJob::resume() {
                   " passes (--passes counts from the start of the original render); nothing to render");
 }
 
-void RenderJob::run_pass() {
+void RenderJob::run_pass(uint64_t max_passes) {
+    integ_->allow_passes(max_passes);
     integ_->run_pass();
     if (!estimating_) return;
     error_ = integ_->error_estimate(confidence_of(options_));
@@ -314,6 +315,7 @@ Json RenderJob::stats_json(const RenderEnd& end, const Image* given) const {
                                 {"photons", st.photon_bytes},
                                 {"total", ds_->device_bytes + st.device_bytes + st.photon_bytes}};
     j["photon_batches_per_pass"] = st.photon_batches;
+    if (st.pass_launches > 0) j["pass_launches"] = st.pass_launches;
     if (options_.settings.visual_importance) {
         const uint64_t* c = st.chain_counts;
         j["visual_importance"] = {

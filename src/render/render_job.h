@@ -48,7 +48,9 @@ public:
 
     // One pass; throws PassCancelled when a stop was requested in it (the state is then the last
     // complete pass's). Updates the error estimate when estimating.
-    void run_pass();
+    // With max_passes > 1 the integrator may run up to that many passes at once (the path tracer
+    // batches short passes into one launch; its image is the same).
+    void run_pass(uint64_t max_passes = 1);
 
     // The options as rendered: the integrator resolved, the size as the camera gave it.
     const RenderOptions& options() const { return options_; }

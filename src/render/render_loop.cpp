@@ -1,6 +1,8 @@
 #include "render/render_loop.h"
 
+#include <algorithm>
 #include <cstdio>
+#include <limits>
 
 #include "device/cluster.h"
 #include "io/image_io.h"
@@ -42,10 +44,10 @@ bool RenderLoop::should_continue() {
     }
 }
 
-bool RenderLoop::run_pass() {
+bool RenderLoop::run_pass(uint64_t max_passes) {
     start();
     try {
-        job_.run_pass();
+        job_.run_pass(max_passes);
     } catch (const PassCancelled&) { // the statistics are those of the last complete pass
         interrupted_ = true;
         return false;
@@ -54,8 +56,18 @@ bool RenderLoop::run_pass() {
     return true;
 }
 
+uint64_t RenderLoop::pass_allowance() const {
+    const uint64_t done = job_.passes();
+    uint64_t n = std::numeric_limits<uint64_t>::max();
+    if (policy_.pass_limit > 0) n = policy_.pass_limit > done ? policy_.pass_limit - done : 1;
+    const RenderOptions& opt = job_.options();
+    for (uint64_t every : {opt.progressive_output, opt.checkpoint_every})
+        if (every > 0) n = std::min(n, every - done % every);
+    return n;
+}
+
 RenderEnd RenderLoop::run() {
-    while (step()) {}
+    while (should_continue() && run_pass(pass_allowance())) {}
     return finish();
 }
 

@@ -21,13 +21,14 @@ public:
     bool should_continue();
     // One pass, then the observers. False when a stop request cancelled it: the state is then the
     // last complete pass's.
-    bool run_pass();
+    bool run_pass(uint64_t max_passes = 1);
     // should_continue() and then run_pass().
     bool step() { return should_continue() && run_pass(); }
     // Ends the run: the observers' finished(), then on rank 0 the outputs, what the render says
     // of its result (the error reached, pixels that are not finite), --stats-json. Once.
     RenderEnd finish();
-    // Passes until the policy stops them, then finish().
+    // Passes until the policy stops them, then finish(). Steps may run several passes at once,
+    // up to the pass limit and the next pass an observer counts (pass_allowance()).
     RenderEnd run();
 
     bool interrupted() const { return interrupted_; }
@@ -38,6 +39,9 @@ public:
 
 private:
     void start();
+    // The most passes the next step may run: to the pass limit and to the next pass that
+    // --progressive-output or --checkpoint-every counts.
+    uint64_t pass_allowance() const;
     void say_result(const RenderEnd& end) const;
 
     RenderJob& job_;
