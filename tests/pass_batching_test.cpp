@@ -23,23 +23,27 @@ struct Rendered {
 
 // tests/data/lights.gltf through the path tracer at 16x16 (passes of well under a millisecond,
 // which the integrator batches), with `args`.
-Rendered render(const std::string& args) {
+Rendered render(const std::string& args, const std::string& env = "") {
     const std::string d = make_temp_dir("batch");
     std::string out;
-    const std::string a = std::string(CLPPM_TEST_DATA) + "/lights.gltf --width 16 --height 16 --integrator pt " +
-                          "--quiet --no-png -o " + d + "/i.exr --stats-json " + d + "/s.json " + args;
-    EXPECT_EQ(run_clppm(a, &out), 0) << out;
+    const std::string a = env + " " + clppm_binary() + " " + std::string(CLPPM_TEST_DATA) +
+                          "/lights.gltf --width 16 --height 16 --integrator pt " + "--quiet --no-png -o " + d +
+                          "/i.exr --stats-json " + d + "/s.json " + args;
+    EXPECT_EQ(run_command(a, &out), 0) << out;
     return {read_exr(d + "/i.exr"), nlohmann::json::parse(slurp(d + "/s.json"))};
 }
 
 } // namespace
 
-// --progressive-output 1 observes every pass, so each pass is a launch of its own: the batched
-// render must equal it bit for bit, with each sampler.
+// --progressive-output 1 observes every pass, so each pass is a launch of its own, as under
+// CLPPM_PASS_BATCH=1: the batched render must equal both bit for bit, with each sampler.
 TEST(PassBatching, BatchedPassesGiveTheImageOfOneLaunchAPass) {
     for (const char* sampler : {"sobol", "independent", "zsobol"}) {
         const std::string a = std::string("--passes 300 --sampler ") + sampler;
         const Rendered batched = render(a), single = render(a + " --progressive-output 1");
+        const Rendered capped = render(a, "CLPPM_PASS_BATCH=1");
+        EXPECT_EQ(capped.stats["pass_launches"], 300) << sampler;
+        EXPECT_EQ(batched.image.rgb, capped.image.rgb) << sampler;
         EXPECT_EQ(batched.stats["passes"], 300) << sampler;
         EXPECT_EQ(single.stats["passes"], 300) << sampler;
         EXPECT_EQ(single.stats["pass_launches"], 300) << sampler;

@@ -103,6 +103,8 @@ std::string environment_help() {
         {"CLPPM_BUILD_LOG", "1: print the compiler's log of successful kernel builds"},
         {"CLPPM_LOCAL_SIZE", "force this work-group size (the image does not change)"},
         {"CLPPM_PHOTON_BATCH", "trace each pass's photons in batches of at most this many (the image does not change)"},
+        {"CLPPM_PASS_BATCH",
+         "the path tracer: run at most this many passes a launch (1: one; the image does not change)"},
         {"POCL_DEVICES", "PoCL's devices, e.g. \"pthread pthread\" for two CPU devices (--device all)"}};
     std::string out = "Environment:\n";
     for (const auto& [name, what] : env) {

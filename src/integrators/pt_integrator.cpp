@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdlib>
 
 #include "device/kernel_launch.h"
 #include "integrators/checkpoint_checks.h"
@@ -51,6 +52,14 @@ bool PtIntegrator::sobol_passes() const { return settings_.sampler != Sampler::I
 
 void PtIntegrator::prepare() { allocate_sum(); }
 
+uint64_t PtIntegrator::max_batch() {
+    static const uint64_t cap = [] {
+        const char* e = std::getenv("CLPPM_PASS_BATCH");
+        return e && *e ? std::clamp<uint64_t>(std::strtoull(e, nullptr, 10), 1, kMaxBatch) : kMaxBatch;
+    }();
+    return cap;
+}
+
 // Each pixel's sample depends on (seed, pass, pixel) alone and the kernel adds a batch's samples in
 // pass order, so the batch size, chosen here from the time a pass took, never changes the image.
 void PtIntegrator::run_pass() {
@@ -68,7 +77,7 @@ void PtIntegrator::run_pass() {
     collect_event_times(stats_); // waits for the pass
     const double per_pass =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() / double(passes);
-    batch_ = per_pass > 0 ? uint64_t(std::clamp(kLaunchSeconds / per_pass, 1.0, double(kMaxBatch))) : 1;
+    batch_ = per_pass > 0 ? uint64_t(std::clamp(kLaunchSeconds / per_pass, 1.0, double(max_batch()))) : 1;
     stats_.pass_launches += 1;
     end_pass(ranges, passes);
 }

@@ -38,6 +38,9 @@ private:
     // 128x128 (bench/RESULTS.md, "Several passes in one launch").
     static constexpr double kLaunchSeconds = 0.02;
     static constexpr uint64_t kMaxBatch = 64;
+    // kMaxBatch, or the CLPPM_PASS_BATCH environment variable's cap (1: a launch a pass; for
+    // measuring the batches, which never change the image).
+    static uint64_t max_batch();
 
     cl::Kernel k_trace_;
     uint64_t batch_ = 1;                     // passes the next launch may run, from the last launch's time a pass

@@ -133,7 +133,7 @@ public:
     // Passes until the policy stops them, then the end (outputs written as the options say).
     bool render() {
         const bool whole = stepped([this] {
-            while (loop_->step()) {}
+            while (loop_->step_batch()) {}
             return !loop_->interrupted();
         });
         finish();

@@ -67,7 +67,7 @@ uint64_t RenderLoop::pass_allowance() const {
 }
 
 RenderEnd RenderLoop::run() {
-    while (should_continue() && run_pass(pass_allowance())) {}
+    while (step_batch()) {}
     return finish();
 }
 

@@ -24,6 +24,9 @@ public:
     bool run_pass(uint64_t max_passes = 1);
     // should_continue() and then run_pass().
     bool step() { return should_continue() && run_pass(); }
+    // The same, with as many passes at once as the integrator takes and the observers allow
+    // (pass_allowance(): the path tracer batches short passes; the image is the same).
+    bool step_batch() { return should_continue() && run_pass(pass_allowance()); }
     // Ends the run: the observers' finished(), then on rank 0 the outputs, what the render says
     // of its result (the error reached, pixels that are not finite), --stats-json. Once.
     RenderEnd finish();
