@@ -35,7 +35,7 @@ private:
     // A launch of the path tracer's passes is meant to take about this long: a pass of a small
     // image is over in a few milliseconds, and each launch costs PoCL about half of one (its worker
     // threads woken and the tail of the pass left to one of them), measured 15% of the render at
-    // 128x128 (bench/RESULTS.md, "Several passes in one launch").
+    // 128x128 (bench/RESULTS.md, "Several passes to a launch").
     static constexpr double kLaunchSeconds = 0.02;
     static constexpr uint64_t kMaxBatch = 64;
     // kMaxBatch, or the CLPPM_PASS_BATCH environment variable's cap (1: a launch a pass; for
