@@ -5,8 +5,9 @@
 # Without it: the full run behind bench/RESULTS.md (about 35 minutes on a 2-core CPU with PoCL).
 # The binaries are taken from $CLPPM_BENCH_BIN; without it the script installs the dependencies
 # and builds them in build/ (Release) first, as scripts/render.sh builds clppm, so it works right
-# after the README's render command (measured on the 2-core machine: building the three benchmarks
-# on top of a built clppm takes 13 s, the quick run 21 s with the kernel cache warm).
+# after the README's render command (measured on the 2-core machine: building the first three
+# benchmarks on top of a built clppm takes 13 s and shading_simd 4 s more; the quick run takes 19 to
+# 21 s with the kernel cache warm).
 set -euo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 quick=""
@@ -16,7 +17,7 @@ if [[ -n ${CLPPM_BENCH_BIN:-} ]]; then
 else
   "$root/scripts/install-deps.sh"
   cmake -S "$root" -B "$root/build" -DCMAKE_BUILD_TYPE=Release > /dev/null
-  cmake --build "$root/build" -j "$(nproc 2>/dev/null || echo 2)" --target traversal_bench throughput_bench convergence_bench
+  cmake --build "$root/build" -j "$(nproc 2>/dev/null || echo 2)" --target traversal_bench throughput_bench convergence_bench shading_simd
   bin=$root/build/bench
 fi
 out=${1:-$root/build/bench-results}
@@ -27,7 +28,10 @@ if [[ -n $quick ]]; then
   "$bin/traversal_bench" --quick --rays 20000 --json "$out/traversal.json" > "$out/traversal.txt"
   "$bin/throughput_bench" --quick --out "$out" > /dev/null
   "$bin/convergence_bench" --quick --out "$out" > /dev/null
-  for f in traversal.json throughput.json throughput.md convergence_cornell_box.csv convergence_cornell_box.md; do
+  python3 "$root/bench/cornell_diffuse.py" "$root/scenes/cornell_box.gltf" "$out/cornell_diffuse.gltf"
+  "$bin/shading_simd" "$out/cornell_diffuse.gltf" --size 64 --reps 2 --rounds 1 > "$out/shading_simd.md"
+  for f in traversal.json throughput.json throughput.md convergence_cornell_box.csv convergence_cornell_box.md \
+    shading_simd.md; do
     [[ -s $out/$f ]] || { echo "run_benchmarks: $out/$f missing or empty" >&2; exit 1; }
   done
 else
@@ -35,5 +39,7 @@ else
   "$bin/throughput_bench" --out "$out" | tee "$out/throughput_stdout.md"
   "$bin/convergence_bench" --scene cornell_box --size 128 --seconds 32 --reference-seconds 400 --out "$out"
   "$bin/convergence_bench" --scene caustic --size 128 --seconds 32 --reference-seconds 400 --out "$out"
+  python3 "$root/bench/cornell_diffuse.py" "$root/scenes/cornell_box.gltf" "$out/cornell_diffuse.gltf"
+  "$bin/shading_simd" "$out/cornell_diffuse.gltf" | tee "$out/shading_simd.md"
 fi
 echo "run_benchmarks: done in $(( $(date +%s) - start )) s, results in $out"
