@@ -80,8 +80,11 @@ class ModuleRender:
                                    "error": e["estimated"] if e else None, "integrator": r.settings["integrator"]}
 
     def _run(self):
+        # A launch at a time (the path tracer's short passes run several to a launch); a module
+        # older than batches() steps a pass at a time.
+        steps = self.renderer.batches() if hasattr(self.renderer, "batches") else self.renderer
         try:
-            for _ in self.renderer:
+            for _ in steps:
                 if self._want.is_set():
                     self._want.clear()
                     self._snapshot()

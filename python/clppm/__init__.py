@@ -115,6 +115,9 @@ class Renderer:
     - ``run_pass()`` renders one pass (whatever the stop options say); ``passes`` counts them;
     - iterating renders passes until ``passes``, ``time`` or ``target_error`` stops them, yielding
       the pass count, then writes what the options ask for (``output``, ``stats_json``, ...);
+    - ``batches()`` iterates the same way a launch at a time: the path tracer runs short passes
+      several to a launch (about 20 ms of work), so the count may rise by more than one a step;
+      the image is the same;
     - ``render()`` does all of that and returns the image;
     - ``image()`` is the image after the last pass, ``error_estimate()`` its estimated error (with
       ``target_error`` or ``error_output``), ``stats()`` the ``--stats-json`` content, ``save(path)``
@@ -143,6 +146,16 @@ class Renderer:
             return self._native.passes
         self._native.finish()
         raise StopIteration
+
+    def batches(self):
+        """Iterates as the Renderer itself does, a launch at a time: each step renders as many
+        passes as the integrator runs in one launch (the path tracer's short passes, several to a
+        launch), never past ``passes`` or a pass ``progressive_output`` or ``checkpoint_every``
+        counts, and yields the pass count. Fewer launches cost less time on short passes; the
+        image is the same bit for bit."""
+        while self._checked(self._native.step_batch()):
+            yield self._native.passes
+        self._native.finish()
 
     def render(self):
         """Renders until the stop options say, writes the outputs, and returns the image."""

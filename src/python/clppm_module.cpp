@@ -130,6 +130,12 @@ public:
         return stepped([this] { return loop_->step(); });
     }
 
+    // The same for as many passes as the integrator takes to a launch (the path tracer's short
+    // passes, several to a launch), never past the pass limit or a pass the outputs count.
+    bool step_batch() {
+        return stepped([this] { return loop_->step_batch(); });
+    }
+
     // Passes until the policy stops them, then the end (outputs written as the options say).
     bool render() {
         const bool whole = stepped([this] {
@@ -353,6 +359,7 @@ PYBIND11_MODULE(_clppm, m) {
              py::arg("scene"), py::arg("args"))
         .def("run_pass", &Renderer::run_pass)
         .def("step", &Renderer::step)
+        .def("step_batch", &Renderer::step_batch)
         .def("render", &Renderer::render)
         .def("finish", &Renderer::finish)
         .def("close", &Renderer::close)

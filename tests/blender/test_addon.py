@@ -181,20 +181,33 @@ def test_a_missing_clppm_is_reported_in_one_line(tmp_path):
     assert "no clppm Python module" in out and "no clppm on PATH" in out, out
 
 
-def test_the_command_line_route_gives_the_modules_image(tmp_path):
+# The module route steps the path tracer a launch at a time (several short passes to a launch),
+# the command route a pass at a time (--progressive-output 1): the same image either way.
+@pytest.mark.parametrize("settings", [dict(integrator="sppm", passes=4, photons=20000),
+                                      dict(integrator="pt", passes=64)], ids=["sppm", "pt"])
+def test_the_command_line_route_gives_the_modules_image(tmp_path, settings):
     binary = os.environ.get("CLPPM_BINARY")
     if not binary:
         pytest.skip("CLPPM_BINARY is not set")
     scenes.diffuse_room()
-    module_image = scenes.render("CLPPM", str(tmp_path / "module.exr"), passes=4, time=0.0, integrator="sppm",
-                                 photons=20000)
+    module_image = scenes.render("CLPPM", str(tmp_path / "module.exr"), time=0.0, **settings)
     os.environ["CLPPM"] = binary  # the command before the module
     try:
-        command_image = scenes.render("CLPPM", str(tmp_path / "command.exr"), passes=4, time=0.0,
-                                      integrator="sppm", photons=20000)
+        command_image = scenes.render("CLPPM", str(tmp_path / "command.exr"), time=0.0, **settings)
     finally:
         del os.environ["CLPPM"]
     assert np.array_equal(module_image, command_image)
+
+
+def test_the_module_route_runs_short_passes_several_to_a_launch():
+    import clppm
+    scene = os.path.join(os.path.dirname(__file__), "..", "..", "scenes", "cornell_box.gltf")
+    render = runner.ModuleRender(clppm, scene, dict(integrator="pt", passes=100, width=40, height=30))
+    assert render.done.wait(120)
+    assert render.error is None and not render.interrupted
+    passes, launches = render.renderer.passes, render.renderer.stats()["pass_launches"]
+    render.close()
+    assert passes == 100 and launches < 50, (passes, launches)
 
 
 def test_the_header_line_reads_a_commands_progress(tmp_path):

@@ -73,6 +73,26 @@ def test_renderer_steps_and_reports(tmp_path):
         r.image()
 
 
+def test_batches_step_a_launch_at_a_time_to_the_same_image(tmp_path):
+    # The path tracer's 40 x 30 passes are short: a launch takes several of them, never past the
+    # pass limit or a pass that progressive_output counts, and the image is that of one pass a step.
+    options = dict(SMALL, integrator="pt", passes=200)
+    with clppm.Renderer(**options) as r:
+        assert list(r)[-1] == 200
+        single = r.image()
+    with clppm.Renderer(**options) as r:
+        counts = list(r.batches())
+        assert counts[-1] == 200 and r.passes == 200
+        assert counts == sorted(set(counts)) and len(counts) < 100
+        assert r.stats()["pass_launches"] == len(counts)
+        assert np.array_equal(r.image(), single)
+    with clppm.Renderer(**dict(options, passes=60, progressive_output=25, output=tmp_path / "p.exr")) as r:
+        counts = list(r.batches())
+        assert 25 in counts and 50 in counts and counts[-1] == 60
+    with clppm.Renderer(**dict(SMALL, integrator="sppm", passes=3)) as r:  # one pass a launch
+        assert list(r.batches()) == [1, 2, 3]
+
+
 def test_iteration_stops_at_the_target_error():
     with clppm.Renderer(**dict(SMALL, integrator="pt", target_error=0.5, passes=400)) as r:
         passes = list(r)
