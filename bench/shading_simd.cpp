@@ -45,7 +45,8 @@ std::string read_text(const std::string& path) {
 // The vertex kernel at SIMD width w (1, 8 or 16).
 std::string instantiate(const std::string& body, int w) {
     const std::string W = std::to_string(w);
-    std::string d = "\n#define SIMD_W " + W + "u\n#define SIMD_NAME simd_probe_w" + W + "\n";
+    std::string d = "\n#define SIMD_W " + W + "u\n#define SIMD_NAME simd_probe_w" + W +
+                    "\n#define SIMD_TRI simd_triangle_w" + W + "\n";
     if (w == 1) {
         d += "#define T float\n#define UT uint\n#define IT int\n#define LANES 0u\n"
              "#define LD(p, i) (p)[i]\n#define LDU(p, i) (p)[i]\n#define ST(p, i, v) ((p)[i] = (v))\n"
@@ -62,7 +63,8 @@ std::string instantiate(const std::string& body, int w) {
              "))\n#define GU(p, k) ((uint" + W + ")(" + gather + "))\n#define CVT(x) convert_float" + W + "(x)\n";
     }
     std::string u;
-    for (const char* m : {"SIMD_W", "SIMD_NAME", "T", "UT", "IT", "LANES", "LD", "LDU", "ST", "G", "GU", "CVT"})
+    for (const char* m :
+         {"SIMD_W", "SIMD_NAME", "SIMD_TRI", "T", "UT", "IT", "LANES", "LD", "LDU", "ST", "G", "GU", "CVT"})
         u += std::string("#undef ") + m + "\n";
     return d + body + "\n" + u;
 }

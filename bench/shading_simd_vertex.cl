@@ -9,8 +9,26 @@
  * pick_light_reuse, sample_chosen_light), weighed by the power heuristic against the cosine lobe,
  * and a cosine-distributed bounce in Duff et al.'s frame (kernels/sampling.cl). The host checks that
  * the scene holds nothing else.
- * Macros (from the host): SIMD_W, SIMD_NAME, T, UT, IT, LANES (the lane offsets as UT), LD/ST (vector
- * load/store at lane group i), G/GU (gather of a float/uint array at UT indices), CVT (UT to T). */
+ * Macros (from the host): SIMD_W, SIMD_NAME, SIMD_TRI (its helper's name), T, UT, IT, LANES (the
+ * lane offsets as UT), LD/ST (vector load/store at lane group i), G/GU (gather of a float/uint array
+ * at UT indices), CVT (UT to T). */
+
+/* The point at barycentrics (b1, b2) of triangle prim, and its unit winding normal. */
+inline void SIMD_TRI(__global const float* tf, UT prim, T b1, T b2, T* x, T* y, T* z, T* nx, T* ny, T* nz) {
+    const UT p12 = prim * 12u;
+    const T v0x = G(tf, p12), v0y = G(tf, p12 + 1u), v0z = G(tf, p12 + 2u);
+    const T e1x = G(tf, p12 + 4u), e1y = G(tf, p12 + 5u), e1z = G(tf, p12 + 6u);
+    const T e2x = G(tf, p12 + 8u), e2y = G(tf, p12 + 9u), e2z = G(tf, p12 + 10u);
+    *x = v0x + e1x * b1 + e2x * b2;
+    *y = v0y + e1y * b1 + e2y * b2;
+    *z = v0z + e1z * b1 + e2z * b2;
+    const T cx = e1y * e2z - e1z * e2y, cy = e1z * e2x - e1x * e2z, cz = e1x * e2y - e1y * e2x;
+    const T l = sqrt(cx * cx + cy * cy + cz * cz);
+    *nx = cx / l;
+    *ny = cy / l;
+    *nz = cz / l;
+}
+
 __kernel void SIMD_NAME(SCENE_PARAMS, __global const float* soa, uint n, uint pass, __global float* out) {
     const uint i = get_global_id(0);
     const T t = LD(soa, i), bu = LD(soa + n, i), bv = LD(soa + 2 * n, i);
@@ -19,16 +37,8 @@ __kernel void SIMD_NAME(SCENE_PARAMS, __global const float* soa, uint n, uint pa
 
     /* the hit point and the geometric normal, facing the ray */
     __global const float* tf = (__global const float*)tris;
-    const UT p12 = prim * 12u;
-    const T v0x = G(tf, p12), v0y = G(tf, p12 + 1u), v0z = G(tf, p12 + 2u);
-    const T e1x = G(tf, p12 + 4u), e1y = G(tf, p12 + 5u), e1z = G(tf, p12 + 6u);
-    const T e2x = G(tf, p12 + 8u), e2y = G(tf, p12 + 9u), e2z = G(tf, p12 + 10u);
-    const T px = v0x + e1x * bu + e2x * bv, py = v0y + e1y * bu + e2y * bv, pz = v0z + e1z * bu + e2z * bv;
-    T gx = e1y * e2z - e1z * e2y, gy = e1z * e2x - e1x * e2z, gz = e1x * e2y - e1y * e2x;
-    const T gl = sqrt(gx * gx + gy * gy + gz * gz);
-    gx /= gl;
-    gy /= gl;
-    gz /= gl;
+    T px, py, pz, gx, gy, gz;
+    SIMD_TRI(tf, prim, bu, bv, &px, &py, &pz, &gx, &gy, &gz);
     /* the interpolated shading normal and the material */
     __global const float* sf = (__global const float*)shading;
     const UT s16 = prim * 16u;
@@ -77,19 +87,12 @@ __kernel void SIMD_NAME(SCENE_PARAMS, __global const float* soa, uint n, uint pa
     const T ul = fmin((u0 - c0) / w, 0.99999994f);
     __global const float* lf = (__global const float*)lights;
     const UT l20 = l * (uint)(sizeof(Light) / sizeof(float));
-    const UT lp = GU((__global const uint*)lf, l20 + 1u) * 12u;
+    const UT lp = GU((__global const uint*)lf, l20 + 1u);
     const T lpow = G(lf, l20 + 3u), larea = G(lf, l20 + 18u);
     const T lr = G(lf, l20 + 12u), lg = G(lf, l20 + 13u), lb = G(lf, l20 + 14u);
     const T su = sqrt(ul), sb1 = 1.0f - su, sb2 = u1 * su;
-    const T w0x = G(tf, lp), w0y = G(tf, lp + 1u), w0z = G(tf, lp + 2u);
-    const T f1x = G(tf, lp + 4u), f1y = G(tf, lp + 5u), f1z = G(tf, lp + 6u);
-    const T f2x = G(tf, lp + 8u), f2y = G(tf, lp + 9u), f2z = G(tf, lp + 10u);
-    const T yx = w0x + f1x * sb1 + f2x * sb2, yy = w0y + f1y * sb1 + f2y * sb2, yz = w0z + f1z * sb1 + f2z * sb2;
-    T lnx = f1y * f2z - f1z * f2y, lny = f1z * f2x - f1x * f2z, lnz = f1x * f2y - f1y * f2x;
-    const T lnl = sqrt(lnx * lnx + lny * lny + lnz * lnz);
-    lnx /= lnl;
-    lny /= lnl;
-    lnz /= lnl;
+    T yx, yy, yz, lnx, lny, lnz;
+    SIMD_TRI(tf, lp, sb1, sb2, &yx, &yy, &yz, &lnx, &lny, &lnz);
     const T ddx = yx - px, ddy = yy - py, ddz = yz - pz;
     const T d2 = ddx * ddx + ddy * ddy + ddz * ddz;
     const T len = sqrt(d2);
