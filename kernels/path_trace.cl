@@ -9,6 +9,7 @@
  * Sobol' points over the passes (sobol.cl; `--sampler sobol`, the default) or from independent
  * random streams (`--sampler independent`); `--sampler zsobol` lays the pixels' points out on
  * the screen (sobol.cl, sobol_make_screen). */
+#include "portability.h"
 #include "rng.cl"
 #include "sobol.cl"
 #include "camera.cl"
@@ -145,7 +146,7 @@ float3 path_sample(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong pass,
 }
 
 /* Passes first_pass .. first_pass + passes - 1 of the pixels below num_pixels. */
-__kernel void path_trace(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong first_pass, uint passes,
+__kernel SCALAR_WORK_ITEMS void path_trace(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong first_pass, uint passes,
                          uint num_pixels, uint screen_log2, __global double* accum) {
     uint pixel = get_global_id(0);
     if (pixel >= num_pixels) return;

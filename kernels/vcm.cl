@@ -19,6 +19,7 @@
  * distance in the MIS weights is taken relative to the scene (area_scale = R^2 of the bounding
  * sphere), so the weights and the fixed-point sums do not depend on light power or scene scale;
  * the host scales the light side back by total_power / R^2 (light_unit). */
+#include "portability.h"
 #include "rng.cl"
 #include "camera.cl"
 #include "lights.cl"
@@ -91,7 +92,7 @@ void vcm_connect_to_camera(SCENE_PARAMS, __constant Camera* cam, const Surface* 
  * surfaces go to verts (counter counts them; more than capacity: the host grows the buffer and
  * runs the batch again), path_last[i] is sub-path first_path + i's last stored vertex. Paths have
  * at most max_len segments from light to camera. */
-__kernel void vcm_light(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong pass, uint first_path, uint num_paths,
+__kernel SCALAR_WORK_ITEMS void vcm_light(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong pass, uint first_path, uint num_paths,
                         float light_paths, float vm_factor, float vc_factor, float area_scale, uint mode, uint max_len,
                         __global LightVertex* verts, uint capacity, volatile __global uint* counter,
                         __global uint* path_last, volatile __global long* splat, float splat_scale) {
@@ -265,7 +266,7 @@ float vcm_emission_weight(SCENE_PARAMS, const Surface* sf, float3 dir, uint t, b
  * last (the splat image joins the pixel). The grid holds this batch's light vertices (sorted); verts
  * and path_last hold its sub-paths [batch_first, batch_first + batch_count) as vcm_light left them.
  * A pixel's sample is radiance plus light_unit times the light side and splat_unit times its splats. */
-__kernel void vcm_camera(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong pass, uint pixel_end,
+__kernel SCALAR_WORK_ITEMS void vcm_camera(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong pass, uint pixel_end,
                          __constant GridInfo* g, __global const LightVertex* sorted, __global const uint* starts,
                          __global const LightVertex* verts, __global const uint* path_last, uint batch_first,
                          uint batch_count, uint batch_flags, float r2, float light_paths, float vm_factor,
