@@ -146,8 +146,8 @@ float3 path_sample(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong pass,
 }
 
 /* Passes first_pass .. first_pass + passes - 1 of the pixels below num_pixels. */
-__kernel SCALAR_WORK_ITEMS void path_trace(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong first_pass, uint passes,
-                         uint num_pixels, uint screen_log2, __global double* accum) {
+__kernel SCALAR_WORK_ITEMS void path_trace(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong first_pass,
+                                           uint passes, uint num_pixels, uint screen_log2, __global double* accum) {
     uint pixel = get_global_id(0);
     if (pixel >= num_pixels) return;
     double3 sum = (double3)(accum[3 * pixel], accum[3 * pixel + 1], accum[3 * pixel + 2]);

@@ -92,10 +92,11 @@ void vcm_connect_to_camera(SCENE_PARAMS, __constant Camera* cam, const Surface* 
  * surfaces go to verts (counter counts them; more than capacity: the host grows the buffer and
  * runs the batch again), path_last[i] is sub-path first_path + i's last stored vertex. Paths have
  * at most max_len segments from light to camera. */
-__kernel SCALAR_WORK_ITEMS void vcm_light(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong pass, uint first_path, uint num_paths,
-                        float light_paths, float vm_factor, float vc_factor, float area_scale, uint mode, uint max_len,
-                        __global LightVertex* verts, uint capacity, volatile __global uint* counter,
-                        __global uint* path_last, volatile __global long* splat, float splat_scale) {
+__kernel SCALAR_WORK_ITEMS void vcm_light(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong pass, uint first_path,
+                                          uint num_paths, float light_paths, float vm_factor, float vc_factor,
+                                          float area_scale, uint mode, uint max_len, __global LightVertex* verts,
+                                          uint capacity, volatile __global uint* counter, __global uint* path_last,
+                                          volatile __global long* splat, float splat_scale) {
     uint i = get_global_id(0);
     if (i >= num_paths) return;
     uint last = VCM_NO_VERTEX;
@@ -267,11 +268,13 @@ float vcm_emission_weight(SCENE_PARAMS, const Surface* sf, float3 dir, uint t, b
  * and path_last hold its sub-paths [batch_first, batch_first + batch_count) as vcm_light left them.
  * A pixel's sample is radiance plus light_unit times the light side and splat_unit times its splats. */
 __kernel SCALAR_WORK_ITEMS void vcm_camera(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong pass, uint pixel_end,
-                         __constant GridInfo* g, __global const LightVertex* sorted, __global const uint* starts,
-                         __global const LightVertex* verts, __global const uint* path_last, uint batch_first,
-                         uint batch_count, uint batch_flags, float r2, float light_paths, float vm_factor,
-                         float vc_factor, float area_scale, uint mode, uint max_len, double light_unit, double vm_norm,
-                         __global long* splat, double splat_unit, __global double* pass_sum, __global double* accum) {
+                                           __constant GridInfo* g, __global const LightVertex* sorted,
+                                           __global const uint* starts, __global const LightVertex* verts,
+                                           __global const uint* path_last, uint batch_first, uint batch_count,
+                                           uint batch_flags, float r2, float light_paths, float vm_factor,
+                                           float vc_factor, float area_scale, uint mode, uint max_len,
+                                           double light_unit, double vm_norm, __global long* splat, double splat_unit,
+                                           __global double* pass_sum, __global double* accum) {
     uint p = get_global_id(0);
     if (p >= pixel_end) return; /* the launch covers [offset, pixel_end), padded to the work-group size */
     const bool first = (batch_flags & 1u) != 0u;
