@@ -160,6 +160,22 @@ TEST(Cli, ImageDoesNotDependOnWorkGroupSizeOrPhotonBatches) {
     }
 }
 
+// CLPPM_FILL_BY_WRITE (scripts/check_oclgrind.sh) clears buffers by host writes: the same image
+// bit for bit as clEnqueueFillBuffer's, for the integrators whose buffers it clears.
+TEST(Cli, BuffersClearedByWritesGiveTheSameImage) {
+    for (const char* integrator : {"ppm", "sppm", "pt", "vcm"}) {
+        std::string dir = make_temp_dir("cli"), out;
+        const std::string args = std::string(kSmall) + " --no-png --seed 5 --integrator " + integrator;
+        ASSERT_EQ(run_command("CLPPM_FILL_BY_WRITE=1 " + clppm_binary() + " -o " + dir + "/a.exr" + args, &out), 0)
+            << out;
+        ASSERT_EQ(run_clppm("-o " + dir + "/b.exr" + args, &out), 0) << out;
+        Image a = read_exr(dir + "/a.exr"), b = read_exr(dir + "/b.exr");
+        ASSERT_FALSE(a.rgb.empty());
+        EXPECT_GT(mean_radiance(a), 0.01) << integrator;
+        EXPECT_EQ(a.rgb, b.rgb) << integrator;
+    }
+}
+
 TEST(Cli, PathTracerRendersToo) {
     std::string dir = make_temp_dir("cli"), out;
     ASSERT_EQ(run_clppm("-o " + dir + "/p.exr --integrator pt" + std::string(kSmall), &out), 0) << out;

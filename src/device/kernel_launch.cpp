@@ -2,8 +2,17 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <string>
 
 namespace clppm {
+
+bool fill_by_write() {
+    static const bool on = [] {
+        const char* e = std::getenv("CLPPM_FILL_BY_WRITE");
+        return e && *e && std::string(e) != "0";
+    }();
+    return on;
+}
 
 void enqueue_1d(const cl::CommandQueue& queue, const cl::Kernel& kernel, size_t n, cl::Event* event) {
     enqueue_1d_range(queue, kernel, 0, n, event);

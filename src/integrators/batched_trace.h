@@ -39,7 +39,7 @@ public:
         while (first < end) {
             throw_if_cancelled(); // the statistics still hold the last complete pass
             const uint32_t count = std::min(batch_, end - first);
-            dc_.queue.enqueueFillBuffer(counter_, cl_uint(0), 0, sizeof(cl_uint));
+            fill_buffer(dc_.queue, counter_, cl_uint(0), 0, sizeof(cl_uint));
             trace(first, count);
             if (!read_stored()) continue; // grown or halved: the same items again
             use(first, count, stored_);

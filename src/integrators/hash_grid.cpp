@@ -37,7 +37,7 @@ void HashGrid::build(const cl::Buffer& elements, const cl::Buffer& sorted, uint3
         starts_ = cl::Buffer(dc_.context, CL_MEM_READ_WRITE, size_t(table_size_ + 1) * sizeof(cl_uint));
     }
     dc_.queue.enqueueWriteBuffer(info_, CL_FALSE, 0, sizeof g, &g);
-    dc_.queue.enqueueFillBuffer(counts_, cl_uint(0), 0, size_t(table_size_) * sizeof(cl_uint));
+    fill_buffer(dc_.queue, counts_, cl_uint(0), 0, size_t(table_size_) * sizeof(cl_uint));
     cl::Event e1, e2, e3;
     set_args(k_count_, 0, info_, elements, counts_);
     enqueue_1d(dc_.queue, k_count_, n, &e1);

@@ -26,7 +26,7 @@ PhotonChains::PhotonChains(const DeviceContext& dc, const cl::Program& program, 
     const size_t bytes = size_t(chains) * sizeof(dev::PhotonChain);
     for (cl::Buffer& b : chains_) {
         b = cl::Buffer(dc.context, CL_MEM_READ_WRITE, bytes);
-        dc.queue.enqueueFillBuffer(b, cl_uchar(0), 0, bytes); // step 0: no state yet
+        fill_buffer(dc.queue, b, cl_uchar(0), 0, bytes); // step 0: no state yet
     }
     for (cl::Buffer& b : cache_) b = cl::Buffer(dc.context, CL_MEM_READ_WRITE, cache_bytes(chains));
     counts_ = cl::Buffer(dc.context, CL_MEM_READ_WRITE, CHAIN_COUNTS * sizeof(cl_uint));
@@ -53,7 +53,7 @@ void PhotonChains::mark(const cl::Buffer& hitpoints, const cl::Buffer& hit_stats
         grid_.table_size = table_size_;
         grid_.num_photons = n;
         dc_.queue.enqueueWriteBuffer(grid_info_, CL_TRUE, 0, sizeof grid_, &grid_);
-        dc_.queue.enqueueFillBuffer(seen_, cl_uchar(0), 0, table_size_);
+        fill_buffer(dc_.queue, seen_, cl_uchar(0), 0, table_size_);
     }
     if (n == 0) return;
     set_args(k_mark_, 0, grid_info_, hitpoints, hit_stats, cl_uint(n), cl_float(global_r2), seen_);
@@ -63,7 +63,7 @@ void PhotonChains::mark(const cl::Buffer& hitpoints, const cl::Buffer& hit_stats
 }
 
 void PhotonChains::set_trace_args(cl::Kernel& kernel, int a, uint32_t photons_per_pass) {
-    dc_.queue.enqueueFillBuffer(counts_, cl_uint(0), 0, CHAIN_COUNTS * sizeof(cl_uint));
+    fill_buffer(dc_.queue, counts_, cl_uint(0), 0, CHAIN_COUNTS * sizeof(cl_uint));
     set_args(kernel, a, grid_info_, seen_, chains_[current_], chains_[1 - current_], cache_[current_],
              cache_[1 - current_], counts_, cl_uint(photons_per_pass));
 }

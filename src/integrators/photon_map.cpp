@@ -53,7 +53,7 @@ void PhotonMap::run_pass(uint64_t pass, uint32_t first_photon, uint32_t count_ph
                          const cl::Buffer& out) {
     batches_ = 0;
     if (count_photons == 0) {
-        if (n > 0) dc_.queue.enqueueFillBuffer(out, cl_uchar(0), 0, size_t(n) * sizeof(dev::PassFlux));
+        if (n > 0) fill_buffer(dc_.queue, out, cl_uchar(0), 0, size_t(n) * sizeof(dev::PassFlux));
         return;
     }
     measure_coverage(pass, hitpoints, stats, n, global_r2);
@@ -128,7 +128,7 @@ void PhotonMap::measure_coverage(uint64_t pass, const cl::Buffer& hitpoints, con
         coverage_capacity_ = n;
     }
     if (!disc_coverage_wanted(settings_.disc_coverage, n, settings_.photons)) {
-        dc_.queue.enqueueFillBuffer(coverage_, cl_float2{{1.0f, 1.0f}}, 0, size_t(n) * sizeof(cl_float2));
+        fill_buffer(dc_.queue, coverage_, cl_float2{{1.0f, 1.0f}}, 0, size_t(n) * sizeof(cl_float2));
         return;
     }
     if (!open_edges_()) { // the scene's open edges, from the blocks as the device has them

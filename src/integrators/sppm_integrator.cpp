@@ -61,7 +61,7 @@ void SppmIntegrator::prepare() {
     stats_.initial_radius = stats_.mean_radius = typical_radius_ = max_radius_ = r0;
     r2_ = r0 * r0;
     const dev::HitStats init{r0 * r0, 0.0, {0, 0, 0}, {0, 0, 0}};
-    dc_.queue.enqueueFillBuffer(stats_buf_, init, 0, n * sizeof(dev::HitStats));
+    fill_buffer(dc_.queue, stats_buf_, init, 0, n * sizeof(dev::HitStats));
     if (errors_) errors_->reset(stats_buf_);
 }
 

@@ -120,7 +120,7 @@ void VcmIntegrator::prepare() {
 }
 
 void VcmIntegrator::trace_light(uint64_t pass, uint32_t first, uint32_t count) {
-    dc_.queue.enqueueFillBuffer(splat_, cl_long(0), 0, size_t(num_pixels_) * 3 * sizeof(cl_long));
+    fill_buffer(dc_.queue, splat_, cl_long(0), 0, size_t(num_pixels_) * 3 * sizeof(cl_long));
     if (mode_ == VCM_MODE_PT) return; // camera sub-paths alone
     const double eta = M_PI * r2_ / area_scale_ * double(num_pixels_);
     const bool vm = mode_ == VCM_MODE_VCM || mode_ == VCM_MODE_VM;
@@ -197,7 +197,7 @@ void VcmIntegrator::render_on_devices(uint64_t pass, const PixelRanges& ranges) 
         VcmIntegrator& v = *w.integ;
         v.r2_ = r2_;
         const size_t bytes = size_t(num_pixels_) * 3 * sizeof(cl_double);
-        v.dc_.queue.enqueueFillBuffer(v.accum_, cl_double(0), 0, bytes); // this pass alone
+        fill_buffer(v.dc_.queue, v.accum_, cl_double(0), 0, bytes); // this pass alone
         v.render(pass, first, count, v.accum_);
         w.result.assign(size_t(count) * 3, 0.0);
         if (count)
