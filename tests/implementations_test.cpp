@@ -1,0 +1,135 @@
+// One image on every OpenCL implementation (issue 58): each integrator renders the same scenes
+// with the same seed on one CPU device of every platform the loader lists, and each image is
+// compared with the first platform's (PoCL's, where both are there). Same seed, same samples: the
+// images may differ only where the implementations round differently, which moves a path here and
+// there; so the difference, box-filtered 4 x 4 (bias more than noise), must lie far below the
+// difference between two seeds on one device, and the means must agree within that noise.
+//
+// With one implementation there is nothing to compare and the tests skip, saying so.
+// scripts/check_implementations.sh installs Intel's CPU runtime from PyPI and runs this binary
+// with both (the ctest entry `implementations`); Intel's vectoriser broke the path tracer, VCM and
+// BPT there (kernels/portability.h), which these tests caught.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "device/device.h"
+#include "io/image_compare.h"
+#include "io/image_io.h"
+#include "test_util.h"
+
+using namespace clppm;
+using namespace clppm::test;
+
+namespace {
+
+// One CPU device of each platform, in the loader's order (--device takes their index).
+std::vector<DeviceInfo> one_cpu_per_platform() {
+    std::vector<DeviceInfo> out;
+    for (const DeviceInfo& d : list_devices()) {
+        if (!(d.type & CL_DEVICE_TYPE_CPU)) continue;
+        bool seen = false;
+        for (const DeviceInfo& o : out) seen = seen || o.platform_name == d.platform_name;
+        if (!seen) out.push_back(d);
+    }
+    // PoCL first: the implementation the rest of the suite is proven on is the reference.
+    for (size_t i = 1; i < out.size(); ++i)
+        if (out[i].platform_name.find("Portable Computing Language") != std::string::npos) std::swap(out[0], out[i]);
+    return out;
+}
+
+struct Case {
+    const char* what;
+    std::string args; // the scene and what it needs
+};
+
+std::vector<Case> cases() {
+    const std::string scenes = CLPPM_SCENES_DIR;
+    return {
+        {"the default Cornell box (glass, mirror, area light)", ""},
+        {"the caustic scene", "'" + scenes + "/caustic.gltf'"},
+        {"the skylit room (sun and sky)", "'" + scenes + "/skylight.gltf'"},
+        {"the dispersion box", "'" + scenes + "/dispersion_box.gltf'"},
+        {"the Cornell box under the studio environment", "--env studio"},
+    };
+}
+
+Image render(const DeviceInfo& d, const std::string& integrator, const Case& c, int seed, const std::string& dir) {
+    const std::string out = dir + "/" + integrator + "_" + std::to_string(d.index) + "_" + std::to_string(seed) + ".exr";
+    const std::string args = c.args + " --device " + std::to_string(d.index) + " --integrator " + integrator +
+                             " --width 40 --height 40 --passes 8 --photons 20000 --seed " + std::to_string(seed) +
+                             " --quiet --no-png -o '" + out + "'";
+    std::string log;
+    const int rc = run_clppm(args, &log);
+    EXPECT_EQ(rc, 0) << d.platform_name << ": clppm " << args << "\n" << log;
+    return rc == 0 ? read_exr(out) : Image{};
+}
+
+// Relative MSE of the 4 x 4 box-filtered images.
+double box4_rel_mse(const Image& a, const Image& b) { return compare_images(box_filter(a, 4), box_filter(b, 4)).rel_mse; }
+
+// The standard error of one image's mean radiance, from the per-pixel differences d of two seeds'
+// images: Var(d) = 2 Var(pixel), so sigma_mean = sd(d) / sqrt(2 N).
+double mean_standard_error(const Image& a, const Image& b) {
+    const size_t n = a.rgb.size() / 3;
+    double s = 0, s2 = 0;
+    for (size_t i = 0; i < n; ++i) {
+        const double d = (double(a.rgb[3 * i]) + a.rgb[3 * i + 1] + a.rgb[3 * i + 2] - b.rgb[3 * i] - b.rgb[3 * i + 1] -
+                          b.rgb[3 * i + 2]) /
+                         3.0;
+        s += d;
+        s2 += d * d;
+    }
+    const double var = (s2 - s * s / double(n)) / double(n - 1);
+    return std::sqrt(var / (2.0 * double(n)));
+}
+
+bool bit_identical(const Image& a, const Image& b) {
+    return a.width == b.width && a.height == b.height && a.rgb == b.rgb;
+}
+
+void expect_same_image_everywhere(const std::string& integrator) {
+    const std::vector<DeviceInfo> devices = one_cpu_per_platform();
+    if (devices.size() < 2)
+        GTEST_SKIP() << "one OpenCL implementation with a CPU device here (" << devices.size()
+                     << "): nothing to compare; scripts/check_implementations.sh adds Intel's CPU runtime";
+    const std::string dir = make_temp_dir("implementations_" + integrator);
+    for (const Case& c : cases()) {
+        const DeviceInfo& ref = devices[0];
+        const Image a = render(ref, integrator, c, 1, dir);
+        const Image a2 = render(ref, integrator, c, 2, dir);
+        if (a.rgb.empty() || a2.rgb.empty()) continue;
+        const double noise_box = box4_rel_mse(a2, a);
+        const double sigma_mean = mean_standard_error(a2, a);
+        ASSERT_GT(noise_box, 0.0) << "two seeds gave the same image: the comparison could not fail";
+        for (size_t i = 1; i < devices.size(); ++i) {
+            const Image b = render(devices[i], integrator, c, 1, dir);
+            if (b.rgb.empty()) continue;
+            const ImageDifference d = compare_images(b, a);
+            const double box = box4_rel_mse(b, a);
+            std::printf("%s, %s: %s against %s: %s; box-4 relative MSE %.3g (two seeds: %.3g), mean ratio %.9f (its standard error %.2g)\n",
+                        integrator.c_str(), c.what, devices[i].platform_name.c_str(), ref.platform_name.c_str(),
+                        bit_identical(a, b) ? "bit-identical" : "not bit-identical", box, noise_box,
+                        d.mean_a / d.mean_b, sigma_mean / d.mean_b);
+            EXPECT_EQ(d.nonfinite_a, 0u) << devices[i].platform_name << ", " << c.what;
+            EXPECT_LT(box, 1e-3 * noise_box) << integrator << ", " << c.what << ": " << devices[i].platform_name
+                                            << " against " << ref.platform_name;
+            // Same samples: the means differ by far less than one seed's noise.
+            EXPECT_LE(std::fabs(d.mean_a - d.mean_b), 0.05 * sigma_mean)
+                << integrator << ", " << c.what << ": " << devices[i].platform_name << " mean " << d.mean_a << ", "
+                << ref.platform_name << " " << d.mean_b << " (the mean's standard error: " << sigma_mean << ")";
+        }
+    }
+}
+
+} // namespace
+
+TEST(Implementations, Ppm) { expect_same_image_everywhere("ppm"); }
+TEST(Implementations, Sppm) { expect_same_image_everywhere("sppm"); }
+TEST(Implementations, Pppm) { expect_same_image_everywhere("pppm"); }
+TEST(Implementations, PathTracer) { expect_same_image_everywhere("pt"); }
+TEST(Implementations, Vcm) { expect_same_image_everywhere("vcm"); }
+TEST(Implementations, Bpt) { expect_same_image_everywhere("bpt"); }
