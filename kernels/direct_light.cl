@@ -1,12 +1,13 @@
 /* direct_light.cl: explicit direct lighting at the hit points, one light sample per hit point per
  * pass, averaged over passes (used with --direct sample; photons then carry indirect light and
  * caustics only). */
+#include "portability.h"
 #include "rng.cl"
 #include "lights.cl"
 #include "hitpoint.cl"
 
-__kernel void direct_light(SCENE_PARAMS, ulong seed, ulong pass, __global const HitPoint* hitpoints,
-                           __global HitStats* stats, uint num_hitpoints) {
+__kernel SCALAR_WORK_ITEMS void direct_light(SCENE_PARAMS, ulong seed, ulong pass, __global const HitPoint* hitpoints,
+                                             __global HitStats* stats, uint num_hitpoints) {
     uint i = get_global_id(0);
     if (i >= num_hitpoints) return;
     __global const HitPoint* hp = &hitpoints[i];

@@ -24,6 +24,7 @@
 #ifndef CLPPM_DISC_COVERAGE_CL
 #define CLPPM_DISC_COVERAGE_CL
 
+#include "portability.h"
 #include "rng.cl"
 #include "scene.cl"
 #include "hitpoint.cl"
@@ -264,9 +265,10 @@ bool disc_is_whole(SCENE_PARAMS, __global const uchar* open_edges, float3 p, flo
 
 /* coverage[i] for every hit point, with this pass's radius: each hit point's own R (PPM, SPPM) or
  * PPPM's global one (global_r2 > 0). 1 where a pixel has no hit point. */
-__kernel void disc_coverage(SCENE_PARAMS, __global const uchar* open_edges, __global const HitPoint* hitpoints,
-                            __global const HitStats* stats, uint num_hitpoints, float global_r2, ulong seed, ulong pass,
-                            __global float2* coverage) {
+__kernel SCALAR_WORK_ITEMS void disc_coverage(SCENE_PARAMS, __global const uchar* open_edges,
+                                              __global const HitPoint* hitpoints, __global const HitStats* stats,
+                                              uint num_hitpoints, float global_r2, ulong seed, ulong pass,
+                                              __global float2* coverage) {
     uint i = get_global_id(0);
     if (i >= num_hitpoints) return;
     __global const HitPoint* hp = &hitpoints[i];

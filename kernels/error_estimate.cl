@@ -12,6 +12,7 @@
  * 24/pi (2|t|^2 - 1) (K and K' vanish at |t| = 1, so no boundary term). Per pixel for SPPM and
  * PPPM (one visible point each) and for PPM (a pixel's spp fixed hit points); only launched when
  * error estimation is on. */
+#include "portability.h"
 #include "error_bound.cl"
 #include "gather_common.cl"
 #include "radiance_estimate.cl"
@@ -21,10 +22,11 @@
  * sum over accepted photons of (2 rho^2 - 1) Y(w f Phi_p), rho = |x_p - x| / R, in fixed point
  * (FLUX_FIXED_SCALE) so the sum does not depend on the visiting order; 24 / (pi R^4) times it is
  * the pass's Laplacian estimate (error_update). One writer per hit point. */
-__kernel void error_gather(__constant GridInfo* g, __global const Photon* sorted, __global const uint* starts,
-                           __global const HitPoint* hitpoints, __global const HitStats* stats, uint num_hitpoints,
-                           float global_r2, uint accumulate, __global long* out, ulong seed, ulong pass,
-                           __global const float2* coverage) {
+__kernel SCALAR_WORK_ITEMS void error_gather(__constant GridInfo* g, __global const Photon* sorted,
+                                             __global const uint* starts, __global const HitPoint* hitpoints,
+                                             __global const HitStats* stats, uint num_hitpoints, float global_r2,
+                                             uint accumulate, __global long* out, ulong seed, ulong pass,
+                                             __global const float2* coverage) {
     uint i = get_global_id(0);
     if (i >= num_hitpoints) return;
     __global const HitPoint* hp = &hitpoints[i];

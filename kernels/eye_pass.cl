@@ -12,6 +12,7 @@
  * MIS against that, so no hit point is needed for their direct light.
  * Stochastic PPM and PPPM build this with EYE_SLOTS 1 and run it every pass with a new `pass`:
  * one visible point per pixel, every choice sampled, new jitter and lens position each pass. */
+#include "portability.h"
 #include "rng.cl"
 #include "camera.cl"
 #include "bsdf.cl"
@@ -128,8 +129,9 @@ uint surface_branches(const Bsdf* bsdf, float3 wo, float3 weight, Rng* rng, Bran
     return n;
 }
 
-__kernel void eye_pass(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong pass, uint first_sample,
-                       uint num_samples, uint spp, __global HitPoint* hitpoints, __global float4* sample_emission) {
+__kernel SCALAR_WORK_ITEMS void eye_pass(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong pass,
+                                         uint first_sample, uint num_samples, uint spp, __global HitPoint* hitpoints,
+                                         __global float4* sample_emission) {
     uint i = get_global_id(0);
     if (i >= num_samples) return;
     uint gsample = first_sample + i;

@@ -3,13 +3,15 @@
  * writes one hit point: no atomics. Each photon is weighted by the BRDF at the hit point. PPPM passes one global radius instead (global_r2 > 0). Photons arriving from behind the surface, or lying on a
  * surface that faces the other way, are rejected, unless the hit point transmits diffusely
  * (gather_faces). */
+#include "portability.h"
 #include "gather_common.cl"
 #include "dispersion.cl"
 
-__kernel void gather(__constant GridInfo* g, __global const Photon* sorted, __global const uint* starts,
-                     __global const HitPoint* hitpoints, __global const HitStats* stats, uint num_hitpoints,
-                     float global_r2, uint accumulate, __global PassFlux* out, ulong seed, ulong pass,
-                     __global const float2* coverage) {
+__kernel SCALAR_WORK_ITEMS void gather(__constant GridInfo* g, __global const Photon* sorted,
+                                       __global const uint* starts, __global const HitPoint* hitpoints,
+                                       __global const HitStats* stats, uint num_hitpoints, float global_r2,
+                                       uint accumulate, __global PassFlux* out, ulong seed, ulong pass,
+                                       __global const float2* coverage) {
     uint i = get_global_id(0);
     if (i >= num_hitpoints) return;
     __global const HitPoint* hp = &hitpoints[i];

@@ -28,6 +28,7 @@
 #ifndef CLPPM_PHOTON_CHAIN_CL
 #define CLPPM_PHOTON_CHAIN_CL
 
+#include "portability.h"
 #include "photon_trace.cl"
 #include "visibility_mark.cl"
 
@@ -123,12 +124,13 @@ void chain_step(SCENE_PARAMS, PhotonChain* ch, Rng* rng, const PassWavelength* p
 /* Chains [first_chain, first_chain + num_chains) of the pass's, each taking PHOTON_CHAIN_STEPS
  * steps of the pass's num_photons (the last chain fewer): one uniform path per step. Each chain's
  * cached photons move from cache_in to cache_out with it. */
-__kernel void photon_chain_trace(SCENE_PARAMS, ulong seed, ulong pass, uint first_chain, uint num_chains,
-                                 uint skip_direct, __global Photon* photons, uint capacity,
-                                 volatile __global uint* counter SEEN_KERNEL_PARAMS,
-                                 __global const PhotonChain* chains_in, __global PhotonChain* chains_out,
-                                 __global const Photon* cache_in, __global Photon* cache_out,
-                                 volatile __global uint* counts, uint num_photons) {
+__kernel SCALAR_WORK_ITEMS void photon_chain_trace(SCENE_PARAMS, ulong seed, ulong pass, uint first_chain,
+                                                   uint num_chains, uint skip_direct, __global Photon* photons,
+                                                   uint capacity, volatile __global uint* counter SEEN_KERNEL_PARAMS,
+                                                   __global const PhotonChain* chains_in,
+                                                   __global PhotonChain* chains_out, __global const Photon* cache_in,
+                                                   __global Photon* cache_out, volatile __global uint* counts,
+                                                   uint num_photons) {
     uint i = get_global_id(0);
     if (i >= num_chains || info->num_lights == 0) return;
     const uint c = first_chain + i;

@@ -7,6 +7,7 @@
 #ifndef CLPPM_PHOTON_TRACE_CL
 #define CLPPM_PHOTON_TRACE_CL
 
+#include "portability.h"
 #include "rng.cl"
 #include "lights.cl"
 #include "bsdf.cl"
@@ -106,9 +107,9 @@ uint photon_path(SCENE_PARAMS, Rng* rng, const PassWavelength* pw, uint skip_dir
 #define SEEN_KERNEL_PARAMS
 #endif
 
-__kernel void photon_trace(SCENE_PARAMS, ulong seed, ulong pass, uint first_photon, uint num_photons, uint skip_direct,
-                           __global Photon* photons, uint capacity,
-                           volatile __global uint* counter SEEN_KERNEL_PARAMS) {
+__kernel SCALAR_WORK_ITEMS void photon_trace(SCENE_PARAMS, ulong seed, ulong pass, uint first_photon, uint num_photons,
+                                             uint skip_direct, __global Photon* photons, uint capacity,
+                                             volatile __global uint* counter SEEN_KERNEL_PARAMS) {
     uint i = get_global_id(0);
     if (i >= num_photons || info->num_lights == 0) return;
     Rng rng = rng_make(seed, pass, first_photon + i, RNG_PHOTON);

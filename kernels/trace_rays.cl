@@ -3,10 +3,11 @@
  * rays: 8 floats per ray, ox oy oz tmax dx dy dz any_hit (0 or 1, as float).
  * hits: one float4 per ray, (t, u, v, as_float(prim)); a miss is t = -1, prim = 0xffffffff.
  * With -DBVH_STATS, u and v carry the nodes visited and triangles tested instead. */
+#include "portability.h"
 #include "bvh_traverse.cl"
 
-__kernel void trace_rays(__global const BvhNode* nodes, __global const BvhTriBlock* blocks, __global const float* rays,
-                         __global float4* hits, uint n) {
+__kernel SCALAR_WORK_ITEMS void trace_rays(__global const BvhNode* nodes, __global const BvhTriBlock* blocks,
+                                           __global const float* rays, __global float4* hits, uint n) {
     const uint i = get_global_id(0);
     if (i >= n) return;
     const float4 o = vload4(2 * i, rays), d = vload4(2 * i + 1, rays);

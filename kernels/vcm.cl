@@ -403,7 +403,8 @@ __kernel SCALAR_WORK_ITEMS void vcm_camera(SCENE_PARAMS, __constant Camera* cam,
 
 /* Pixel footprints at the first surfaces (pixel centre rays): the distance times the angle one
  * pixel subtends, -1 where the ray leaves the scene (the initial merging radius, as SPPM's). */
-__kernel void vcm_footprint(SCENE_PARAMS, __constant Camera* cam, uint num_pixels, __global float* out) {
+__kernel SCALAR_WORK_ITEMS void vcm_footprint(SCENE_PARAMS, __constant Camera* cam, uint num_pixels,
+                                              __global float* out) {
     uint p = get_global_id(0);
     if (p >= num_pixels) return;
     float3 org, dir;

@@ -6,12 +6,14 @@
 #ifndef CLPPM_VISIBILITY_MARK_CL
 #define CLPPM_VISIBILITY_MARK_CL
 
+#include "portability.h"
 #include "hash_grid.cl"
 
 /* Marks the cells that hit point i's sphere (radius R(x), or global_r2's) overlaps: a photon
  * outside them is gathered by no hit point of this pass. */
-__kernel void visibility_mark(__constant GridInfo* g, __global const HitPoint* hitpoints,
-                              __global const HitStats* stats, uint n, float global_r2, __global uchar* seen) {
+__kernel SCALAR_WORK_ITEMS void visibility_mark(__constant GridInfo* g, __global const HitPoint* hitpoints,
+                                                __global const HitStats* stats, uint n, float global_r2,
+                                                __global uchar* seen) {
     uint i = get_global_id(0);
     if (i >= n) return;
     __global const HitPoint* hp = &hitpoints[i];
