@@ -83,7 +83,7 @@ std::array<double, 2> host_coverage(V3 p, V3 n, double r, double u) {
 }
 
 const char* kWrapper = R"CL(
-__kernel void coverage_at(SCENE_PARAMS, __global const float4* in, __global float2* out) {
+__kernel SCALAR_WORK_ITEMS void coverage_at(SCENE_PARAMS, __global const float4* in, __global float2* out) {
     uint i = get_global_id(0);
     float4 a = in[2 * i], b = in[2 * i + 1];
     out[i] = disc_coverage_at(SCENE_ARGS, a.xyz, b.xyz, a.w, b.w);
@@ -300,7 +300,7 @@ struct BruteForceScene {
 };
 
 const char* kWholeWrapper = R"CL(
-__kernel void whole_at(SCENE_PARAMS, __global const uchar* open_edges, __global const float4* in,
+__kernel SCALAR_WORK_ITEMS void whole_at(SCENE_PARAMS, __global const uchar* open_edges, __global const float4* in,
                        __global int* whole, __global float2* rays) {
     uint i = get_global_id(0);
     float4 a = in[2 * i], b = in[2 * i + 1];
