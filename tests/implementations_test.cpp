@@ -58,7 +58,8 @@ std::vector<Case> cases() {
 }
 
 Image render(const DeviceInfo& d, const std::string& integrator, const Case& c, int seed, const std::string& dir) {
-    const std::string out = dir + "/" + integrator + "_" + std::to_string(d.index) + "_" + std::to_string(seed) + ".exr";
+    const std::string out =
+        dir + "/" + integrator + "_" + std::to_string(d.index) + "_" + std::to_string(seed) + ".exr";
     const std::string args = c.args + " --device " + std::to_string(d.index) + " --integrator " + integrator +
                              " --width 40 --height 40 --passes 8 --photons 20000 --seed " + std::to_string(seed) +
                              " --quiet --no-png -o '" + out + "'";
@@ -69,7 +70,9 @@ Image render(const DeviceInfo& d, const std::string& integrator, const Case& c, 
 }
 
 // Relative MSE of the 4 x 4 box-filtered images.
-double box4_rel_mse(const Image& a, const Image& b) { return compare_images(box_filter(a, 4), box_filter(b, 4)).rel_mse; }
+double box4_rel_mse(const Image& a, const Image& b) {
+    return compare_images(box_filter(a, 4), box_filter(b, 4)).rel_mse;
+}
 
 // The standard error of one image's mean radiance, from the per-pixel differences d of two seeds'
 // images: Var(d) = 2 Var(pixel), so sigma_mean = sd(d) / sqrt(2 N).
@@ -110,13 +113,14 @@ void expect_same_image_everywhere(const std::string& integrator) {
             if (b.rgb.empty()) continue;
             const ImageDifference d = compare_images(b, a);
             const double box = box4_rel_mse(b, a);
-            std::printf("%s, %s: %s against %s: %s; box-4 relative MSE %.3g (two seeds: %.3g), mean ratio %.9f (its standard error %.2g)\n",
+            std::printf("%s, %s: %s against %s: %s; box-4 relative MSE %.3g (two seeds: %.3g), mean ratio %.9f (its "
+                        "standard error %.2g)\n",
                         integrator.c_str(), c.what, devices[i].platform_name.c_str(), ref.platform_name.c_str(),
                         bit_identical(a, b) ? "bit-identical" : "not bit-identical", box, noise_box,
                         d.mean_a / d.mean_b, sigma_mean / d.mean_b);
             EXPECT_EQ(d.nonfinite_a, 0u) << devices[i].platform_name << ", " << c.what;
-            EXPECT_LT(box, 1e-3 * noise_box) << integrator << ", " << c.what << ": " << devices[i].platform_name
-                                            << " against " << ref.platform_name;
+            EXPECT_LT(box, 1e-3 * noise_box)
+                << integrator << ", " << c.what << ": " << devices[i].platform_name << " against " << ref.platform_name;
             // Same samples: the means differ by far less than one seed's noise.
             EXPECT_LE(std::fabs(d.mean_a - d.mean_b), 0.05 * sigma_mean)
                 << integrator << ", " << c.what << ": " << devices[i].platform_name << " mean " << d.mean_a << ", "
