@@ -96,6 +96,10 @@ std::vector<DeviceInfo> list_devices() {
     return out;
 }
 
+std::string DeviceInfo::implementation() const {
+    return platform_name.find("Portable Computing Language") != std::string::npos ? "pocl" : platform_name;
+}
+
 std::string describe_devices(const std::vector<DeviceInfo>& devices) {
     std::ostringstream os;
     if (devices.empty()) {
@@ -104,7 +108,8 @@ std::string describe_devices(const std::vector<DeviceInfo>& devices) {
     }
     for (const DeviceInfo& d : devices) {
         os << "[" << d.index << "] " << d.name << "\n"
-           << "    platform: " << d.platform_name << "\n"
+           << "    platform: " << d.platform_name
+           << (d.implementation() != d.platform_name ? " (--device " + d.implementation() + ")" : std::string()) << "\n"
            << "    type: " << d.type_name() << ", compute units: " << d.compute_units
            << ", memory: " << (d.global_mem >> 20) << " MiB (max allocation " << (d.max_alloc >> 20) << " MiB)\n"
            << "    " << d.opencl_c_version << ", driver " << d.driver_version << ", fp64: " << (d.fp64 ? "yes" : "no")
@@ -138,8 +143,10 @@ const DeviceInfo& select_device(const std::vector<DeviceInfo>& devices, const st
         return fail("no " + s + " device");
     }
     for (const DeviceInfo& d : devices)
-        if (lower(d.name).find(s) != std::string::npos || lower(d.platform_name).find(s) != std::string::npos) return d;
-    return fail("no device name matches");
+        if (lower(d.implementation()).find(s) != std::string::npos) return d;
+    for (const DeviceInfo& d : devices)
+        if (lower(d.name).find(s) != std::string::npos) return d;
+    return fail("no implementation or device name matches");
 }
 
 DeviceContext::DeviceContext(const DeviceInfo& i) : info(i) {

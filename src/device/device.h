@@ -23,6 +23,9 @@ struct DeviceInfo {
     unsigned long long max_alloc = 0;
     bool fp64 = false;
     std::string type_name() const; // "CPU", "GPU", "ACCELERATOR", "OTHER"
+    // The OpenCL implementation, as a --device spec names it: "pocl" for PoCL (whose platform is
+    // "Portable Computing Language"), else the platform's name ("Intel(R) OpenCL", "NVIDIA CUDA").
+    std::string implementation() const;
 };
 
 // Every device of every platform, in a stable order (platform order, then device order).
@@ -32,7 +35,11 @@ std::vector<DeviceInfo> list_devices();
 std::string describe_devices(const std::vector<DeviceInfo>& devices);
 
 // Resolves one --device spec: an index as listed, "cpu", "gpu", or a case-insensitive substring
-// of the device or platform name. Throws Error naming the spec and listing what exists.
+// of an implementation's name (the first device of the first implementation it names: "pocl",
+// "intel", "nvidia"), else of a device's name. Implementations come first because device names
+// repeat the processor's: PoCL calls its CPU device "pthread-skylake-avx512-Intel(R) Xeon(R) ...",
+// so "intel" picked PoCL wherever it was listed first. Throws Error naming the spec and listing
+// what exists.
 const DeviceInfo& select_device(const std::vector<DeviceInfo>& devices, const std::string& spec);
 
 // Device, context and in-order queue (profiling enabled) used by one render.

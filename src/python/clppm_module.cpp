@@ -288,6 +288,7 @@ py::object device_list() {
         out.push_back({{"index", d.index},
                        {"name", d.name},
                        {"platform", d.platform_name},
+                       {"implementation", d.implementation()},
                        {"type", d.type_name()},
                        {"driver", d.driver_version},
                        {"compute_units", d.compute_units},

@@ -135,7 +135,7 @@ def test_the_gil_is_released_while_passes_run():
 
 def test_devices_are_listed():
     devices = clppm.devices()
-    assert devices and {"index", "name", "type", "fp64"} <= set(devices[0])
+    assert devices and {"index", "name", "platform", "implementation", "type", "fp64"} <= set(devices[0])
     assert devices[0]["index"] == 0
 
 
