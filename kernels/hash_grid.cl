@@ -5,6 +5,7 @@
 #ifndef CLPPM_HASH_GRID_CL
 #define CLPPM_HASH_GRID_CL
 
+#include "portability.h"
 #include "shared_types.h"
 #include "sampling.cl"
 
@@ -27,7 +28,8 @@ uint grid_bucket(__constant GridInfo* g, int3 c) {
     return h & (g->table_size - 1u);
 }
 
-__kernel void grid_count(__constant GridInfo* g, __global const GRID_ELEM* photons, volatile __global uint* counts) {
+__kernel SCALAR_WORK_ITEMS void grid_count(__constant GridInfo* g, __global const GRID_ELEM* photons,
+                                           volatile __global uint* counts) {
     uint i = get_global_id(0);
     if (i >= g->num_photons) return;
     atomic_inc(&counts[grid_bucket(g, grid_cell(g, load3g(photons[i].pos)))]);
@@ -64,8 +66,9 @@ __kernel __attribute__((reqd_work_group_size(GRID_SCAN_WG, 1, 1))) void grid_sca
 }
 
 /* counts still holds the per-bucket counts; counting down gives each photon a distinct slot. */
-__kernel void grid_scatter(__constant GridInfo* g, __global const GRID_ELEM* photons, __global const uint* starts,
-                           volatile __global uint* counts, __global GRID_ELEM* sorted) {
+__kernel SCALAR_WORK_ITEMS void grid_scatter(__constant GridInfo* g, __global const GRID_ELEM* photons,
+                                             __global const uint* starts, volatile __global uint* counts,
+                                             __global GRID_ELEM* sorted) {
     uint i = get_global_id(0);
     if (i >= g->num_photons) return;
     GRID_ELEM ph = photons[i];
