@@ -1,0 +1,50 @@
+#!/usr/bin/env bash
+# Every integrator's speed on every CPU OpenCL implementation here, side by side (issue 58): PoCL
+# and Intel's CPU runtime (installed from PyPI into BUILD_DIR/intel-opencl by
+# scripts/intel_opencl_env.sh), on the Cornell box and the diffuse box at 128x128, SECONDS of
+# rendering a run, rounds interleaved. Prints a Markdown table of passes per second (median of the
+# rounds, from --stats-json) and CPU seconds per pass (GNU time, user + system), and the ratio of
+# each implementation to PoCL.
+#
+#   bench/implementations.sh [BUILD_DIR]   (env: ROUNDS=3, SECONDS_PER_RUN=8, INTEGRATORS="ppm sppm pppm pt vcm bpt")
+set -euo pipefail
+here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+build=$(cd "${1:-$here/build}" && pwd)
+rounds=${ROUNDS:-3}
+seconds=${SECONDS_PER_RUN:-8}
+integrators=${INTEGRATORS:-ppm sppm pppm pt vcm bpt}
+set +e
+source "$here/scripts/intel_opencl_env.sh" "$build" || exit $?
+set -e
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+python3 "$here/bench/cornell_diffuse.py" "$here/scenes/cornell_box.gltf" "$tmp/cornell_diffuse.gltf"
+devices=(pocl "Intel(R) OpenCL")
+echo "machine: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs), $(nproc) cores"
+echo
+echo "| scene | integrator | PoCL passes/s | Intel passes/s | Intel / PoCL | PoCL CPU s/pass | Intel CPU s/pass |"
+echo "|---|---|---:|---:|---:|---:|---:|"
+for scene in cornell_box cornell_diffuse; do
+  file="$here/scenes/cornell_box.gltf"
+  [ "$scene" = cornell_diffuse ] && file="$tmp/cornell_diffuse.gltf"
+  for integrator in $integrators; do
+    declare -A pps=() cpu=()
+    for r in $(seq "$rounds"); do
+      for k in 0 1; do
+        /usr/bin/time -f "%U %S" -o "$tmp/time" "$build/clppm" "$file" --device "${devices[$k]}" \
+          --integrator "$integrator" --width 128 --height 128 --time "$seconds" --quiet --no-png \
+          -o "$tmp/out.exr" --stats-json "$tmp/stats.json"
+        read -r u s <"$tmp/time"
+        read -r p n < <(python3 -c "import json; j = json.load(open('$tmp/stats.json')); print(j['passes_per_second'], j['passes'])")
+        pps[$k]="${pps[$k]:-} $p"
+        cpu[$k]="${cpu[$k]:-} $(python3 -c "print(($u + $s) / max($n, 1))")"
+      done
+    done
+    python3 - "$scene" "$integrator" "${pps[0]}" "${pps[1]}" "${cpu[0]}" "${cpu[1]}" <<'EOF'
+import statistics, sys
+scene, integ = sys.argv[1:3]
+p0, p1, c0, c1 = (statistics.median(map(float, a.split())) for a in sys.argv[3:7])
+print(f"| {scene} | {integ} | {p0:.2f} | {p1:.2f} | {p1 / p0:.2f} | {c0:.4f} | {c1:.4f} |")
+EOF
+  done
+done
