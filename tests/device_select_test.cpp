@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "device/device.h"
+#include "render/device_choice.h"
 #include "util/error.h"
 
 using namespace clppm;
@@ -61,4 +62,15 @@ TEST(DeviceSelect, NothingMatchesIsAnErrorListingTheDevices) {
         EXPECT_NE(m.find("--device radeon: no implementation or device name matches"), std::string::npos) << m;
         EXPECT_NE(m.find("[1] Intel(R) Xeon(R) Processor (CPU)"), std::string::npos) << m;
     }
+}
+
+TEST(DeviceSelect, WithoutASpecAGpuElsePoclsCpu) {
+    auto devices = three_implementations();
+    EXPECT_EQ(choose_devices({}, devices).at(0).index, 2);
+    devices.pop_back(); // no GPU
+    std::swap(devices[0], devices[1]);
+    devices[0].index = 0, devices[1].index = 1; // Intel's runtime listed first
+    EXPECT_EQ(choose_devices({}, devices).at(0).implementation(), "pocl");
+    devices.pop_back(); // Intel's alone
+    EXPECT_EQ(choose_devices({}, devices).at(0).implementation(), "Intel(R) OpenCL");
 }

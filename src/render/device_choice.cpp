@@ -22,6 +22,11 @@ std::vector<DeviceInfo> choose_devices(const std::vector<std::string>& specs, co
     if (!chosen.empty()) return chosen;
     for (const DeviceInfo& d : devices)
         if (d.type & CL_DEVICE_TYPE_GPU) return {d};
+    // Several CPU implementations (PoCL and Intel's runtime): PoCL, which was as fast or faster for
+    // every integrator (bench/RESULTS.md, "Intel's CPU runtime beside PoCL"), whichever the
+    // loader lists first.
+    for (const DeviceInfo& d : devices)
+        if ((d.type & CL_DEVICE_TYPE_CPU) && d.implementation() == "pocl") return {d};
     return {select_device(devices, "0")};
 }
 

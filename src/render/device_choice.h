@@ -1,5 +1,6 @@
 // The devices a render runs on, the first of them primary: every --device spec in order ("all":
-// every device), else the first GPU, else device 0. A device named twice is an error.
+// every device), else the first GPU, else PoCL's CPU device, else device 0. A device named twice
+// is an error.
 #pragma once
 #include <string>
 #include <vector>
