@@ -32,24 +32,27 @@ std::vector<DeviceInfo> three_implementations() {
 
 } // namespace
 
-TEST(DeviceSelect, ImplementationsByName) {
+TEST(DeviceSelect, ImplementationsThenDevicesByName) {
     const auto devices = three_implementations();
     EXPECT_EQ(devices[0].implementation(), "pocl");
     EXPECT_EQ(devices[1].implementation(), "Intel(R) OpenCL");
-    EXPECT_EQ(select_device(devices, "intel").index, 1) << "PoCL's device name has Intel in it too";
-    EXPECT_EQ(select_device(devices, "Intel").index, 1);
-    EXPECT_EQ(select_device(devices, "pocl").index, 0);
-    EXPECT_EQ(select_device(devices, "PoCL").index, 0);
-    EXPECT_EQ(select_device(devices, "nvidia").index, 2);
-}
-
-TEST(DeviceSelect, DevicesByNameIndexAndType) {
-    const auto devices = three_implementations();
-    EXPECT_EQ(select_device(devices, "xeon").index, 0) << "no implementation is called xeon: the first device";
-    EXPECT_EQ(select_device(devices, "h100").index, 2);
-    EXPECT_EQ(select_device(devices, "1").index, 1);
-    EXPECT_EQ(select_device(devices, "gpu").index, 2);
-    EXPECT_EQ(select_device(devices, "cpu").index, 0);
+    const struct {
+        const char* spec;
+        int index;
+        const char* why;
+    } cases[] = {
+        {"intel", 1, "PoCL's device name has Intel in it too"},
+        {"Intel", 1, "any case"},
+        {"pocl", 0, "PoCL's short name"},
+        {"PoCL", 0, "any case"},
+        {"nvidia", 2, "a platform's name"},
+        {"xeon", 0, "no implementation is called xeon: the first device"},
+        {"h100", 2, "a device's name"},
+        {"1", 1, "an index"},
+        {"gpu", 2, "a type"},
+        {"cpu", 0, "a type"},
+    };
+    for (const auto& c : cases) EXPECT_EQ(select_device(devices, c.spec).index, c.index) << c.spec << ": " << c.why;
 }
 
 TEST(DeviceSelect, NothingMatchesIsAnErrorListingTheDevices) {
