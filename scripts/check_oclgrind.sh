@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
 # Every kernel under oclgrind (issue 58): Debian's OpenCL simulator reports invalid memory
 # accesses, reads of uninitialised values (--uninitialized) and data races between work items
-# (--data-races). Small renders that together launch every kernel program: each integrator, error
-# estimation, the photon chains, the generic program (every feature compiled in), textures and an
-# environment map, dispersion. The check passes when oclgrind reports nothing at all.
+# (--data-races). Small renders of PPM, SPPM, PPPM and the path tracer, error estimation, textures
+# and an environment map, dispersion and the sun and sky (the cases below; what is not yet clean is
+# listed after). The check passes when oclgrind reports nothing at all.
 #
 # Two things make oclgrind 21.10 usable here, neither of which changes an image:
 #   - -cl-opt-disable: its optimiser turns the kernels' bit tricks into llvm.bitreverse and

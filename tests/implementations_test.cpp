@@ -11,6 +11,7 @@
 // BPT there (kernels/portability.h), which these tests caught.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -31,13 +32,13 @@ std::vector<DeviceInfo> one_cpu_per_platform() {
     std::vector<DeviceInfo> out;
     for (const DeviceInfo& d : list_devices()) {
         if (!(d.type & CL_DEVICE_TYPE_CPU)) continue;
-        bool seen = false;
-        for (const DeviceInfo& o : out) seen = seen || o.platform_name == d.platform_name;
-        if (!seen) out.push_back(d);
+        if (std::none_of(out.begin(), out.end(),
+                         [&](const DeviceInfo& o) { return o.platform_name == d.platform_name; }))
+            out.push_back(d);
     }
     // PoCL first: the implementation the rest of the suite is proven on is the reference.
     for (size_t i = 1; i < out.size(); ++i)
-        if (out[i].platform_name.find("Portable Computing Language") != std::string::npos) std::swap(out[0], out[i]);
+        if (out[i].implementation() == "pocl") std::swap(out[0], out[i]);
     return out;
 }
 
