@@ -20,7 +20,7 @@ fi
 "$build/clppm" --list-devices
 
 status=0
-"$build/tests/implementations_test" || status=1
+CLPPM_REQUIRE_IMPLEMENTATIONS=1 "$build/tests/implementations_test" || status=1
 # Each kernel against its host reference, on Intel's runtime (the render-level tests of these
 # binaries run on PoCL in the main suite; the integrators' images are compared above).
 export CLPPM_TEST_DEVICE="Intel(R) OpenCL"
