@@ -105,8 +105,8 @@ std::string environment_help() {
         {"CLPPM_PHOTON_BATCH", "trace each pass's photons in batches of at most this many (the image does not change)"},
         {"CLPPM_PASS_BATCH",
          "the path tracer: run at most this many passes a launch (1: one; the image does not change)"},
-        {"CLPPM_FILL_BY_WRITE", "1: clear device buffers by host writes instead of clEnqueueFillBuffer (for oclgrind; "
-                                "the image does not change)"},
+        {"CLPPM_OCLGRIND", "1: handle device buffers as oclgrind's check for uninitialised values needs (host "
+                           "writes for fills, no buffer released before exit; the image does not change)"},
         {"POCL_DEVICES", "PoCL's devices, e.g. \"pthread pthread\" for two CPU devices (--device all)"}};
     std::string out = "Environment:\n";
     for (const auto& [name, what] : env) {

@@ -2,16 +2,43 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <cstring>
+#include <mutex>
 #include <string>
 
 namespace clppm {
 
-bool fill_by_write() {
+bool oclgrind_mode() {
     static const bool on = [] {
-        const char* e = std::getenv("CLPPM_FILL_BY_WRITE");
+        const char* e = std::getenv("CLPPM_OCLGRIND");
         return e && *e && std::string(e) != "0";
     }();
     return on;
+}
+
+cl::Buffer make_buffer(const cl::Context& context, cl_mem_flags flags, size_t bytes, void* host) {
+    cl::Buffer b(context, flags, bytes, host);
+    if (oclgrind_mode()) {
+        // Never destroyed: released at exit, its slot is never handed to another buffer.
+        static std::mutex lock;
+        static auto* kept = new std::vector<cl::Buffer>;
+        const std::lock_guard<std::mutex> hold(lock);
+        kept->push_back(b);
+    }
+    return b;
+}
+
+void write_bytes(const cl::CommandQueue& q, const cl::Buffer& b, size_t offset, size_t bytes, const void* data) {
+    if (bytes == 0) return;
+    const size_t size = oclgrind_mode() ? b.getInfo<CL_MEM_SIZE>() : 0;
+    if (!oclgrind_mode() || (offset == 0 && bytes == size)) {
+        q.enqueueWriteBuffer(b, CL_TRUE, offset, bytes, data);
+        return;
+    }
+    std::vector<unsigned char> whole(size);
+    q.enqueueReadBuffer(b, CL_TRUE, 0, size, whole.data());
+    std::memcpy(whole.data() + offset, data, bytes);
+    q.enqueueWriteBuffer(b, CL_TRUE, 0, size, whole.data());
 }
 
 void enqueue_1d(const cl::CommandQueue& queue, const cl::Kernel& kernel, size_t n, cl::Event* event) {

@@ -1,4 +1,5 @@
 #include "integrators/batched_trace.h"
+#include "device/kernel_launch.h"
 
 #include <algorithm>
 #include <cstdlib>
@@ -33,7 +34,7 @@ BatchedTrace::BatchedTrace(const DeviceContext& dc, size_t record_bytes, uint64_
         batch = std::min<uint64_t>(batch, std::strtoull(e, nullptr, 10));
     batch = std::min<uint64_t>(batch, max_capacity_ / per_item_);
     batch_ = uint32_t(std::clamp<uint64_t>(batch, 1, 0x7fffffffu));
-    counter_ = cl::Buffer(dc.context, CL_MEM_READ_WRITE, sizeof(cl_uint));
+    counter_ = make_buffer(dc.context, CL_MEM_READ_WRITE, sizeof(cl_uint));
 }
 
 BatchedTrace::~BatchedTrace() {
@@ -45,8 +46,8 @@ BatchedTrace::~BatchedTrace() {
 
 void BatchedTrace::allocate(uint32_t capacity) {
     capacity_ = capacity;
-    records_ = cl::Buffer(dc_.context, CL_MEM_READ_WRITE, size_t(capacity) * record_bytes_);
-    sorted_ = cl::Buffer(dc_.context, CL_MEM_READ_WRITE, size_t(capacity) * record_bytes_);
+    records_ = make_buffer(dc_.context, CL_MEM_READ_WRITE, size_t(capacity) * record_bytes_);
+    sorted_ = make_buffer(dc_.context, CL_MEM_READ_WRITE, size_t(capacity) * record_bytes_);
 }
 
 void BatchedTrace::ensure_allocated() {

@@ -217,7 +217,7 @@ ErrorEstimator::ErrorEstimator(const DeviceContext& dc, const cl::Program& progr
     k_bound_ = cl::Kernel(program, layout_.path_traced ? "pt_error_bound" : "error_bound");
     auto make = [&](size_t bytes) {
         stats_.device_bytes += bytes;
-        return cl::Buffer(dc_.context, CL_MEM_READ_WRITE, std::max<size_t>(bytes, 1));
+        return make_buffer(dc_.context, CL_MEM_READ_WRITE, std::max<size_t>(bytes, 1));
     };
     if (!layout_.path_traced)
         laplacian_ = make(size_t(layout_.num_hitpoints ? layout_.num_hitpoints : n_) * sizeof(cl_long));

@@ -20,7 +20,7 @@ HashGrid::HashGrid(const DeviceContext& dc, const cl::Program& program, Integrat
     k_count_ = cl::Kernel(program, "grid_count");
     k_scan_ = cl::Kernel(program, "grid_scan");
     k_scatter_ = cl::Kernel(program, "grid_scatter");
-    info_ = cl::Buffer(dc.context, CL_MEM_READ_ONLY, sizeof(dev::GridInfo));
+    info_ = make_buffer(dc.context, CL_MEM_READ_ONLY, sizeof(dev::GridInfo));
 }
 
 void HashGrid::build(const cl::Buffer& elements, const cl::Buffer& sorted, uint32_t n, const float origin[3],
@@ -33,8 +33,8 @@ void HashGrid::build(const cl::Buffer& elements, const cl::Buffer& sorted, uint3
     g.table_size = hash_grid_table_size(n);
     if (g.table_size != table_size_) {
         table_size_ = g.table_size;
-        counts_ = cl::Buffer(dc_.context, CL_MEM_READ_WRITE, size_t(table_size_) * sizeof(cl_uint));
-        starts_ = cl::Buffer(dc_.context, CL_MEM_READ_WRITE, size_t(table_size_ + 1) * sizeof(cl_uint));
+        counts_ = make_buffer(dc_.context, CL_MEM_READ_WRITE, size_t(table_size_) * sizeof(cl_uint));
+        starts_ = make_buffer(dc_.context, CL_MEM_READ_WRITE, size_t(table_size_ + 1) * sizeof(cl_uint));
     }
     dc_.queue.enqueueWriteBuffer(info_, CL_FALSE, 0, sizeof g, &g);
     fill_buffer(dc_.queue, counts_, cl_uint(0), 0, size_t(table_size_) * sizeof(cl_uint));

@@ -25,12 +25,12 @@ PhotonChains::PhotonChains(const DeviceContext& dc, const cl::Program& program, 
     k_mark_ = cl::Kernel(program, "visibility_mark");
     const size_t bytes = size_t(chains) * sizeof(dev::PhotonChain);
     for (cl::Buffer& b : chains_) {
-        b = cl::Buffer(dc.context, CL_MEM_READ_WRITE, bytes);
+        b = make_buffer(dc.context, CL_MEM_READ_WRITE, bytes);
         fill_buffer(dc.queue, b, cl_uchar(0), 0, bytes); // step 0: no state yet
     }
-    for (cl::Buffer& b : cache_) b = cl::Buffer(dc.context, CL_MEM_READ_WRITE, cache_bytes(chains));
-    counts_ = cl::Buffer(dc.context, CL_MEM_READ_WRITE, CHAIN_COUNTS * sizeof(cl_uint));
-    grid_info_ = cl::Buffer(dc.context, CL_MEM_READ_ONLY, sizeof(dev::GridInfo));
+    for (cl::Buffer& b : cache_) b = make_buffer(dc.context, CL_MEM_READ_WRITE, cache_bytes(chains));
+    counts_ = make_buffer(dc.context, CL_MEM_READ_WRITE, CHAIN_COUNTS * sizeof(cl_uint));
+    grid_info_ = make_buffer(dc.context, CL_MEM_READ_ONLY, sizeof(dev::GridInfo));
 }
 
 size_t PhotonChains::memory_needed(uint64_t chains, uint64_t hitpoints) {
@@ -46,7 +46,7 @@ void PhotonChains::mark(const cl::Buffer& hitpoints, const cl::Buffer& hit_stats
                         const float origin[3], double cell) {
     if (table_size_ == 0) { // the first pass fixes the cells; later passes add to the marks
         table_size_ = seen_table_size(n);
-        seen_ = cl::Buffer(dc_.context, CL_MEM_READ_WRITE, table_size_);
+        seen_ = make_buffer(dc_.context, CL_MEM_READ_WRITE, table_size_);
         grid_ = dev::GridInfo{};
         for (int k = 0; k < 3; ++k) grid_.origin[k] = origin[k];
         grid_.inv_cell = float(1.0 / cell);
@@ -126,7 +126,7 @@ void PhotonChains::restore(const Checkpoint& ck) {
     }
     if (!grid_ok) throw Error(ck.path + ": checkpoint lacks the photon chains' cells (photon_seen_grid)");
     table_size_ = grid_.table_size;
-    seen_ = cl::Buffer(dc_.context, CL_MEM_READ_WRITE, table_size_);
+    seen_ = make_buffer(dc_.context, CL_MEM_READ_WRITE, table_size_);
     write_buffer(dc_.queue, seen_, ck.get<unsigned char>("photon_seen_cells", table_size_));
     dc_.queue.enqueueWriteBuffer(grid_info_, CL_TRUE, 0, sizeof grid_, &grid_);
     std::vector<dev::PhotonChain> chains = ck.get<dev::PhotonChain>("photon_chains", chains_count_);

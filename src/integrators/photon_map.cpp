@@ -124,7 +124,7 @@ void PhotonMap::measure_coverage(uint64_t pass, const cl::Buffer& hitpoints, con
                                  float global_r2) {
     if (n == 0) return;
     if (n > coverage_capacity_) {
-        coverage_ = cl::Buffer(dc_.context, CL_MEM_READ_WRITE, size_t(n) * sizeof(cl_float2));
+        coverage_ = make_buffer(dc_.context, CL_MEM_READ_WRITE, size_t(n) * sizeof(cl_float2));
         coverage_capacity_ = n;
     }
     if (!disc_coverage_wanted(settings_.disc_coverage, n, settings_.photons)) {
@@ -138,7 +138,7 @@ void PhotonMap::measure_coverage(uint64_t pass, const cl::Buffer& hitpoints, con
                                     blocks.data());
         std::vector<uint8_t> open = open_edges(blocks, scene_.info.num_tris);
         if (open.empty()) open.push_back(0); // a buffer cannot be empty
-        open_edges_ = cl::Buffer(dc_.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, open.size(), open.data());
+        open_edges_ = make_buffer(dc_.context, CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, open.size(), open.data());
     }
     set_args(k_coverage_, scene_.set_scene_args(k_coverage_), open_edges_, hitpoints, stats, cl_uint(n),
              cl_float(global_r2), cl_ulong(settings_.seed), cl_ulong(pass), coverage_);

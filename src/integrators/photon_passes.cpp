@@ -42,9 +42,9 @@ struct PhotonPasses::Worker {
     void ensure(uint32_t n) {
         if (n <= capacity) return;
         capacity = n;
-        hitpoints = cl::Buffer(dc.context, CL_MEM_READ_ONLY, size_t(n) * sizeof(dev::HitPoint));
-        hstats = cl::Buffer(dc.context, CL_MEM_READ_ONLY, size_t(n) * sizeof(dev::HitStats));
-        out = cl::Buffer(dc.context, CL_MEM_READ_WRITE, size_t(n) * sizeof(dev::PassFlux));
+        hitpoints = make_buffer(dc.context, CL_MEM_READ_ONLY, size_t(n) * sizeof(dev::HitPoint));
+        hstats = make_buffer(dc.context, CL_MEM_READ_ONLY, size_t(n) * sizeof(dev::HitStats));
+        out = make_buffer(dc.context, CL_MEM_READ_WRITE, size_t(n) * sizeof(dev::PassFlux));
     }
 };
 
@@ -102,10 +102,8 @@ void PhotonPasses::run_pass(uint64_t pass, const cl::Buffer& hitpoints, const cl
     rank_balance_.record(count, now_s() - t0); // this rank's own work, up to its sums read back
     cl.sum(v.data(), v.size());
     if (n > 0) {
-        dc_.queue.enqueueWriteBuffer(out, CL_TRUE, 0, size_t(n) * sizeof(dev::PassFlux), v.data());
-        if (second)
-            dc_.queue.enqueueWriteBuffer(second_out_, CL_TRUE, 0, size_t(n) * sizeof(int64_t),
-                                         v.data() + size_t(n) * 4);
+        write_bytes(dc_.queue, out, 0, size_t(n) * sizeof(dev::PassFlux), v.data());
+        if (second) write_bytes(dc_.queue, second_out_, 0, size_t(n) * sizeof(int64_t), v.data() + size_t(n) * 4);
     }
     stats_.photons_stored = stored_before + uint64_t(v.back());
     stats_.rank_photons = rank_split_;

@@ -27,10 +27,10 @@ PixelSumIntegrator::PixelSumIntegrator(const DeviceContext& dc, const DeviceScen
 
 void PixelSumIntegrator::allocate_sum() {
     const size_t sum = std::max<size_t>(size_t(num_pixels_) * kSumBytesPerPixel, 8);
-    accum_ = cl::Buffer(dc_.context, CL_MEM_READ_WRITE, sum);
+    accum_ = make_buffer(dc_.context, CL_MEM_READ_WRITE, sum);
     fill_buffer(dc_.queue, accum_, cl_double(0), 0, sum);
     const size_t film = std::max<size_t>(size_t(num_pixels_) * kFilmBytesPerPixel, 8);
-    image_buf_ = cl::Buffer(dc_.context, CL_MEM_READ_WRITE, film);
+    image_buf_ = make_buffer(dc_.context, CL_MEM_READ_WRITE, film);
     stats_.device_bytes += sum + film;
     stats_.hitpoints = num_pixels_;
     if (errors_) errors_->reset(accum_);

@@ -89,8 +89,9 @@ ErrorImage PpmIntegrator::error_estimate(double confidence) {
 void PpmIntegrator::eye_pass() {
     const uint64_t total_samples = uint64_t(num_pixels_) * settings_.spp;
     const uint32_t batch = uint32_t(eye_batch(num_pixels_, settings_.spp));
-    cl::Buffer slots(dc_.context, CL_MEM_WRITE_ONLY, size_t(batch) * PPM_EYE_SLOTS * sizeof(dev::HitPoint));
-    cl::Buffer sample_emission(dc_.context, CL_MEM_WRITE_ONLY, size_t(batch) * sizeof(cl_float4));
+    cl::Buffer slots =
+        make_buffer(dc_.context, CL_MEM_WRITE_ONLY, size_t(batch) * PPM_EYE_SLOTS * sizeof(dev::HitPoint));
+    cl::Buffer sample_emission = make_buffer(dc_.context, CL_MEM_WRITE_ONLY, size_t(batch) * sizeof(cl_float4));
     stats_.device_bytes += size_t(batch) * (PPM_EYE_SLOTS * sizeof(dev::HitPoint) + sizeof(cl_float4));
     std::vector<dev::HitPoint> host_slots(size_t(batch) * PPM_EYE_SLOTS);
     std::vector<cl_float4> host_emission(batch);
@@ -149,8 +150,8 @@ void PpmIntegrator::eye_pass() {
     if (hitpoints.empty()) hitpoints.resize(1); // buffers must not be empty; num_hitpoints_ stays 0
     auto make = [&](cl_mem_flags f, size_t bytes, const void* src) {
         stats_.device_bytes += bytes;
-        return src ? cl::Buffer(dc_.context, f | CL_MEM_COPY_HOST_PTR, bytes, const_cast<void*>(src))
-                   : cl::Buffer(dc_.context, f, bytes);
+        return src ? make_buffer(dc_.context, f | CL_MEM_COPY_HOST_PTR, bytes, const_cast<void*>(src))
+                   : make_buffer(dc_.context, f, bytes);
     };
     hitpoints_ = make(CL_MEM_READ_ONLY, hitpoints.size() * sizeof(dev::HitPoint), hitpoints.data());
     stats_buf_ = make(CL_MEM_READ_WRITE, hstats.size() * sizeof(dev::HitStats), hstats.data());

@@ -38,7 +38,7 @@ void SppmIntegrator::prepare() {
     const size_t n = num_pixels_;
     auto make = [&](size_t bytes) {
         stats_.device_bytes += bytes;
-        return cl::Buffer(dc_.context, CL_MEM_READ_WRITE, bytes);
+        return make_buffer(dc_.context, CL_MEM_READ_WRITE, bytes);
     };
     hitpoints_ = make(n * sizeof(dev::HitPoint));
     sample_emission_ = make(n * sizeof(cl_float4));

@@ -95,7 +95,7 @@ void VcmIntegrator::prepare() {
     const size_t n = num_pixels_;
     auto make = [&](size_t bytes) {
         stats_.device_bytes += bytes;
-        return cl::Buffer(dc_.context, CL_MEM_READ_WRITE, std::max<size_t>(bytes, 8));
+        return make_buffer(dc_.context, CL_MEM_READ_WRITE, std::max<size_t>(bytes, 8));
     };
     allocate_sum();
     pass_sum_ = make(n * 3 * sizeof(cl_double));
@@ -106,7 +106,7 @@ void VcmIntegrator::prepare() {
     // Merging takes most of the weight on diffuse surfaces (eta = pi r^2 N_L is large), so its
     // bias is the image's: on the diffuse box at 48x48, 256 passes, SPPM's radius (0.126) left the
     // mean 1.7% low and r = 0.05 0.1% (tests/vcm_test.cpp).
-    cl::Buffer fp(dc_.context, CL_MEM_WRITE_ONLY, std::max<size_t>(n, 1) * sizeof(cl_float));
+    cl::Buffer fp = make_buffer(dc_.context, CL_MEM_WRITE_ONLY, std::max<size_t>(n, 1) * sizeof(cl_float));
     set_args(k_footprint_, scene_.set_scene_args(k_footprint_), scene_.camera_buf, cl_uint(num_pixels_), fp);
     enqueue_1d(dc_.queue, k_footprint_, n);
     std::vector<float> all = read_buffer<cl_float>(dc_.queue, fp, n), footprints;
@@ -212,7 +212,7 @@ void VcmIntegrator::render_on_devices(uint64_t pass, const PixelRanges& ranges) 
             const size_t offset = size_t(at) * 3 * sizeof(cl_double);
             dc_.queue.enqueueReadBuffer(accum_, CL_TRUE, offset, sum.size() * sizeof(double), sum.data());
             for (size_t i = 0; i < sum.size(); ++i) sum[i] += workers_[k]->result[i];
-            dc_.queue.enqueueWriteBuffer(accum_, CL_TRUE, offset, sum.size() * sizeof(double), sum.data());
+            write_bytes(dc_.queue, accum_, offset, sum.size() * sizeof(double), sum.data());
         }
         at += count;
     }

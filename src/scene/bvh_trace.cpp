@@ -1,4 +1,5 @@
 #include "scene/bvh_trace.h"
+#include "device/kernel_launch.h"
 
 #include <algorithm>
 
@@ -12,7 +13,7 @@ template <class T>
 cl::Buffer upload(const DeviceContext& dc, const std::vector<T>& v) {
     // Zero-sized buffers are invalid in OpenCL: an empty array still gets one element.
     const size_t bytes = std::max<size_t>(1, v.size()) * sizeof(T);
-    cl::Buffer b(dc.context, CL_MEM_READ_ONLY, bytes);
+    cl::Buffer b = make_buffer(dc.context, CL_MEM_READ_ONLY, bytes);
     if (!v.empty()) dc.queue.enqueueWriteBuffer(b, CL_TRUE, 0, v.size() * sizeof(T), v.data());
     return b;
 }
@@ -49,7 +50,7 @@ std::vector<TraceHit> RayTracer::trace(const DeviceBvh& bvh, const std::vector<T
     std::vector<TraceHit> hits(rays.size());
     if (rays.empty()) return hits;
     cl::Buffer ray_buf = upload(dc_, rays);
-    cl::Buffer hit_buf(dc_.context, CL_MEM_WRITE_ONLY, hits.size() * sizeof(TraceHit));
+    cl::Buffer hit_buf = make_buffer(dc_.context, CL_MEM_WRITE_ONLY, hits.size() * sizeof(TraceHit));
     enqueue(bvh, ray_buf, hit_buf, uint32_t(rays.size()), local_size);
     dc_.queue.enqueueReadBuffer(hit_buf, CL_TRUE, 0, hits.size() * sizeof(TraceHit), hits.data());
     return hits;

@@ -1,4 +1,5 @@
 #include "scene/device_scene.h"
+#include "device/kernel_launch.h"
 
 #include <algorithm>
 #include <array>
@@ -40,7 +41,7 @@ void store4(float out[4], V3 v, float w = 0.f) {
 template <class T>
 cl::Buffer upload(const DeviceContext& dc, const std::vector<T>& data, size_t* bytes) {
     size_t n = std::max<size_t>(1, data.size()) * sizeof(T); // OpenCL forbids empty buffers
-    cl::Buffer b(dc.context, CL_MEM_READ_ONLY, n);
+    cl::Buffer b = make_buffer(dc.context, CL_MEM_READ_ONLY, n);
     if (!data.empty()) dc.queue.enqueueWriteBuffer(b, CL_TRUE, 0, data.size() * sizeof(T), data.data());
     *bytes += n;
     return b;
@@ -213,7 +214,7 @@ cl::Buffer copy_buffer(const cl::Buffer& src, const DeviceContext& from, const D
     const size_t bytes = src.getInfo<CL_MEM_SIZE>();
     std::vector<unsigned char> data(bytes);
     from.queue.enqueueReadBuffer(src, CL_TRUE, 0, bytes, data.data());
-    cl::Buffer dst(to.context, CL_MEM_READ_ONLY, bytes);
+    cl::Buffer dst = make_buffer(to.context, CL_MEM_READ_ONLY, bytes);
     to.queue.enqueueWriteBuffer(dst, CL_TRUE, 0, bytes, data.data());
     return dst;
 }
