@@ -79,7 +79,7 @@ float4 triangle_uv(SCENE_PARAMS, uint prim, float b1, float b2) {
                 (float2)(sh->uv2[0], sh->uv2[1]) * b2;
     float2 t1 = t0;
     if (HAS_TEXTURES && info->texcoord1) t1 = uv1[3 * prim] * b0 + uv1[3 * prim + 1] * b1 + uv1[3 * prim + 2] * b2;
-    return (float4)(t0, t1);
+    return (float4)(t0.x, t0.y, t1.x, t1.y); /* oclgrind 21.10's --uninitialized crashes on (t0, t1) */
 }
 
 /* KHR_materials_anisotropy: the direction the GGX lobe stretches along, in the tangent plane of
