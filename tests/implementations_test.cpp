@@ -136,6 +136,34 @@ void expect_same_image_everywhere(const std::string& integrator) {
 
 } // namespace
 
+// --device auto renders a moment on each implementation and picks one (render/device_auto.h): it
+// says both rates, keeps the choice in the cache, takes it from there the next time, and the
+// image is the chosen device's bit for bit.
+TEST(Implementations, AutoMeasuresEachAndRemembers) {
+    const std::vector<DeviceInfo> devices = one_cpu_per_platform();
+    if (devices.size() < 2 && std::getenv("CLPPM_REQUIRE_IMPLEMENTATIONS"))
+        FAIL() << "CLPPM_REQUIRE_IMPLEMENTATIONS is set but " << devices.size() << " OpenCL implementation lists a CPU";
+    if (devices.size() < 2) GTEST_SKIP() << "one OpenCL implementation with a CPU device here: nothing to measure";
+    const std::string dir = make_temp_dir("implementations_auto"), cache = "CLPPM_CACHE_DIR='" + dir + "/cache' ";
+    const std::string args = " --integrator pt --width 32 --height 32 --passes 4 --seed 3 --no-png -o '" + dir;
+    std::string first, second, out;
+    ASSERT_EQ(run_command(cache + clppm_binary() + " --device auto" + args + "/auto.exr'", &first), 0) << first;
+    const size_t at = first.find("--device auto: rendering on [");
+    ASSERT_NE(at, std::string::npos) << first;
+    EXPECT_NE(first.find("passes/s there, "), std::string::npos) << first;
+    for (const DeviceInfo& d : devices) EXPECT_NE(first.find(d.implementation()), std::string::npos) << first;
+    const int chosen = std::atoi(first.c_str() + at + std::string("--device auto: rendering on [").size());
+    ASSERT_EQ(run_command(cache + clppm_binary() + " --device auto" + args + "/again.exr'", &second), 0) << second;
+    EXPECT_NE(second.find("--device auto: [" + std::to_string(chosen) + "] "), std::string::npos) << second;
+    EXPECT_NE(second.find("measured the fastest before"), std::string::npos) << second;
+    ASSERT_EQ(run_command(clppm_binary() + " --device " + std::to_string(chosen) + args + "/named.exr'", &out), 0)
+        << out;
+    const Image a = read_exr(dir + "/auto.exr"), b = read_exr(dir + "/again.exr"), c = read_exr(dir + "/named.exr");
+    ASSERT_FALSE(a.rgb.empty());
+    EXPECT_TRUE(bit_identical(a, c)) << "the image is not the chosen device's";
+    EXPECT_TRUE(bit_identical(b, c)) << "the remembered choice rendered another image";
+}
+
 TEST(Implementations, Ppm) { expect_same_image_everywhere("ppm"); }
 TEST(Implementations, Sppm) { expect_same_image_everywhere("sppm"); }
 TEST(Implementations, Pppm) { expect_same_image_everywhere("pppm"); }

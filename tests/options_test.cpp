@@ -280,8 +280,8 @@ INSTANTIATE_TEST_SUITE_P(
         BadValue{{"--seed", "18446744073709551616"},
                  "--seed 18446744073709551616: must be an integer in 0..18446744073709551615"},
         BadValue{{"--device", ""},
-                 "--device '': must be a device index, cpu, gpu, or part of an implementation's name (pocl, intel, "
-                 "nvidia) or a device's"},
+                 "--device '': must be a device index, cpu, gpu, auto (the fastest, measured), or part of an "
+                 "implementation's name (pocl, intel, nvidia) or a device's"},
         BadValue{{"--camera", "-1"}, "--camera -1: must be an integer >= 0"},
         BadValue{{"--stats-json="}, "--stats-json '': must be a file name"},
         BadValue{{"--integrator", "mlt"}, "--integrator mlt: must be auto, ppm, sppm, pppm, pt, vcm or bpt"},

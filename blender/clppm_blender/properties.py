@@ -34,9 +34,10 @@ class ClppmSceneSettings(bpy.types.PropertyGroup):
         description="PPM and SPPM: photon paths from Markov chains that keep to what the camera sees (Hachisuka "
                     "and Jensen 2009), for light through a gap or a window; one device, no target error")
     device: bpy.props.StringProperty(name="Device", default="",
-                                     description="OpenCL device: an index, cpu, gpu, an implementation (pocl, "
-                                                 "intel, nvidia) or part of a device's name (empty: the first GPU, "
-                                                 "else PoCL's CPU device, else the first device)")
+                                     description="OpenCL device: an index, cpu, gpu, auto (the fastest, measured "
+                                                 "once and remembered), an implementation (pocl, intel, nvidia) or "
+                                                 "part of a device's name (empty: the first GPU, else PoCL's CPU "
+                                                 "device, else the first device)")
     seed: bpy.props.IntProperty(name="Seed", min=0, default=1)
     update_every: bpy.props.FloatProperty(name="Display every", min=0.1, default=0.5, unit="TIME_ABSOLUTE",
                                           description="Seconds between updates of the image while it renders")

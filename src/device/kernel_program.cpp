@@ -6,9 +6,9 @@
 #include <fstream>
 #include <set>
 #include <sstream>
-#include <sys/stat.h>
 #include <unistd.h>
 
+#include "device/cache_dir.h"
 #include "io/regular_file.h"
 #include "util/embedded_files.h"
 #include "util/error.h"
@@ -64,19 +64,6 @@ void assemble(const std::string& name, std::set<std::string>& seen, std::string&
         out += line;
         out += '\n';
     }
-}
-
-std::string cache_dir() {
-    if (const char* e = std::getenv("CLPPM_NO_CACHE"); e && *e && std::string(e) != "0") return "";
-    if (const char* e = std::getenv("CLPPM_CACHE_DIR"); e && *e) return e;
-    if (const char* e = std::getenv("XDG_CACHE_HOME"); e && *e) return std::string(e) + "/clppm";
-    if (const char* e = std::getenv("HOME"); e && *e) return std::string(e) + "/.cache/clppm";
-    return "";
-}
-
-void mkdirs(const std::string& path) {
-    for (size_t i = 1; i <= path.size(); ++i)
-        if (i == path.size() || path[i] == '/') ::mkdir(path.substr(0, i).c_str(), 0755);
 }
 
 // Whether the driver keeps built programs itself, keyed as ours would be. PoCL does (in
@@ -171,7 +158,7 @@ cl::Program build_program(const DeviceContext& dc, const std::string& entry_file
         try {
             std::vector<std::vector<unsigned char>> bins = program.getInfo<CL_PROGRAM_BINARIES>();
             if (bins.size() == 1 && !bins[0].empty()) {
-                mkdirs(dir);
+                make_dirs(dir);
                 std::string tmp = cache_file + ".tmp." + std::to_string(::getpid());
                 std::ofstream f(tmp, std::ios::binary);
                 f.write(reinterpret_cast<const char*>(bins[0].data()), static_cast<std::streamsize>(bins[0].size()));

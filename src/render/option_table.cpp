@@ -269,7 +269,8 @@ const std::vector<RenderOptionSpec>& render_option_table() {
          "counts from the start of the original render, --time this run only)",
          "a checkpoint file", "none", [](RenderOptions& o, const OptionArg& a) { o.resume = non_empty(a); }},
         {"Devices and kernels", "--device", nullptr, "SPEC", "Device to render on; repeatable (see --list-devices)",
-         "a device index, cpu, gpu, or part of an implementation's name (pocl, intel, nvidia) or a device's",
+         "a device index, cpu, gpu, auto (the fastest, measured), or part of an implementation's name (pocl, "
+         "intel, nvidia) or a device's",
          "automatic", [](RenderOptions& o, const OptionArg& a) { o.devices.push_back(non_empty(a)); }},
         {"Devices and kernels", "--generic-kernels", nullptr, nullptr,
          "Build the generic kernels instead of ones specialised for the scene's materials, lights and camera", nullptr,

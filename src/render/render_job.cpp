@@ -10,6 +10,7 @@
 #include "io/checkpoint.h"
 #include "io/image_io.h"
 #include "io/output_lock.h"
+#include "render/device_auto.h"
 #include "render/device_choice.h"
 #include "render/job_fingerprint.h"
 #include "render/rank_agreement.h"
@@ -40,7 +41,10 @@ RenderJob::RenderJob(const RenderOptions& options, RenderLog& log)
     : options_(options), log_(log), writer_(cluster().rank() == 0), created_s_(now_seconds()) {
     require_ranks_agree(options_every_rank_shares(options_)); // before anything can fail on one rank alone
     if (!options_.kernel_dir.empty()) set_kernel_dir(options_.kernel_dir);
-    const std::vector<DeviceInfo> chosen = choose_devices(options_.devices, list_devices());
+    const std::vector<DeviceInfo> devices = list_devices();
+    const std::vector<DeviceInfo> chosen = wants_auto_device(options_.devices)
+                                               ? std::vector<DeviceInfo>{auto_device(options_, devices, log_)}
+                                               : choose_devices(options_.devices, devices);
     if (writer_) {
         // Every file the render will write is checked before hours of rendering, not after, and
         // two renders writing the same files would mix their outputs: the second is refused.

@@ -8,6 +8,12 @@ namespace clppm {
 
 RenderLog::RenderLog(bool quiet) : quiet_(quiet), speaks_(cluster().rank() == 0) {}
 
+RenderLog RenderLog::silent() {
+    RenderLog log(true);
+    log.speaks_ = false;
+    return log;
+}
+
 void RenderLog::note(const std::string& message) const {
     if (!quiet_ && speaks_) std::fprintf(stderr, "clppm: %s\n", message.c_str());
 }

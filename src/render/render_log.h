@@ -11,6 +11,8 @@ namespace clppm {
 class RenderLog {
 public:
     explicit RenderLog(bool quiet);
+    // A log that keeps its warnings and says nothing at all: --device auto's trial renders.
+    static RenderLog silent();
     void note(const std::string& message) const;
     void warn(const std::string& message);
     // A defect found in the result ("2 pixels are NaN"), said as an error line; the render has
@@ -21,7 +23,7 @@ public:
 
 private:
     bool quiet_;
-    bool speaks_; // rank 0, or the only process
+    bool speaks_; // rank 0, or the only process, unless silent
     std::vector<std::string> warnings_;
 };
 
