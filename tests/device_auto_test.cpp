@@ -81,11 +81,12 @@ TEST(DeviceAuto, OneDeviceIsNotMeasured) {
     const std::string dir = make_temp_dir("device_auto");
     std::string out;
     // PoCL alone, whatever else the machine has installed: an ICD folder naming PoCL only.
-    ASSERT_EQ(run_command("mkdir -p '" + dir + "/vendors' && cp /etc/OpenCL/vendors/pocl.icd '" + dir + "/vendors/'", &out),
-              0)
+    ASSERT_EQ(
+        run_command("mkdir -p '" + dir + "/vendors' && cp /etc/OpenCL/vendors/pocl.icd '" + dir + "/vendors/'", &out),
+        0)
         << "no /etc/OpenCL/vendors/pocl.icd (Debian's pocl-opencl-icd): " << out;
-    ASSERT_EQ(run_command("OCL_ICD_VENDORS='" + dir + "/vendors' POCL_DEVICES='pthread pthread' CLPPM_CACHE_DIR='" + dir +
-                              "/cache' " + clppm_binary() +
+    ASSERT_EQ(run_command("OCL_ICD_VENDORS='" + dir + "/vendors' POCL_DEVICES='pthread pthread' CLPPM_CACHE_DIR='" +
+                              dir + "/cache' " + clppm_binary() +
                               " --device auto --width 16 --height 16 --passes 1 --no-png -o '" + dir + "/a.exr'",
                           &out),
               0)

@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <mutex>
 #include <sstream>
 
 #include "util/error.h"
@@ -59,6 +60,10 @@ std::string DeviceInfo::type_name() const {
 }
 
 std::vector<DeviceInfo> list_devices() {
+    // One listing at a time: the ICD loader (ocl-icd) loads its implementations on the first call,
+    // unguarded, and two threads listing at once found no platform in one of them (issue 61).
+    static std::mutex listing;
+    const std::lock_guard<std::mutex> hold(listing);
     std::vector<DeviceInfo> out;
     std::vector<cl::Platform> platforms;
     try {

@@ -6,9 +6,9 @@
 #include <fstream>
 #include <set>
 #include <sstream>
-#include <unistd.h>
 
 #include "device/cache_dir.h"
+#include "io/atomic_file.h"
 #include "io/regular_file.h"
 #include "util/embedded_files.h"
 #include "util/error.h"
@@ -18,8 +18,7 @@ namespace clppm {
 
 namespace {
 
-std::string g_kernel_dir;
-bool g_kernel_dir_set = false;
+thread_local const std::string* t_kernel_dir = nullptr; // the innermost KernelDirScope's
 
 bool read_file(const std::string& path, std::string* out) {
     if (!not_a_regular_file(path).empty()) return false;
@@ -89,13 +88,14 @@ std::string build_log(const cl::Program& program, const cl::Device& device) {
 
 } // namespace
 
-void set_kernel_dir(const std::string& dir) {
-    g_kernel_dir = dir;
-    g_kernel_dir_set = true;
+KernelDirScope::KernelDirScope(const std::string& dir) : previous_(t_kernel_dir) {
+    if (!dir.empty()) t_kernel_dir = &dir;
 }
 
+KernelDirScope::~KernelDirScope() { t_kernel_dir = previous_; }
+
 std::string kernel_dir() {
-    if (g_kernel_dir_set) return g_kernel_dir;
+    if (t_kernel_dir) return *t_kernel_dir;
     if (const char* e = std::getenv("CLPPM_KERNEL_DIR"); e && *e) return e;
     return "";
 }
@@ -159,12 +159,10 @@ cl::Program build_program(const DeviceContext& dc, const std::string& entry_file
             std::vector<std::vector<unsigned char>> bins = program.getInfo<CL_PROGRAM_BINARIES>();
             if (bins.size() == 1 && !bins[0].empty()) {
                 make_dirs(dir);
-                std::string tmp = cache_file + ".tmp." + std::to_string(::getpid());
-                std::ofstream f(tmp, std::ios::binary);
-                f.write(reinterpret_cast<const char*>(bins[0].data()), static_cast<std::streamsize>(bins[0].size()));
-                f.close();
-                if (f) std::rename(tmp.c_str(), cache_file.c_str());
-                else std::remove(tmp.c_str());
+                try {
+                    write_file_atomic(cache_file, std::string(bins[0].begin(), bins[0].end()));
+                } catch (const Error&) { // an unwritable cache: the next render builds again
+                }
             }
         } catch (const cl::Error&) {
             // Binaries unavailable from this driver: no caching, nothing else changes.

@@ -9,10 +9,19 @@
 
 namespace clppm {
 
-// Where kernel sources come from: the embedded copies, unless CLPPM_KERNEL_DIR (or
-// set_kernel_dir(), from --kernel-dir) names a directory to read kernels/*.cl from instead.
-void set_kernel_dir(const std::string& dir);
+// Where kernel sources come from: the embedded copies, unless CLPPM_KERNEL_DIR or, on this thread,
+// a KernelDirScope (--kernel-dir, for one render) names a directory to read kernels/*.cl from.
 std::string kernel_dir();
+class KernelDirScope {
+public:
+    explicit KernelDirScope(const std::string& dir); // empty: no change; `dir` outlives the scope
+    ~KernelDirScope();
+    KernelDirScope(const KernelDirScope&) = delete;
+    KernelDirScope& operator=(const KernelDirScope&) = delete;
+
+private:
+    const std::string* previous_;
+};
 
 // The full source of a kernel file with every `#include "x"` resolved from the same source
 // (each file included once), so the driver never needs an include path.

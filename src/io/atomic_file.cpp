@@ -1,5 +1,6 @@
 #include "io/atomic_file.h"
 
+#include <atomic>
 #include <cerrno>
 #include <cstring>
 #include <fcntl.h>
@@ -20,11 +21,14 @@ std::string base_name(const std::string& path) {
     return slash == std::string::npos ? path : path.substr(slash + 1);
 }
 
-// ".<name>.tmp.<pid>" in the target's directory: rename() is only atomic within one file system.
+// ".<name>.tmp.<pid>.<n>" in the target's directory: rename() is only atomic within one file
+// system, and n tells apart the writes of several threads (several renders in one process).
 std::string temp_path_for(const std::string& path) {
+    static std::atomic<unsigned long> writes{0};
     size_t slash = path.find_last_of('/');
     std::string dir_prefix = slash == std::string::npos ? "" : path.substr(0, slash + 1);
-    return dir_prefix + "." + base_name(path) + ".tmp." + std::to_string(::getpid());
+    return dir_prefix + "." + base_name(path) + ".tmp." + std::to_string(::getpid()) + "." +
+           std::to_string(writes.fetch_add(1));
 }
 
 bool is_directory(const std::string& path) {

@@ -15,14 +15,14 @@
 
 namespace clppm {
 
-constexpr double kAutoMargin = 0.10;   // how much faster than the default a device must be
-constexpr double kTrialSeconds = 0.5;  // rendering each candidate is timed for at least this long
-constexpr uint64_t kTrialPasses = 2;   // ... and at least this many passes (after one untimed)
+constexpr double kAutoMargin = 0.10;  // how much faster than the default a device must be
+constexpr double kTrialSeconds = 0.5; // rendering each candidate is timed for at least this long
+constexpr uint64_t kTrialPasses = 2;  // ... and at least this many passes (after one untimed)
 
 struct DeviceTrial {
     DeviceInfo device;
-    uint64_t passes = 0;  // timed passes
-    double seconds = 0;   // their wall time
+    uint64_t passes = 0; // timed passes
+    double seconds = 0;  // their wall time
     double passes_per_second() const { return seconds > 0 ? double(passes) / seconds : 0.0; }
 };
 

@@ -40,7 +40,7 @@ std::string number(const char* format, double x) {
 RenderJob::RenderJob(const RenderOptions& options, RenderLog& log)
     : options_(options), log_(log), writer_(cluster().rank() == 0), created_s_(now_seconds()) {
     require_ranks_agree(options_every_rank_shares(options_)); // before anything can fail on one rank alone
-    if (!options_.kernel_dir.empty()) set_kernel_dir(options_.kernel_dir);
+    const KernelDirScope kernels(options_.kernel_dir);        // this render's, not the process's
     const std::vector<DeviceInfo> devices = list_devices();
     const std::vector<DeviceInfo> chosen = wants_auto_device(options_.devices)
                                                ? std::vector<DeviceInfo>{auto_device(options_, devices, log_)}
