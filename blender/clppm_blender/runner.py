@@ -67,6 +67,7 @@ class ModuleRender:
         self.interrupted = False
         self.done = threading.Event()
         self._want = threading.Event()
+        self._cancelled = threading.Event()
         self._latest = None, {}
         self.thread = threading.Thread(target=self._run, daemon=True)
         self.thread.start()
@@ -85,6 +86,9 @@ class ModuleRender:
         steps = self.renderer.batches() if hasattr(self.renderer, "batches") else self.renderer
         try:
             for _ in steps:
+                if self._cancelled.is_set():  # a cancel between two steps (or before the first)
+                    self.interrupted = True
+                    break
                 if self._want.is_set():
                     self._want.clear()
                     self._snapshot()
@@ -99,7 +103,8 @@ class ModuleRender:
         self.done.set()
 
     def cancel(self):
-        self.renderer.cancel()
+        self._cancelled.set()
+        self.renderer.cancel()  # the pass in flight stops at its next photon batch
 
     def request(self):
         """Asks for a copy of the image after the next pass."""

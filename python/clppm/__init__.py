@@ -135,10 +135,12 @@ class Renderer:
 
     def run_pass(self):
         """Renders one pass; raises Interrupted on Ctrl-C (the last complete pass is kept)."""
+        self._native.begin()
         self._checked(self._native.run_pass())
         return self._native.passes
 
     def __iter__(self):
+        self._native.begin()
         return self
 
     def __next__(self):
@@ -153,12 +155,14 @@ class Renderer:
         launch), never past ``passes`` or a pass ``progressive_output`` or ``checkpoint_every``
         counts, and yields the pass count. Fewer launches cost less time on short passes; the
         image is the same bit for bit."""
+        self._native.begin()
         while self._checked(self._native.step_batch()):
             yield self._native.passes
         self._native.finish()
 
     def render(self):
         """Renders until the stop options say, writes the outputs, and returns the image."""
+        self._native.begin()
         if not self._native.render() and self._native.interrupted():
             self._native.clear_interrupt()
             raise Interrupted(self._native.image(), self._native.passes)
@@ -166,7 +170,10 @@ class Renderer:
 
     def cancel(self):
         """From another thread (a GUI's Cancel): the pass in flight stops at its next photon batch
-        and the call running it raises Interrupted, as on Ctrl-C."""
+        and the call running it raises Interrupted, as on Ctrl-C; between two steps of an iteration
+        (or ``render()``), the next step does. This Renderer's alone: others in the process render
+        on. A cancel while the Renderer is not rendering is meant for nothing and is dropped when
+        the next ``run_pass()``, iteration or ``render()`` begins."""
         self._native.cancel()
 
     def image(self):

@@ -5,6 +5,8 @@
 #include <exception>
 #include <thread>
 
+#include "util/cancellation.h"
+
 namespace clppm {
 
 namespace {
@@ -32,7 +34,9 @@ void DeviceFanOut::run(uint32_t first, const std::vector<uint32_t>& shares,
     const size_t n = shares.size();
     std::vector<double> seconds(n, 0.0);
     std::vector<std::exception_ptr> errors(n);
+    const CancelToken* token = current_cancel_token(); // a cancel of this render reaches every device's share
     auto one = [&](size_t k, uint32_t begin) {
+        const CancelScope scope(token);
         try {
             const double t0 = now_s();
             work(k, begin, shares[k]);

@@ -171,11 +171,12 @@ public:
     }
 
     // From another thread (a GUI's Cancel button): the pass in flight stops at its next batch and
-    // its call returns False, as after Ctrl-C.
-    void cancel() {
-        cancelled_ = true;
-        request_cancel();
-    }
+    // its call returns False, as after Ctrl-C; between the calls of an iteration, the next call
+    // does. This render's alone: other renders in the process go on.
+    void cancel() { token_.request(); }
+    // A run_pass(), an iteration or a render() begins (python/clppm/__init__.py): a cancel from
+    // before it was meant for nothing, and is dropped.
+    void begin() { token_.clear(); }
     bool interrupted() const { return signalled_ || cancelled_ || (loop_ && loop_->interrupted()); }
     void clear_interrupt() {
         clear_cancel();
@@ -259,8 +260,10 @@ private:
         bool ok;
         {
             py::gil_scoped_release release;
+            const CancelScope cancel(&token_);
             ok = f();
         }
+        cancelled_ = !ok && token_.requested(); // one that came after the last batch was too late
         // Ctrl-C during a pass that completed anyway (it came after its last photon batch): the
         // pass is kept, and the call still answers the interrupt.
         signalled_ = signalled_ || scope.interrupted();
@@ -278,8 +281,9 @@ private:
     std::unique_ptr<RenderJob> job_;
     std::unique_ptr<RenderLoop> loop_;
     bool finished_ = false;
-    bool signalled_ = false;             // a SIGINT during the last call
-    std::atomic<bool> cancelled_{false}; // cancel() was called
+    bool signalled_ = false; // a SIGINT during the last call
+    bool cancelled_ = false; // cancel() came during the last call
+    CancelToken token_;      // cancel()'s request, which the passes of a call see
 };
 
 py::object device_list() {
@@ -339,6 +343,10 @@ PYBIND11_MODULE(_clppm, m) {
         g_mpi = std::make_unique<ClusterSession>(nullptr, nullptr);
         py::module_::import("atexit").attr("register")(py::cpp_function([] { g_mpi.reset(); }));
     }
+    // pybind11 (2.10) looks numpy's C API up once, under a static's guard, by importing numpy: in a
+    // thread that import lets other threads run, and one holding the GIL and waiting on the guard
+    // then deadlocks with it (four threads rendering at once hung). Looked up here, at import.
+    (void)py::dtype::of<float>();
     m.attr("__version__") = kVersion;
     m.attr("mpi_rank") = cluster().rank();
     m.attr("mpi_size") = cluster().size();
@@ -365,6 +373,7 @@ PYBIND11_MODULE(_clppm, m) {
         .def("finish", &Renderer::finish)
         .def("close", &Renderer::close)
         .def("cancel", &Renderer::cancel)
+        .def("begin", &Renderer::begin)
         .def("interrupted", &Renderer::interrupted)
         .def("clear_interrupt", &Renderer::clear_interrupt)
         .def("image", &Renderer::image)
