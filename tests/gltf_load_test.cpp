@@ -12,6 +12,8 @@
 #include <iterator>
 #include <sstream>
 
+#include <nlohmann/json.hpp>
+
 #include "test_util.h"
 #include "util/error.h"
 
@@ -733,6 +735,39 @@ TEST(GltfAnimation, NodesStandAtTheFirstAnimationsStart) {
         EXPECT_NE(std::string(e.what()).find("animation 0 channel 0: translation output must be a VEC3"),
                   std::string::npos)
             << e.what();
+    }
+}
+
+// A sampler's outputs match its keyframe times: one each, three each for CUBICSPLINE (glTF 2.0,
+// "Animation samplers"); a mismatch is a one-line error naming the file and the channel.
+TEST(GltfAnimation, OutputsThatDoNotMatchTheTimesAreRefused) {
+    const std::string dir = test::make_temp_dir("gltf_animation");
+    const nlohmann::json file = nlohmann::json::parse(test::slurp(data("animated.gltf")));
+    const struct {
+        const char* what;
+        int sampler, output; // animation 0's sampler, given this output accessor
+        const char* message;
+    } cases[] = {
+        // Sampler 0 (LINEAR) reads 2 times from accessor 3; accessor 5 holds 6 translations.
+        {"six values for two times", 0, 5,
+         "animation 0 channel 0: 6 output values for 2 keyframe times (one per keyframe: 2)"},
+        // Sampler 1 (CUBICSPLINE) with accessor 4's 2 values: one per key, not three.
+        {"a cubic spline with one value per key", 1, 4,
+         "animation 0 channel 1: 2 output values for 2 keyframe times (CUBICSPLINE needs 3 per keyframe: 6)"},
+    };
+    for (const auto& c : cases) {
+        nlohmann::json broken = file;
+        broken["animations"][0]["samplers"][size_t(c.sampler)]["output"] = c.output;
+        const std::string path = dir + "/broken.gltf";
+        std::ofstream(path) << broken.dump();
+        try {
+            load_gltf(path);
+            ADD_FAILURE() << c.what << ": loaded";
+        } catch (const Error& e) {
+            EXPECT_NE(std::string(e.what()).find(c.message), std::string::npos) << c.what << ": " << e.what();
+            EXPECT_NE(std::string(e.what()).find("broken.gltf"), std::string::npos) << e.what();
+            EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos) << e.what();
+        }
     }
 }
 

@@ -71,6 +71,37 @@ TEST(MaterialVariants, EachVariantGivesItsMaterialAndTheDefaultKeepsTheFiles) {
     EXPECT_EQ(out.find("KHR_materials_variants is not supported"), std::string::npos) << out;
 }
 
+// A mapping to a material or a variant the file does not have is refused whether or not a variant
+// is rendered: one line naming the file, the primitive and the mapping.
+TEST(MaterialVariants, AMappingToNothingIsAOneLineError) {
+    const std::string d = make_temp_dir("variants_mapping"), scene = variant_sphere(d);
+    nlohmann::json g = nlohmann::json::parse(slurp(scene));
+    const struct {
+        const char* what;
+        nlohmann::json mapping;
+        const char* message;
+    } cases[] = {
+        {"material 99",
+         {{"material", 99}, {"variants", {0}}},
+         "mesh 0 primitive 0: KHR_materials_variants mapping 2 names material 99, but the file has 3"},
+        {"variant 7",
+         {{"material", 1}, {"variants", {7}}},
+         "mesh 0 primitive 0: KHR_materials_variants mapping 2 names variant 7, but the file has 2"},
+    };
+    for (const auto& c : cases) {
+        nlohmann::json broken = g;
+        broken["meshes"][0]["primitives"][0]["extensions"]["KHR_materials_variants"]["mappings"].push_back(c.mapping);
+        std::ofstream(d + "/broken.gltf") << broken.dump();
+        for (const std::string variant : {"", " --variant Red"}) {
+            std::string out;
+            EXPECT_EQ(run_clppm(d + "/broken.gltf" + variant + " -o " + d + "/x.exr", &out), 1) << c.what << variant;
+            EXPECT_NE(out.find(c.message), std::string::npos) << c.what << variant << ": " << out;
+            EXPECT_NE(out.find("broken.gltf"), std::string::npos) << out;
+            EXPECT_EQ(std::count(out.begin(), out.end(), '\n'), 1) << out;
+        }
+    }
+}
+
 TEST(MaterialVariants, AnUnknownVariantIsAOneLineErrorListingThem) {
     const std::string d = make_temp_dir("variants_bad"), scene = variant_sphere(d);
     std::string out;

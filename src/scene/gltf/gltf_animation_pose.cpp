@@ -28,8 +28,15 @@ int apply_animation_start(tinygltf::Model& model, LoadContext& ctx) {
         if (out.components != components)
             ctx.fail(what + ": " + path + " output must be a VEC" + std::to_string(components));
         // CUBICSPLINE stores (in-tangent, value, out-tangent) per keyframe.
-        const size_t first = s.interpolation == "CUBICSPLINE" ? 1 : 0;
-        if (out.count <= first) ctx.fail(what + " has no keyframes");
+        const bool cubic = s.interpolation == "CUBICSPLINE";
+        const size_t first = cubic ? 1 : 0;
+        const AccessorView in = reader.view(s.input, what + " input");
+        if (in.count == 0 || out.count <= first) ctx.fail(what + " has no keyframes");
+        const size_t want = in.count * (cubic ? 3 : 1);
+        if (out.count != want)
+            ctx.fail(what + ": " + std::to_string(out.count) + " output values for " + std::to_string(in.count) +
+                     " keyframe times (" + (cubic ? "CUBICSPLINE needs 3 per keyframe: " : "one per keyframe: ") +
+                     std::to_string(want) + ")");
         std::vector<double> v(static_cast<size_t>(components));
         for (int k = 0; k < components; ++k) {
             v[size_t(k)] = out.get(first, k);

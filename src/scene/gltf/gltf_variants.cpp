@@ -25,34 +25,43 @@ void apply_material_variant(tinygltf::Model& model, const std::string& variant, 
             scene.variants.push_back(printable(name.Get<std::string>()));
         }
     }
-    if (variant.empty()) return;
     int index = -1;
-    for (size_t i = 0; i < scene.variants.size(); ++i)
-        if (scene.variants[i] == variant) index = int(i);
-    if (index < 0)
-        ctx.fail("--variant " + printable(variant) +
-                 ": no such material variant (the file's: " + names_text(scene.variants) + ")");
-    scene.variant = variant;
+    if (!variant.empty()) {
+        for (size_t i = 0; i < scene.variants.size(); ++i)
+            if (scene.variants[i] == variant) index = int(i);
+        if (index < 0)
+            ctx.fail("--variant " + printable(variant) +
+                     ": no such material variant (the file's: " + names_text(scene.variants) + ")");
+        scene.variant = variant;
+    }
+    // Every mapping is checked, whether or not a variant is rendered: a broken one is a broken file.
     for (size_t m = 0; m < model.meshes.size(); ++m)
         for (size_t p = 0; p < model.meshes[m].primitives.size(); ++p) {
             tinygltf::Primitive& prim = model.meshes[m].primitives[p];
             auto ext = prim.extensions.find(kExt);
             if (ext == prim.extensions.end()) continue;
-            const std::string label = "mesh " + std::to_string(m) + " primitive " + std::to_string(p);
+            const std::string label = "mesh " + std::to_string(m) + " primitive " + std::to_string(p) + ": " + kExt;
             const tinygltf::Value& mappings = ext->second.Get("mappings");
-            if (!mappings.IsArray()) ctx.fail(label + ": " + kExt + " \"mappings\" must be an array");
+            if (!mappings.IsArray()) ctx.fail(label + " \"mappings\" must be an array");
             for (size_t k = 0; k < mappings.ArrayLen(); ++k) {
                 const tinygltf::Value& mapping = mappings.Get(int(k));
                 const tinygltf::Value& material = mapping.Get("material");
                 const tinygltf::Value& variants = mapping.Get("variants");
+                const std::string what = label + " mapping " + std::to_string(k);
                 if (!material.IsInt() || material.Get<int>() < 0 ||
                     size_t(material.Get<int>()) >= model.materials.size())
-                    ctx.fail(label + ": " + kExt + " mapping " + std::to_string(k) + " names no material of the file");
-                if (!variants.IsArray())
-                    ctx.fail(label + ": " + kExt + " mapping " + std::to_string(k) + " has no variants");
-                for (size_t v = 0; v < variants.ArrayLen(); ++v)
-                    if (variants.Get(int(v)).IsInt() && variants.Get(int(v)).Get<int>() == index)
-                        prim.material = material.Get<int>();
+                    ctx.fail(what + " names material " +
+                             (material.IsInt() ? std::to_string(material.Get<int>()) : std::string("(not an index)")) +
+                             ", but the file has " + std::to_string(model.materials.size()));
+                if (!variants.IsArray()) ctx.fail(what + " has no variants");
+                for (size_t v = 0; v < variants.ArrayLen(); ++v) {
+                    const tinygltf::Value& i = variants.Get(int(v));
+                    if (!i.IsInt() || i.Get<int>() < 0 || size_t(i.Get<int>()) >= scene.variants.size())
+                        ctx.fail(what + " names variant " +
+                                 (i.IsInt() ? std::to_string(i.Get<int>()) : std::string("(not an index)")) +
+                                 ", but the file has " + std::to_string(scene.variants.size()));
+                    if (i.Get<int>() == index) prim.material = material.Get<int>();
+                }
             }
         }
 }
