@@ -2,6 +2,7 @@
 
 #include <cstdio>
 
+#include "render/option_table.h"
 #include "util/error.h"
 #include "util/hash.h"
 
@@ -19,26 +20,12 @@ std::string hex(uint64_t v) {
 
 Json job_fingerprint(const RenderOptions& o, const DeviceScene& ds, uint64_t scene_hash,
                      const std::string& kernel_source) {
-    const RenderSettings& s = o.settings;
-    return {{"scene", hex(scene_hash)},
-            {"kernels", hex(fnv1a64(kernel_source))},
-            {"--integrator", s.integrator},
-            {"--direct", to_string(s.direct)},
-            {"--width", ds.camera.width},
-            {"--height", ds.camera.height},
-            {"--camera", s.camera},
-            {"--spp", s.spp},
-            {"--photons", s.photons},
-            {"--alpha", s.alpha},
-            {"--radius", s.radius},
-            {"--seed", s.seed},
-            {"--max-bounces", s.max_bounces},
-            {"--filter", to_string(s.filter)},
-            {"--aperture", s.aperture},
-            {"--focus-distance", s.focus_distance},
-            {"--sampler", to_string(s.sampler)},
-            {"--visual-importance", s.visual_importance},
-            {"--disc-coverage", to_string(s.disc_coverage)}};
+    Json fp = option_values(o, OptionRole::Image);
+    fp["--width"] = ds.camera.width; // as the camera resolved them
+    fp["--height"] = ds.camera.height;
+    fp["scene"] = hex(scene_hash);
+    fp["kernels"] = hex(fnv1a64(kernel_source));
+    return fp;
 }
 
 Checkpoint open_resume(const std::string& path, const Json& fingerprint) {

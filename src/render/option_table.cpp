@@ -59,32 +59,36 @@ const std::vector<RenderOptionSpec>& render_option_table() {
          [](RenderOptions& o, const OptionArg& a) {
              if (!ends_with_ci(a.value, ".exr") || a.value.size() <= 4) bad_value(a);
              o.output = a.value;
-         }},
+         },
+         OptionRole::Local, nullptr},
         {"Output", "--no-png", nullptr, nullptr, "Do not write the PNG preview", nullptr, nullptr,
-         [](RenderOptions& o, const OptionArg&) { o.write_png = false; }},
+         [](RenderOptions& o, const OptionArg&) { o.write_png = false; }, OptionRole::Local, nullptr},
         {"Output", "--tonemap", nullptr, "CURVE",
          "The PNG's tone curve: clip = linear up to white, aces = a filmic curve (Narkowicz's ACES fit), "
          "reinhard = x / (1 + x); the EXR stays linear",
          "clip, aces or reinhard", "aces",
          [](RenderOptions& o, const OptionArg& a) {
              if (!parse_tone_curve(a.value, &o.tone.curve)) bad_value(a);
-         }},
+         },
+         OptionRole::Local, nullptr},
         {"Output", "--exposure", nullptr, "EV",
          "The PNG's exposure in stops (x 2^EV before the tone curve; with --auto-exposure, added to it)",
          "a number in -64..64", "0",
          [](RenderOptions& o, const OptionArg& a) {
              o.tone.exposure_ev = parse_real(a, [](double x) { return x >= -64 && x <= 64; });
-         }},
+         },
+         OptionRole::Local, nullptr},
         {"Output", "--auto-exposure", nullptr, nullptr,
          "Expose the PNG so that the image's log-average luminance shows as middle grey (0.18)", nullptr, nullptr,
-         [](RenderOptions& o, const OptionArg&) { o.tone.auto_exposure = true; }},
+         [](RenderOptions& o, const OptionArg&) { o.tone.auto_exposure = true; }, OptionRole::Local, nullptr},
         {"Output", "--stats-json", nullptr, "FILE", "Write render statistics as JSON", "a file name", "none",
-         [](RenderOptions& o, const OptionArg& a) { o.stats_json = non_empty(a); }},
+         [](RenderOptions& o, const OptionArg& a) { o.stats_json = non_empty(a); }, OptionRole::Local, nullptr},
         {"Output", "--progressive-output", nullptr, "K", "Also save the images every K passes",
          "an integer >= 0 (0 = off)", "0",
          [](RenderOptions& o, const OptionArg& a) {
              o.progressive_output = static_cast<uint64_t>(parse_int(a, 0, INT64_MAX));
-         }},
+         },
+         OptionRole::Local, nullptr},
         {"Output", "--serve", nullptr, "[ADDR:]PORT",
          "Serve a live view of the render at http://ADDR:PORT/ (image, progress, error map, save and stop buttons); "
          "ADDR defaults to 127.0.0.1, PORT 0 picks a free port",
@@ -92,36 +96,44 @@ const std::vector<RenderOptionSpec>& render_option_table() {
          [](RenderOptions& o, const OptionArg& a) {
              parse_serve_address(a.value); // checked now: a typo fails before the scene loads
              o.serve = a.value;
-         }},
+         },
+         OptionRole::Local, nullptr},
         {"Output", "--display-server", nullptr, "HOST:PORT",
          "Send the image as it converges to the tev viewer listening at HOST:PORT (tev's own protocol, as pbrt-v4's "
          "--display-server; tev listens on 127.0.0.1:14158)",
-         "HOST:PORT", "off", [](RenderOptions& o, const OptionArg& a) { o.display_server = non_empty(a); }},
+         "HOST:PORT", "off", [](RenderOptions& o, const OptionArg& a) { o.display_server = non_empty(a); },
+         OptionRole::Local, nullptr},
         {"Output", "--quiet", nullptr, nullptr, "No progress output", nullptr, nullptr,
-         [](RenderOptions& o, const OptionArg&) { o.quiet = true; }},
+         [](RenderOptions& o, const OptionArg&) { o.quiet = true; }, OptionRole::Local, nullptr},
         // 0 is refused, not read as "the camera's": leaving the option out says that.
         {"Image and camera", "--width", nullptr, "N", "Image width in pixels", "an integer in 1..16384",
          "the camera's aspect times the height",
-         [](RenderOptions& o, const OptionArg& a) { o.settings.width = unsigned(parse_int(a, 1, 16384)); }},
+         [](RenderOptions& o, const OptionArg& a) { o.settings.width = unsigned(parse_int(a, 1, 16384)); },
+         OptionRole::Image, [](const RenderOptions& o) -> Json { return o.settings.width; }},
         {"Image and camera", "--height", nullptr, "N", "Image height in pixels", "an integer in 1..16384",
          "512, or the width over the camera's aspect",
-         [](RenderOptions& o, const OptionArg& a) { o.settings.height = unsigned(parse_int(a, 1, 16384)); }},
+         [](RenderOptions& o, const OptionArg& a) { o.settings.height = unsigned(parse_int(a, 1, 16384)); },
+         OptionRole::Image, [](const RenderOptions& o) -> Json { return o.settings.height; }},
         {"Image and camera", "--variant", nullptr, "NAME",
          "Render the file's KHR_materials_variants variant NAME (the render lists the file's variants)",
          "a variant's name", "the file's default materials",
-         [](RenderOptions& o, const OptionArg& a) { o.variant = non_empty(a); }},
+         [](RenderOptions& o, const OptionArg& a) { o.variant = non_empty(a); }, OptionRole::Image,
+         [](const RenderOptions& o) -> Json { return o.variant; }},
         {"Image and camera", "--camera", nullptr, "N", "Index of the glTF camera to render through", "an integer >= 0",
-         "0", [](RenderOptions& o, const OptionArg& a) { o.settings.camera = unsigned(parse_int(a, 0, INT_MAX)); }},
+         "0", [](RenderOptions& o, const OptionArg& a) { o.settings.camera = unsigned(parse_int(a, 0, INT_MAX)); },
+         OptionRole::Image, [](const RenderOptions& o) -> Json { return o.settings.camera; }},
         {"Image and camera", "--aperture", nullptr, "R", "Thin-lens aperture radius in scene units (depth of field)",
          "a finite number >= 0 (0 = pinhole)", "the camera's, else 0",
          [](RenderOptions& o, const OptionArg& a) {
              o.settings.aperture = parse_real(a, [](double x) { return x >= 0; });
-         }},
+         },
+         OptionRole::Image, [](const RenderOptions& o) -> Json { return o.settings.aperture; }},
         {"Image and camera", "--focus-distance", nullptr, "D", "Distance to the plane in focus, in scene units",
          "a finite number > 0", "the camera's, else the scene centre's distance",
          [](RenderOptions& o, const OptionArg& a) {
              o.settings.focus_distance = parse_real(a, [](double x) { return x > 0; });
-         }},
+         },
+         OptionRole::Image, [](const RenderOptions& o) -> Json { return o.settings.focus_distance; }},
         {"Image and camera", "--filter", nullptr, "NAME",
          "Pixel filter, importance-sampled: box = the pixel's square, tent = separable tent of radius 1 pixel",
          "box or tent", "box",
@@ -130,36 +142,44 @@ const std::vector<RenderOptionSpec>& render_option_table() {
              if (v == "box") o.settings.filter = PixelFilter::Box;
              else if (v == "tent") o.settings.filter = PixelFilter::Tent;
              else bad_value(a);
-         }},
+         },
+         OptionRole::Image, [](const RenderOptions& o) -> Json { return to_string(o.settings.filter); }},
         {"Integrator", "--integrator", nullptr, "NAME", integrator_help().c_str(), integrator_range().c_str(), "auto",
          [](RenderOptions& o, const OptionArg& a) {
              const std::string v = lower(a.value);
              if (v == "auto") o.settings.integrator = "auto";
              else if (is_integrator(v)) o.settings.integrator = integrator_row(v).name;
              else bad_value(a);
-         }},
+         },
+         OptionRole::Image, [](const RenderOptions& o) -> Json { return o.settings.integrator; }},
         {"Integrator", "--passes", nullptr, "N", "Stop after N passes (with --time: whichever comes first)",
          "an integer >= 1 (0 = unlimited, with --time)", default_passes_text().c_str(),
-         [](RenderOptions& o, const OptionArg& a) { o.passes = static_cast<uint64_t>(parse_int(a, 0, INT64_MAX)); }},
+         [](RenderOptions& o, const OptionArg& a) { o.passes = static_cast<uint64_t>(parse_int(a, 0, INT64_MAX)); },
+         OptionRole::Run, [](const RenderOptions& o) -> Json { return o.passes ? Json(*o.passes) : Json("default"); }},
         {"Integrator", "--time", nullptr, "SECONDS", "Stop after this much render time", "a number of seconds > 0",
          "none",
-         [](RenderOptions& o, const OptionArg& a) { o.time_limit = parse_real(a, [](double x) { return x > 0; }); }},
+         [](RenderOptions& o, const OptionArg& a) { o.time_limit = parse_real(a, [](double x) { return x > 0; }); },
+         OptionRole::Run, [](const RenderOptions& o) -> Json { return o.time_limit; }},
         {"Integrator", "--photons", nullptr, "N", "Photons traced per pass", "an integer in 1..2147483647", "200000",
-         [](RenderOptions& o, const OptionArg& a) { o.settings.photons = uint64_t(parse_int(a, 1, INT32_MAX)); }},
+         [](RenderOptions& o, const OptionArg& a) { o.settings.photons = uint64_t(parse_int(a, 1, INT32_MAX)); },
+         OptionRole::Image, [](const RenderOptions& o) -> Json { return o.settings.photons; }},
         // alpha of Hachisuka et al. 2008 (radius reduction): R^2 <- R^2 (N + alpha M) / (N + M).
         {"Integrator", "--alpha", nullptr, "A", "Fraction of new photons kept per pass (radius reduction)", "in (0, 1]",
          "0.7",
          [](RenderOptions& o, const OptionArg& a) {
              o.settings.alpha = parse_real(a, [](double x) { return x > 0 && x <= 1; });
-         }},
+         },
+         OptionRole::Image, [](const RenderOptions& o) -> Json { return o.settings.alpha; }},
         {"Integrator", "--radius", nullptr, "R",
          "Initial gather radius R0 in scene units (and VCM's merging radius), at most the scene's bounding diameter",
          "a finite number > 0", "a heuristic from the pixels' footprints (README)",
          [](RenderOptions& o, const OptionArg& a) {
              o.settings.radius = parse_real(a, [](double x) { return x > 0; });
-         }},
+         },
+         OptionRole::Image, [](const RenderOptions& o) -> Json { return o.settings.radius; }},
         {"Integrator", "--spp", nullptr, "N", "Hit points (samples) per pixel per pass", "an integer in 1..256", "4",
-         [](RenderOptions& o, const OptionArg& a) { o.settings.spp = unsigned(parse_int(a, 1, 256)); }},
+         [](RenderOptions& o, const OptionArg& a) { o.settings.spp = unsigned(parse_int(a, 1, 256)); },
+         OptionRole::Image, [](const RenderOptions& o) -> Json { return o.settings.spp; }},
         {"Integrator", "--disc-coverage", nullptr, "MODE",
          "PPM, SPPM, PPPM: divide each gather by the part of its disc on its surface (no dark edges and corners)",
          "auto, on or off", "auto",
@@ -169,7 +189,8 @@ const std::vector<RenderOptionSpec>& render_option_table() {
              else if (v == "on") o.settings.disc_coverage = DiscCoverage::On;
              else if (v == "off") o.settings.disc_coverage = DiscCoverage::Off;
              else bad_value(a);
-         }},
+         },
+         OptionRole::Image, [](const RenderOptions& o) -> Json { return to_string(o.settings.disc_coverage); }},
         {"Integrator", "--direct", nullptr, "MODE",
          "Direct light from photons (density estimate) or by sampling lights at hit points", "photons or sample",
          "sample",
@@ -178,9 +199,11 @@ const std::vector<RenderOptionSpec>& render_option_table() {
              if (v == "photons") o.settings.direct = DirectLighting::Photons;
              else if (v == "sample") o.settings.direct = DirectLighting::Sample;
              else bad_value(a);
-         }},
+         },
+         OptionRole::Image, [](const RenderOptions& o) -> Json { return to_string(o.settings.direct); }},
         {"Integrator", "--max-bounces", nullptr, "N", "Longest eye or photon path", "an integer in 1..1024", "16",
-         [](RenderOptions& o, const OptionArg& a) { o.settings.max_bounces = unsigned(parse_int(a, 1, 1024)); }},
+         [](RenderOptions& o, const OptionArg& a) { o.settings.max_bounces = unsigned(parse_int(a, 1, 1024)); },
+         OptionRole::Image, [](const RenderOptions& o) -> Json { return o.settings.max_bounces; }},
         {"Integrator", "--sampler", nullptr, "NAME",
          "The path tracer's numbers: sobol = Owen-scrambled Sobol' points over each pixel's passes (lower error at "
          "equal time), zsobol = the same points laid out over the screen for the planned --passes, so that "
@@ -193,30 +216,36 @@ const std::vector<RenderOptionSpec>& render_option_table() {
              else if (v == "zsobol") o.settings.sampler = Sampler::ZSobol;
              else if (v == "independent") o.settings.sampler = Sampler::Independent;
              else bad_value(a);
-         }},
+         },
+         OptionRole::Image, [](const RenderOptions& o) -> Json { return to_string(o.settings.sampler); }},
         {"Integrator", "--visual-importance", nullptr, nullptr,
          "PPM and SPPM: photon paths from Markov chains whose target is their visibility to the hit points "
          "(Hachisuka and Jensen 2009), so that photons go where the camera sees; for light that reaches what the "
          "camera sees through a gap or a window. One device",
-         nullptr, nullptr, [](RenderOptions& o, const OptionArg&) { o.settings.visual_importance = true; }},
+         nullptr, nullptr, [](RenderOptions& o, const OptionArg&) { o.settings.visual_importance = true; },
+         OptionRole::Image, [](const RenderOptions& o) -> Json { return o.settings.visual_importance; }},
         {"Integrator", "--seed", nullptr, "S", "Random seed", "an integer in 0..18446744073709551615", "1",
-         [](RenderOptions& o, const OptionArg& a) { o.settings.seed = parse_u64(a); }},
+         [](RenderOptions& o, const OptionArg& a) { o.settings.seed = parse_u64(a); }, OptionRole::Image,
+         [](const RenderOptions& o) -> Json { return o.settings.seed; }},
         // Hachisuka, Jarosz and Jensen 2010: per-pixel bias and noise (integrators/error_estimate.h).
         {"Error estimation", "--target-error", nullptr, "E",
          "Stop once the estimated error is at most E: the 90th percentile over pixels of |L - L_true| / L, "
          "calibrated so that the actual error at the stop is between E/2 and E; --passes and --time still "
          "bound the render",
          "a number > 0", "none",
-         [](RenderOptions& o, const OptionArg& a) { o.target_error = parse_real(a, [](double x) { return x > 0; }); }},
+         [](RenderOptions& o, const OptionArg& a) { o.target_error = parse_real(a, [](double x) { return x > 0; }); },
+         OptionRole::Run, [](const RenderOptions& o) -> Json { return o.target_error; }},
         {"Error estimation", "--error-bound", nullptr, nullptr,
          "With --target-error: stop on the conservative bound instead (the 90th percentile of per-pixel bounds "
          "that hold at --confidence; typically 3 to 4 times the actual error)",
-         nullptr, nullptr, [](RenderOptions& o, const OptionArg&) { o.error_bound = true; }},
+         nullptr, nullptr, [](RenderOptions& o, const OptionArg&) { o.error_bound = true; }, OptionRole::Run,
+         [](const RenderOptions& o) -> Json { return o.error_bound; }},
         {"Error estimation", "--confidence", nullptr, "P",
          "Confidence of the per-pixel error bounds (with --target-error or --error-output)", "in (0, 1)", "0.95",
          [](RenderOptions& o, const OptionArg& a) {
              o.confidence = parse_real(a, [](double x) { return x > 0 && x < 1; });
-         }},
+         },
+         OptionRole::Run, [](const RenderOptions& o) -> Json { return confidence_of(o); }},
         {"Error estimation", "--error-output", nullptr, "FILE",
          "Write the per-pixel relative error bound to FILE (EXR) and a false-colour PNG beside it; the main "
          "EXR gets an \"error\" layer too",
@@ -224,64 +253,84 @@ const std::vector<RenderOptionSpec>& render_option_table() {
          [](RenderOptions& o, const OptionArg& a) {
              if (!ends_with_ci(a.value, ".exr") || a.value.size() <= 4) bad_value(a);
              o.error_output = a.value;
-         }},
+         },
+         OptionRole::Run, [](const RenderOptions& o) -> Json { return !o.error_output.empty(); }},
         {"Lighting", "--env", nullptr, "FILE",
          "Light the scene with an equirectangular environment map (top row +Y, centre -Z, u towards +X), or with "
          "the built-in studio environment (a soft key light and a rim light) for looking at a model",
          "an .exr or .hdr file, or studio (./studio for a file of that name)", "none",
-         [](RenderOptions& o, const OptionArg& a) { o.env.file = non_empty(a); }},
+         [](RenderOptions& o, const OptionArg& a) { o.env.file = non_empty(a); }, OptionRole::Image,
+         [](const RenderOptions& o) -> Json { return o.env.file; }},
         {"Lighting", "--env-color", nullptr, "R,G,B", "Light the scene with a uniform environment of this radiance",
          "three numbers >= 0, comma-separated", "none",
          [](RenderOptions& o, const OptionArg& a) {
              o.env.color = parse_rgb(a);
              o.env.has_color = true;
-         }},
+         },
+         OptionRole::Image,
+         [](const RenderOptions& o) -> Json { return o.env.has_color ? Json(o.env.color) : Json(); }},
         {"Lighting", "--env-strength", nullptr, "S", "Scale the environment (also the default one)",
          "a finite number >= 0", "1",
-         [](RenderOptions& o, const OptionArg& a) { o.env.strength = parse_real(a, [](double x) { return x >= 0; }); }},
+         [](RenderOptions& o, const OptionArg& a) { o.env.strength = parse_real(a, [](double x) { return x >= 0; }); },
+         OptionRole::Image, [](const RenderOptions& o) -> Json { return o.env.strength; }},
         {"Lighting", "--env-rotate", nullptr, "DEG", "Turn the environment about +Y (right-handed: +X towards -Z)",
          "a finite number of degrees", "0",
          [](RenderOptions& o, const OptionArg& a) {
              o.env.rotate_degrees = parse_real(a, [](double) { return true; });
-         }},
+         },
+         OptionRole::Image, [](const RenderOptions& o) -> Json { return o.env.rotate_degrees; }},
         {"Lighting", "--env-hidden", nullptr, nullptr,
          "Camera rays that leave the scene see black; the environment still lights it", nullptr, nullptr,
-         [](RenderOptions& o, const OptionArg&) { o.env.hidden = true; }},
+         [](RenderOptions& o, const OptionArg&) { o.env.hidden = true; }, OptionRole::Image,
+         [](const RenderOptions& o) -> Json { return o.env.hidden; }},
         {"Lighting", "--no-default-light", nullptr, nullptr,
          "No default environment: a scene without a world of its own is lit by its own lights alone (refused if it has "
          "none)",
-         nullptr, nullptr, [](RenderOptions& o, const OptionArg&) { o.env.default_light = false; }},
+         nullptr, nullptr, [](RenderOptions& o, const OptionArg&) { o.env.default_light = false; }, OptionRole::Image,
+         [](const RenderOptions& o) -> Json { return !o.env.default_light; }},
         {"Checkpoints", "--checkpoint", nullptr, "FILE",
          "Save the complete progressive state to FILE (atomically) periodically, on Ctrl-C and at the end",
-         "a file name", "none", [](RenderOptions& o, const OptionArg& a) { o.checkpoint = non_empty(a); }},
+         "a file name", "none", [](RenderOptions& o, const OptionArg& a) { o.checkpoint = non_empty(a); },
+         OptionRole::Local, nullptr},
         {"Checkpoints", "--checkpoint-every", nullptr, "K", "Save the checkpoint every K passes",
          "an integer >= 0 (0 = off)", "0",
-         [](RenderOptions& o, const OptionArg& a) {
-             o.checkpoint_every = static_cast<uint64_t>(parse_int(a, 0, INT64_MAX));
-         }},
+         [](RenderOptions& o,
+            const OptionArg& a) { o.checkpoint_every = static_cast<uint64_t>(parse_int(a, 0, INT64_MAX)); },
+         OptionRole::Local, nullptr},
         {"Checkpoints", "--checkpoint-interval", nullptr, "SECONDS", "Save the checkpoint every SECONDS of rendering",
          "a number of seconds > 0", "300",
-         [](RenderOptions& o, const OptionArg& a) {
-             o.checkpoint_interval = parse_real(a, [](double x) { return x > 0; });
-         }},
+         [](RenderOptions& o,
+            const OptionArg& a) { o.checkpoint_interval = parse_real(a, [](double x) { return x > 0; }); },
+         OptionRole::Local, nullptr},
         {"Checkpoints", "--resume", nullptr, "FILE",
          "Continue the render saved in checkpoint FILE (same scene and image-shaping options; --passes "
          "counts from the start of the original render, --time this run only)",
-         "a checkpoint file", "none", [](RenderOptions& o, const OptionArg& a) { o.resume = non_empty(a); }},
+         "a checkpoint file", "none", [](RenderOptions& o, const OptionArg& a) { o.resume = non_empty(a); },
+         OptionRole::Run, [](const RenderOptions& o) -> Json { return o.resume; }},
         {"Devices and kernels", "--device", nullptr, "SPEC", "Device to render on; repeatable (see --list-devices)",
          "a device index, cpu, gpu, auto (the fastest, measured), or part of an implementation's name (pocl, "
          "intel, nvidia) or a device's",
-         "automatic", [](RenderOptions& o, const OptionArg& a) { o.devices.push_back(non_empty(a)); }},
+         "automatic", [](RenderOptions& o, const OptionArg& a) { o.devices.push_back(non_empty(a)); },
+         OptionRole::Local, nullptr},
         {"Devices and kernels", "--generic-kernels", nullptr, nullptr,
          "Build the generic kernels instead of ones specialised for the scene's materials, lights and camera", nullptr,
-         nullptr, [](RenderOptions& o, const OptionArg&) { o.generic_kernels = true; }},
+         nullptr, [](RenderOptions& o, const OptionArg&) { o.generic_kernels = true; }, OptionRole::Run,
+         [](const RenderOptions& o) -> Json { return o.generic_kernels; }},
         {"Devices and kernels", "--kernel-dir", nullptr, "DIR", "Load kernels from DIR instead of the embedded copies",
-         "a directory", "embedded", [](RenderOptions& o, const OptionArg& a) { o.kernel_dir = non_empty(a); }},
+         "a directory", "embedded", [](RenderOptions& o, const OptionArg& a) { o.kernel_dir = non_empty(a); },
+         OptionRole::Run, [](const RenderOptions& o) -> Json { return o.kernel_dir; }},
         {"Devices and kernels", "--dump-kernel-source", nullptr, "FILE",
          "Write the assembled kernel source and build options to FILE", "a file name", "none",
-         [](RenderOptions& o, const OptionArg& a) { o.dump_kernel_source = non_empty(a); }},
+         [](RenderOptions& o, const OptionArg& a) { o.dump_kernel_source = non_empty(a); }, OptionRole::Local, nullptr},
     };
     return table;
+}
+
+Json option_values(const RenderOptions& options, OptionRole role) {
+    Json out = Json::object();
+    for (const RenderOptionSpec& s : render_option_table())
+        if (s.role == role) out[s.name] = s.value(options);
+    return out;
 }
 
 const RenderOptionSpec* find_render_option(const std::string& name) {

@@ -11,6 +11,18 @@
 
 namespace clppm {
 
+// What an option is to a render's result: the one place that says it. Every list of options that
+// must agree derives from this column (render/render_options.cpp: what every MPI process must
+// share; render/job_fingerprint.cpp: what a checkpoint continues only under; the Python module's
+// settings), and tests/option_roles_test.cpp renders with each option changed to catch an option
+// that changes the image and is not marked so.
+enum class OptionRole {
+    Local, // how this process runs and reports: outputs, previews, verbosity, devices, viewers
+    Run,   // when passes stop and what is estimated: every process must agree; a checkpoint may go on
+           // under another
+    Image, // the image itself: every process must agree, and a checkpoint goes on only under the same
+};
+
 struct RenderOptionSpec {
     const char* group;      // --help's section: "Output", "Integrator", ...
     const char* name;       // "--alpha"
@@ -20,7 +32,12 @@ struct RenderOptionSpec {
     const char* range; // nullptr when any value goes; the tail of every message: "--alpha 1.5: must be <range>"
     const char* default_text;
     void (*apply)(RenderOptions& options, const OptionArg& arg);
+    OptionRole role;
+    Json (*value)(const RenderOptions& options); // the option's value as set; nullptr for Local
 };
+
+// The value of every option of `role` in `options`, by name (--help's order).
+Json option_values(const RenderOptions& options, OptionRole role);
 
 // Every render option, in --help's order.
 const std::vector<RenderOptionSpec>& render_option_table();

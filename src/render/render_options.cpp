@@ -1,6 +1,7 @@
 #include "render/render_options.h"
 
 #include "io/image_io.h"
+#include "render/option_table.h"
 #include "render/option_values.h"
 #include "util/error.h"
 
@@ -31,41 +32,10 @@ std::vector<std::string> output_files(const RenderOptions& o) {
 }
 
 Json options_every_rank_shares(const RenderOptions& o) {
-    const RenderSettings& s = o.settings;
-    const EnvironmentSettings& e = o.env;
-    return {{"SCENE", o.scene},
-            {"--integrator", s.integrator},
-            {"--direct", to_string(s.direct)},
-            {"--width", s.width},
-            {"--height", s.height},
-            {"--camera", s.camera},
-            {"--variant", o.variant},
-            {"--spp", s.spp},
-            {"--photons", s.photons},
-            {"--alpha", s.alpha},
-            {"--radius", s.radius},
-            {"--seed", s.seed},
-            {"--max-bounces", s.max_bounces},
-            {"--filter", to_string(s.filter)},
-            {"--sampler", to_string(s.sampler)},
-            {"--visual-importance", s.visual_importance},
-            {"--aperture", s.aperture},
-            {"--focus-distance", s.focus_distance},
-            {"--passes", o.passes ? Json(*o.passes) : Json("default")},
-            {"--time", o.time_limit},
-            {"--target-error", o.target_error},
-            {"--error-bound", o.error_bound},
-            {"--confidence", confidence_of(o)},
-            {"--error-output", !o.error_output.empty()},
-            {"--env", e.file},
-            {"--env-color", e.has_color ? Json(e.color) : Json()},
-            {"--env-strength", e.strength},
-            {"--env-rotate", e.rotate_degrees},
-            {"--env-hidden", e.hidden},
-            {"--no-default-light", !e.default_light},
-            {"--generic-kernels", o.generic_kernels},
-            {"--kernel-dir", o.kernel_dir},
-            {"--resume", o.resume}};
+    Json shared = option_values(o, OptionRole::Image);
+    shared.update(option_values(o, OptionRole::Run));
+    shared["SCENE"] = o.scene;
+    return shared;
 }
 
 void set_scene(RenderOptions& o, const std::string& path) {

@@ -67,9 +67,10 @@ uint64_t pass_limit(const RenderOptions& options, uint64_t default_passes);
 // Every file the options will write (image, PNG, stats, checkpoint, error image and its PNG).
 std::vector<std::string> output_files(const RenderOptions& options);
 
-// The options every process of an MPI job must share, as JSON keyed by option name: what shapes
-// the image, the world, the kernels, and when the passes stop (render/rank_agreement.h). Not the
-// outputs, which rank 0 alone writes, nor --device and --quiet.
+// The options every process of an MPI job must share, as JSON keyed by option name (and SCENE):
+// the option table's Image and Run options (render/option_table.h), checked by
+// render/rank_agreement.h. Not the Local ones: the outputs, which rank 0 alone writes, --device,
+// --quiet.
 Json options_every_rank_shares(const RenderOptions& options);
 
 // Sets the scene file; throws Error unless it is a .gltf or .glb file, or when one is set already.

@@ -1,0 +1,104 @@
+// One table says what each option is to a render's result (render/option_table.h, OptionRole), and
+// the lists that must agree derive from it: what every MPI process shares, what a checkpoint
+// continues only under (issue 61: --disc-coverage was in the one and not the other). These tests
+// catch a wrong row: each option has a sample value here (a new option fails until it gets one);
+// every Image and Run option's value reads back what its sample set; and a render with each Local
+// option set gives the same image, bit for bit, as one without.
+#include <gtest/gtest.h>
+
+#include <map>
+#include <string>
+
+#include "io/image_io.h"
+#include "render/option_table.h"
+#include "render/render_options.h"
+#include "test_util.h"
+
+using namespace clppm;
+using namespace clppm::test;
+
+namespace {
+
+// A value of each option other than its default ("" for a flag).
+const std::map<std::string, std::string>& samples() {
+    static const std::map<std::string, std::string> s = {
+        {"--output", "other.exr"},     {"--no-png", ""},          {"--tonemap", "reinhard"},
+        {"--exposure", "1.5"},         {"--auto-exposure", ""},   {"--stats-json", "stats.json"},
+        {"--progressive-output", "1"}, {"--serve", "0"},          {"--display-server", "127.0.0.1:1"},
+        {"--quiet", ""},               {"--width", "12"},         {"--height", "10"},
+        {"--variant", "Red"},          {"--camera", "1"},         {"--aperture", "0.1"},
+        {"--focus-distance", "2"},     {"--filter", "tent"},      {"--integrator", "ppm"},
+        {"--passes", "5"},             {"--time", "1"},           {"--photons", "1234"},
+        {"--alpha", "0.5"},            {"--radius", "0.05"},      {"--spp", "2"},
+        {"--disc-coverage", "on"},     {"--direct", "photons"},    {"--max-bounces", "3"},
+        {"--sampler", "independent"},  {"--visual-importance", ""}, {"--seed", "9"},
+        {"--target-error", "0.1"},     {"--error-bound", ""},     {"--confidence", "0.9"},
+        {"--error-output", "e.exr"},   {"--env", "studio"},       {"--env-color", "1,0,0"},
+        {"--env-strength", "2"},       {"--env-rotate", "30"},    {"--env-hidden", ""},
+        {"--no-default-light", ""},    {"--checkpoint", "c.ckpt"}, {"--checkpoint-every", "1"},
+        {"--checkpoint-interval", "1"}, {"--resume", "r.ckpt"},   {"--device", "0"},
+        {"--generic-kernels", ""},     {"--kernel-dir", "/tmp"},  {"--dump-kernel-source", "k.cl"}};
+    return s;
+}
+
+RenderOptions with(const RenderOptionSpec& spec) {
+    RenderOptions o;
+    apply_render_option(o, spec, spec.name, samples().at(spec.name));
+    return o;
+}
+
+} // namespace
+
+TEST(OptionRoles, EveryOptionHasASampleAndItsRolesValue) {
+    for (const RenderOptionSpec& spec : render_option_table()) {
+        ASSERT_TRUE(samples().count(spec.name)) << spec.name << ": give it a sample value here, and check its role";
+        EXPECT_EQ(spec.value == nullptr, spec.role == OptionRole::Local)
+            << spec.name << ": Image and Run options read their value back, Local ones have none";
+    }
+    EXPECT_EQ(samples().size(), render_option_table().size()) << "a sample for an option that is gone";
+}
+
+// The value an Image or Run option reports is the one its sample set, and the lists built from the
+// roles carry it: every process's agreement and, for Image, the checkpoint's fingerprint.
+TEST(OptionRoles, ImageAndRunOptionsReadBackWhatTheySet) {
+    const RenderOptions defaults;
+    for (const RenderOptionSpec& spec : render_option_table()) {
+        if (spec.role == OptionRole::Local) continue;
+        const RenderOptions o = with(spec);
+        EXPECT_NE(spec.value(o), spec.value(defaults)) << spec.name << " " << samples().at(spec.name)
+                                                       << ": its value reads another field than it sets";
+        const Json shared = options_every_rank_shares(o);
+        ASSERT_TRUE(shared.contains(spec.name)) << spec.name;
+        EXPECT_EQ(shared[spec.name], spec.value(o)) << spec.name;
+        EXPECT_EQ(option_values(o, OptionRole::Image).contains(spec.name), spec.role == OptionRole::Image)
+            << spec.name;
+    }
+    // The drift issue 61 found: --disc-coverage shapes the image and every process must share it.
+    EXPECT_EQ(find_render_option("--disc-coverage")->role, OptionRole::Image);
+}
+
+// A Local option changes how the render runs and reports, never its image: the EXR is the same bit
+// for bit with each set. (--serve and --display-server open sockets: their images are the same
+// too, but a test that listens or connects is left to tests/live_view_test.cpp and tev_client_test.)
+TEST(OptionRoles, LocalOptionsLeaveTheImageAlone) {
+    const std::string dir = make_temp_dir("option_roles"), out = dir + "/base.exr";
+    const std::string common = " --width 12 --height 10 --passes 2 --photons 2000 --seed 3 --integrator sppm";
+    std::string log;
+    ASSERT_EQ(run_clppm(common + " --no-png -o " + out, &log), 0) << log;
+    const Image base = read_exr(out);
+    for (const RenderOptionSpec& spec : render_option_table()) {
+        if (spec.role != OptionRole::Local) continue;
+        const std::string name = spec.name;
+        if (name == "--serve" || name == "--display-server") continue;
+        std::string value = samples().at(name);
+        if (name == "--device") value = std::to_string(test_device().index);
+        else if (value.find(".exr") != std::string::npos || value.find(".json") != std::string::npos ||
+                 value.find(".ckpt") != std::string::npos || value.find(".cl") != std::string::npos)
+            value = dir + "/" + value; // a file it writes
+        const std::string target = name == "--output" ? value : dir + "/x.exr";
+        const std::string args = common + " --no-png " + name + (value.empty() ? "" : " " + value) +
+                                 (name == "--output" ? "" : " -o " + target);
+        ASSERT_EQ(run_clppm(args, &log), 0) << name << ": " << log;
+        EXPECT_EQ(read_exr(target).rgb, base.rgb) << name << " " << value << " changed the image: is it Local?";
+    }
+}
