@@ -216,6 +216,11 @@ TEST(Mpi, RanksThatDifferAreOneErrorFromRankZero) {
     EXPECT_EQ(out.find("status=124"), std::string::npos) << out;
     expect_one_error(out, "--width 48 on rank 0, 64 on rank 1");
     expect_one_error(out, "--integrator \"auto\" on rank 0, \"pt\" on rank 1");
+    // --disc-coverage was missing from the list once (issue 61): it rendered with exit 0.
+    EXPECT_NE(
+        run_command(mpirun1 + "-np 1 " + a + " --disc-coverage on : -np 1 " + a + " --disc-coverage off 2>&1", &out),
+        0);
+    expect_one_error(out, "--disc-coverage \"on\" on rank 0, \"off\" on rank 1");
     // The same relative scene path, another file's contents on each rank.
     for (const char* sub : {"/r0", "/r1"}) {
         ASSERT_EQ(mkdir((dir + sub).c_str(), 0700), 0);
