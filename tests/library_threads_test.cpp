@@ -12,8 +12,8 @@
 #include "render/option_table.h"
 #include "render/render_job.h"
 #include "render/render_loop.h"
-#include "util/cancellation.h"
 #include "test_util.h"
+#include "util/cancellation.h"
 
 using namespace clppm;
 using namespace clppm::test;
@@ -29,14 +29,14 @@ const Job kJobs[] = {{"sppm", 1}, {"pt", 2}, {"vcm", 3}, {"ppm", 4}, {"bpt", 5},
 
 RenderOptions options_for(const Job& job) {
     RenderOptions o;
-    for (const auto& [name, value] : std::vector<std::pair<std::string, std::string>>{
-             {"--integrator", job.integrator},
-             {"--seed", std::to_string(job.seed)},
-             {"--width", "16"},
-             {"--height", "12"},
-             {"--passes", "3"},
-             {"--photons", "3000"},
-             {"--device", std::to_string(test_device().index)}})
+    for (const auto& [name, value] :
+         std::vector<std::pair<std::string, std::string>>{{"--integrator", job.integrator},
+                                                          {"--seed", std::to_string(job.seed)},
+                                                          {"--width", "16"},
+                                                          {"--height", "12"},
+                                                          {"--passes", "3"},
+                                                          {"--photons", "3000"},
+                                                          {"--device", std::to_string(test_device().index)}})
         apply_render_option(o, *find_render_option(name), name, value);
     o.quiet = true;
     check_render_options(o);

@@ -21,23 +21,54 @@ namespace {
 
 // A value of each option other than its default ("" for a flag).
 const std::map<std::string, std::string>& samples() {
-    static const std::map<std::string, std::string> s = {
-        {"--output", "other.exr"},     {"--no-png", ""},          {"--tonemap", "reinhard"},
-        {"--exposure", "1.5"},         {"--auto-exposure", ""},   {"--stats-json", "stats.json"},
-        {"--progressive-output", "1"}, {"--serve", "0"},          {"--display-server", "127.0.0.1:1"},
-        {"--quiet", ""},               {"--width", "12"},         {"--height", "10"},
-        {"--variant", "Red"},          {"--camera", "1"},         {"--aperture", "0.1"},
-        {"--focus-distance", "2"},     {"--filter", "tent"},      {"--integrator", "ppm"},
-        {"--passes", "5"},             {"--time", "1"},           {"--photons", "1234"},
-        {"--alpha", "0.5"},            {"--radius", "0.05"},      {"--spp", "2"},
-        {"--disc-coverage", "on"},     {"--direct", "photons"},    {"--max-bounces", "3"},
-        {"--sampler", "independent"},  {"--visual-importance", ""}, {"--seed", "9"},
-        {"--target-error", "0.1"},     {"--error-bound", ""},     {"--confidence", "0.9"},
-        {"--error-output", "e.exr"},   {"--env", "studio"},       {"--env-color", "1,0,0"},
-        {"--env-strength", "2"},       {"--env-rotate", "30"},    {"--env-hidden", ""},
-        {"--no-default-light", ""},    {"--checkpoint", "c.ckpt"}, {"--checkpoint-every", "1"},
-        {"--checkpoint-interval", "1"}, {"--resume", "r.ckpt"},   {"--device", "0"},
-        {"--generic-kernels", ""},     {"--kernel-dir", "/tmp"},  {"--dump-kernel-source", "k.cl"}};
+    static const std::map<std::string, std::string> s = {{"--output", "other.exr"},
+                                                         {"--no-png", ""},
+                                                         {"--tonemap", "reinhard"},
+                                                         {"--exposure", "1.5"},
+                                                         {"--auto-exposure", ""},
+                                                         {"--stats-json", "stats.json"},
+                                                         {"--progressive-output", "1"},
+                                                         {"--serve", "0"},
+                                                         {"--display-server", "127.0.0.1:1"},
+                                                         {"--quiet", ""},
+                                                         {"--width", "12"},
+                                                         {"--height", "10"},
+                                                         {"--variant", "Red"},
+                                                         {"--camera", "1"},
+                                                         {"--aperture", "0.1"},
+                                                         {"--focus-distance", "2"},
+                                                         {"--filter", "tent"},
+                                                         {"--integrator", "ppm"},
+                                                         {"--passes", "5"},
+                                                         {"--time", "1"},
+                                                         {"--photons", "1234"},
+                                                         {"--alpha", "0.5"},
+                                                         {"--radius", "0.05"},
+                                                         {"--spp", "2"},
+                                                         {"--disc-coverage", "on"},
+                                                         {"--direct", "photons"},
+                                                         {"--max-bounces", "3"},
+                                                         {"--sampler", "independent"},
+                                                         {"--visual-importance", ""},
+                                                         {"--seed", "9"},
+                                                         {"--target-error", "0.1"},
+                                                         {"--error-bound", ""},
+                                                         {"--confidence", "0.9"},
+                                                         {"--error-output", "e.exr"},
+                                                         {"--env", "studio"},
+                                                         {"--env-color", "1,0,0"},
+                                                         {"--env-strength", "2"},
+                                                         {"--env-rotate", "30"},
+                                                         {"--env-hidden", ""},
+                                                         {"--no-default-light", ""},
+                                                         {"--checkpoint", "c.ckpt"},
+                                                         {"--checkpoint-every", "1"},
+                                                         {"--checkpoint-interval", "1"},
+                                                         {"--resume", "r.ckpt"},
+                                                         {"--device", "0"},
+                                                         {"--generic-kernels", ""},
+                                                         {"--kernel-dir", "/tmp"},
+                                                         {"--dump-kernel-source", "k.cl"}};
     return s;
 }
 
@@ -65,13 +96,12 @@ TEST(OptionRoles, ImageAndRunOptionsReadBackWhatTheySet) {
     for (const RenderOptionSpec& spec : render_option_table()) {
         if (spec.role == OptionRole::Local) continue;
         const RenderOptions o = with(spec);
-        EXPECT_NE(spec.value(o), spec.value(defaults)) << spec.name << " " << samples().at(spec.name)
-                                                       << ": its value reads another field than it sets";
+        EXPECT_NE(spec.value(o), spec.value(defaults))
+            << spec.name << " " << samples().at(spec.name) << ": its value reads another field than it sets";
         const Json shared = options_every_rank_shares(o);
         ASSERT_TRUE(shared.contains(spec.name)) << spec.name;
         EXPECT_EQ(shared[spec.name], spec.value(o)) << spec.name;
-        EXPECT_EQ(option_values(o, OptionRole::Image).contains(spec.name), spec.role == OptionRole::Image)
-            << spec.name;
+        EXPECT_EQ(option_values(o, OptionRole::Image).contains(spec.name), spec.role == OptionRole::Image) << spec.name;
     }
     // The drift issue 61 found: --disc-coverage shapes the image and every process must share it.
     EXPECT_EQ(find_render_option("--disc-coverage")->role, OptionRole::Image);

@@ -4,9 +4,9 @@ value of its own)."""
 import bpy
 
 INTEGRATORS = [
-    ("auto", "Auto", "The fastest for the scene: stochastic PPM where glass or smooth metal casts caustics or "
-                     "where the lights reach almost nothing the camera sees (light through a gap), the path "
-                     "tracer otherwise"),
+    ("auto", "Auto", "The fastest for the scene: vertex connection and merging where glass or smooth metal "
+                     "casts caustics of the scene's own lights, stochastic PPM where the lights reach almost "
+                     "nothing the camera sees (light through a gap), the path tracer otherwise"),
     ("sppm", "SPPM", "Stochastic progressive photon mapping"),
     ("pppm", "PPPM", "Probabilistic progressive photon mapping"),
     ("ppm", "PPM", "Progressive photon mapping (fixed hit points)"),
