@@ -17,12 +17,7 @@ using namespace clppm::test;
 namespace {
 
 DeviceInfo device(int index, const std::string& platform, const std::string& name, cl_device_type type) {
-    DeviceInfo d;
-    d.index = index;
-    d.platform_name = platform;
-    d.name = name;
-    d.type = type;
-    return d;
+    return test::fake_device(index, platform, name, type);
 }
 
 const std::string kPocl = "Portable Computing Language", kPoclCpu = "pthread-skylake-avx512-Intel(R) Xeon(R) Processor";

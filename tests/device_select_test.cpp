@@ -8,6 +8,7 @@
 
 #include "device/device.h"
 #include "render/device_choice.h"
+#include "test_util.h"
 #include "util/error.h"
 
 using namespace clppm;
@@ -15,12 +16,7 @@ using namespace clppm;
 namespace {
 
 DeviceInfo device(int index, const std::string& platform, const std::string& name, cl_device_type type) {
-    DeviceInfo d;
-    d.index = index;
-    d.platform_name = platform;
-    d.name = name;
-    d.type = type;
-    return d;
+    return test::fake_device(index, platform, name, type);
 }
 
 std::vector<DeviceInfo> three_implementations() {

@@ -17,6 +17,15 @@
 
 namespace clppm::test {
 
+DeviceInfo fake_device(int index, const std::string& platform, const std::string& name, cl_device_type type) {
+    DeviceInfo d;
+    d.index = index;
+    d.platform_name = platform;
+    d.name = name;
+    d.type = type;
+    return d;
+}
+
 const DeviceInfo& test_device() {
     static std::vector<DeviceInfo> devices = list_devices();
     if (devices.empty()) throw std::runtime_error("no OpenCL device for tests");

@@ -11,6 +11,9 @@ namespace clppm::test {
 // device, else device 0.
 const DeviceInfo& test_device();
 
+// A made-up device for tests of device choice: no OpenCL object behind it.
+DeviceInfo fake_device(int index, const std::string& platform, const std::string& name, cl_device_type type);
+
 // A fresh empty directory under the build's temporary space.
 std::string make_temp_dir(const std::string& tag);
 
