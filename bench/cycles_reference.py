@@ -82,7 +82,7 @@ def main():
 
     bpy.ops.wm.read_factory_settings(use_empty=True)
     # RAW: KHR_lights_punctual values read one for one (lux as W/m^2), as clppm reads them
-    # (README.md, "Punctual lights"); Blender's default would divide by 683 lm/W.
+    # (docs/scenes.md, "Punctual lights"); Blender's default would divide by 683 lm/W.
     bpy.ops.import_scene.gltf(filepath=a.scene, export_import_convert_lighting_mode="RAW")
     scene = bpy.context.scene
     # The importer draws bones with a mesh of its own (an icosphere of radius 1 at the origin),

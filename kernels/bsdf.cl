@@ -1,5 +1,5 @@
 /* bsdf.cl: the one scattering interface of clppm's material model, glTF 2.0's metallic-roughness
- * BRDF (Appendix B) as a physically based renderer reads it (the glTF mapping is in README.md).
+ * BRDF (Appendix B) as a physically based renderer reads it (the glTF mapping is in docs/scenes.md).
  * The eye pass, photon tracing, the gather, direct lighting and the path tracer all call it:
  * surface_bsdf() resolves a material at a hit into a Bsdf; bsdf_eval, bsdf_pdf and bsdf_sample
  * evaluate, give the density of and sample it over any set of lobes; bsdf_gathered_lobes is the
@@ -25,7 +25,7 @@
  *    The transmission is written in flux form: f(wo, wi) carries eta_i^2 of wi's side, so a
  *    sample's weight is (1 - F) G2 / G1 whichever way light goes and photons and eye paths share
  *    one function; eye paths thereby carry radiance times (eta_light / eta_eye)^2, which is 1
- *    whenever the camera and the lights are both outside every dielectric (README.md).
+ *    whenever the camera and the lights are both outside every dielectric (docs/scenes.md).
  *  - LOBE_SHEEN, KHR_materials_sheen: sheen colour times the Charlie distribution (Estevez and
  *    Kulla 2017) with Neubelt and Pettineo's visibility, D V / max(1, E_s(wo), E_s(wi)), over the
  *    lobes above, which it scales by min(1 - max(sheen) E'(wo), 1 - max(sheen) E'(wi)), E_s the
@@ -56,7 +56,7 @@
  *    directional albedo: the rule the sheen extension gives for the layers under sheen. It is
  *    reciprocal and never gains energy (the albedo at wo is at most coat E_c(wo) + (1 - coat
  *    E_c(wo)) times the rest's); what it loses against an exact layer is light the coat would
- *    send back down into the base and the base up again (README.md, "Materials").
+ *    send back down into the base and the base up again (docs/scenes.md, "Materials").
  * Reflection lobes with alpha below MIRROR_ALPHA are mirrors (delta lobes): the same Fresnel at
  * the view angle, so the model is continuous in roughness down to 0.
  * All directions point away from the surface; wo is on the side of the shading normal. */
@@ -607,7 +607,7 @@ LobeWeights lobe_weights(const Bsdf* b, float3 wo, uint mask) {
  * tilts the shading normal but not the surface: light arriving from below the smooth surface (the
  * interpolated normal, past the terminator of a low-poly mesh) does not reach the point, however
  * the map tilts it, and no sampled ray leaves that way, as Blender's Cycles renders normal maps
- * (README.md, "Materials"). Always true without a normal map (nl = ns). */
+ * (docs/scenes.md, "Materials"). Always true without a normal map (nl = ns). */
 bool bsdf_smooth_side(const Bsdf* b, float3 wi) {
     return !HAS_NORMAL_MAPS || (dot(wi, b->nl) > 0.0f) == (dot(wi, b->ns) > 0.0f);
 }

@@ -1,5 +1,5 @@
 /* dispersion.cl: spectral transport for KHR_materials_dispersion, paid for only by scenes that
- * disperse (HAS_DISPERSION; README.md, "Dispersion").
+ * disperse (HAS_DISPERSION; docs/scenes.md, "dispersion").
  *
  * Light stays RGB everywhere except where it crosses a dispersive dielectric, whose index depends
  * on the wavelength (the extension's Cauchy form, dispersion_ior). Every pass draws one wavelength

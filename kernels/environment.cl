@@ -1,5 +1,5 @@
 /* environment.cl: the environment light (LIGHT_ENVIRONMENT), radiance L(w) arriving from every
- * direction w: uniform, or an equirectangular map. Orientation (README.md): the map's top row is
+ * direction w: uniform, or an equirectangular map. Orientation (docs/scenes.md): the map's top row is
  * +Y, its horizontal centre -Z (where a glTF camera with identity rotation looks), u grows
  * towards +X; theta = v pi from +Y, phi = (u - 1/2) 2 pi from -Z towards +X, so
  * w = (sin theta sin phi, cos theta, -sin theta cos phi), then turned about +Y by the light's

@@ -154,7 +154,7 @@ __kernel SCALAR_WORK_ITEMS void eye_pass(SCENE_PARAMS, __constant Camera* cam, u
     stack[0].dispersed = false;
     /* SPPM and PPPM: the pass's wavelength, which its photons share. PPM keeps its hit points for
      * the whole render: each pixel's samples take wavelengths of their own, stratified over them
-     * (README.md, "Dispersion", says what that means for PPM). */
+     * (docs/scenes.md, "dispersion", says what that means for PPM). */
     const PassWavelength pw =
         EYE_SLOTS == 1 ? pass_wavelength(seed, pass) : pass_wavelength(splitmix64(seed ^ splitmix64(pixel)), s);
     top = 1;

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Checks that every #include in src/ runs downwards through the layers (README, "Layout"):
+"""Checks that every #include in src/ runs downwards through the layers (docs/development.md, "Layout"):
 
     util < io < device < scene < integrators < render < cli, python
 

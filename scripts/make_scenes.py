@@ -173,7 +173,7 @@ class GltfBuilder:
 
     def world(self, **world):
         """The default scene's own world (extras.clppm_environment): color=(r, g, b), or
-        image=URI with strength and rotation (README, "A file's own world")."""
+        image=URI with strength and rotation (docs/scenes.md, "A file's own world")."""
         scenes = self._list("scenes")
         if not scenes:
             self.scene([])
@@ -194,7 +194,7 @@ class GltfBuilder:
     def document(self, uri):
         # A scene with lights of its own, written here, is meant to be seen by them alone: a black
         # world, unless it says otherwise (every scene without a world of its own is lit by the
-        # default environment; README, "Environment").
+        # default environment; docs/scenes.md, "Environment").
         scenes = self.doc.get("scenes", [])
         if self.has_lights() and scenes and "clppm_environment" not in scenes[self.doc.get("scene", 0)].get("extras", {}):
             self.world(color=(0.0, 0.0, 0.0))

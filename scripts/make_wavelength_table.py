@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Writes kernels/wavelength_table.h: what one wavelength of white light is in clppm's linear RGB
 (Rec. 709 primaries, D65 white), for the spectral transport of KHR_materials_dispersion
-(kernels/dispersion.cl, README.md "Dispersion").
+(kernels/dispersion.cl, docs/scenes.md "dispersion").
 
 White light of RGB (1, 1, 1) is the D65 spectrum (what an sRGB white means). The slice of it
 between lambda and lambda + d lambda has the colour
@@ -12,7 +12,7 @@ M the XYZ -> linear Rec. 709 matrix and xyz the CIE 1931 2-degree colour matchin
 negative parts (a single wavelength lies outside the Rec. 709 gamut): they are clipped to 0 and each
 channel is then scaled so that its integral is exactly 1. So a white ray split into wavelengths
 and recombined is white again, whatever the glass did to each wavelength's direction, and no
-wavelength carries negative light (README.md says what this does to the most saturated colours).
+wavelength carries negative light (docs/scenes.md says what this does to the most saturated colours).
 
 The table holds 1 nm bins centred on 380 ... 780 nm. A wavelength is drawn by choosing a bin with
 probability p_i proportional to w_r + w_g + w_b (then uniformly within it); its weight

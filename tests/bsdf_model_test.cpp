@@ -471,7 +471,7 @@ TEST(BsdfModel, WhiteFurnaceWithoutGain) {
                 EXPECT_GE(mean, (cos_o < 0.1 ? 0.99 : 0.997) - 4 * se);
             }
             // Under a coat (its alpha from 0 to 1 with the base's): never above 1; what the layering
-            // loses (README.md, "Materials") is at most the bound below.
+            // loses (docs/scenes.md, "Materials") is at most the bound below.
             for (const Params& p :
                  {coated(dielectric(alpha, {1, 1, 1}), 1.0, alpha), coated(metal(alpha, {1, 1, 1}), 1.0, alpha),
                   coated(dielectric(alpha, {1, 1, 1}), 0.5, 1.0 - alpha),

@@ -266,7 +266,7 @@ TEST(RoughGlass, ReflectionAndTransmissionBalance) {
                 EXPECT_LE(a.reflected, mean_fresnel(alpha, eta, cos_o) + 4 * a.se + 1e-3);
                 // What single scattering loses (light that masking turns back into the surface,
                 // which would scatter again): the smallest R + T measured over these views, less
-                // 0.01, as README.md ("Materials") records them. From inside, near and past the
+                // 0.01, as docs/scenes.md ("Materials") records them. From inside, near and past the
                 // critical angle, rough glass loses the most.
                 const double least = eta > 1 ? (alpha <= 0.05  ? 0.98
                                                 : alpha <= 0.3 ? 0.90

@@ -1,5 +1,5 @@
 """clppm for Blender: a render engine that renders the scene through clppm (progressive photon
-mapping on OpenCL), with its area lights, world and depth of field. See README.md, "Blender"."""
+mapping on OpenCL), with its area lights, world and depth of field. See docs/blender.md, "Blender"."""
 
 bl_info = {
     "name": "clppm",

@@ -33,7 +33,7 @@ def _area_light(obj, warn):
     power = light.energy * 2.0 ** getattr(light, "exposure", 0.0)
     if not getattr(light, "normalize", True):
         power *= area
-    spread = math.degrees(light.spread)  # Cycles' soft-box spread, power kept (README, "Blender")
+    spread = math.degrees(light.spread)  # Cycles' soft-box spread, power kept (docs/blender.md, "Blender")
     color = list(light.color)
     if getattr(light, "use_temperature", False):
         color = [c * t for c, t in zip(color, light.temperature_color)]

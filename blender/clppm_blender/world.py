@@ -6,7 +6,7 @@ about Z by a Mapping node, times its Strength. Anything else in the tree is repo
 supported and the world is read as its Background colour.
 
 Axes. Blender's equirectangular images put their centre at world +X and their top at +Z (Cycles'
-direction_to_equirectangular); clppm's (README, "Environment") put the centre at glTF's -Z, which
+direction_to_equirectangular); clppm's (docs/scenes.md, "Environment") put the centre at glTF's -Z, which
 is Blender's +Y, with u running the same way round. Turning clppm's map by -90 degrees about the
 up axis brings its centre to +X; a Mapping node's Z rotation turns the lookup, so the picture
 turns the other way.

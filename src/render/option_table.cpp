@@ -172,7 +172,7 @@ const std::vector<RenderOptionSpec>& render_option_table() {
          OptionRole::Image, [](const RenderOptions& o) -> Json { return o.settings.alpha; }},
         {"Integrator", "--radius", nullptr, "R",
          "Initial gather radius R0 in scene units (and VCM's merging radius), at most the scene's bounding diameter",
-         "a finite number > 0", "a heuristic from the pixels' footprints (README)",
+         "a finite number > 0", "a heuristic from the pixels' footprints (docs/renderer.md)",
          [](RenderOptions& o, const OptionArg& a) {
              o.settings.radius = parse_real(a, [](double x) { return x > 0; });
          },

@@ -37,7 +37,7 @@ struct Environment {
     std::string source;                           // the file, "--env-color" or "the default environment"
 };
 
-// The world a file sets for itself: a scene-level extras.clppm_environment (README,
+// The world a file sets for itself: a scene-level extras.clppm_environment (docs/scenes.md,
 // "Environment"). apply_environment uses it unless the command line sets the world.
 struct FileWorld {
     enum class Kind { None, Color, Image };

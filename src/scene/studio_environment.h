@@ -9,7 +9,7 @@
 
 namespace clppm {
 
-// The studio as an equirectangular map of width x height texels (README's convention: top row
+// The studio as an equirectangular map of width x height texels (docs/scenes.md's convention: top row
 // +Y, centre -Z, u towards +X), each texel the mean over its area of the radiance below.
 Image studio_environment(int width = 256, int height = 128);
 

@@ -104,7 +104,7 @@ def mitsuba_scene(name, tmp, size=SIZE, max_depth=-1, vertex_normals=False):
     doc = json.load(open(path))
     blob = read_buffers(doc, path)
     scene = {"type": "scene", "integrator": {"type": "path", "max_depth": max_depth}}
-    # The world (README.md, "Environment"): the scene's extras.clppm_environment colour, else the
+    # The world (docs/scenes.md, "Environment"): the scene's extras.clppm_environment colour, else the
     # default uniform white of radiance 1; a black one is no emitter.
     world = doc["scenes"][doc.get("scene", 0)].get("extras", {}).get("clppm_environment", {"color": [1, 1, 1]})
     assert "color" in world, "only a uniform world is mapped"
@@ -195,7 +195,7 @@ def mitsuba_scene(name, tmp, size=SIZE, max_depth=-1, vertex_normals=False):
                 if "baseColorTexture" in pbr:
                     assert c == [1, 1, 1], "textured base colours here have factor 1"
                     refl = texture(doc, pbr["baseColorTexture"]["index"], tmp, "%s_%d_base" % (tag, k))
-                # clppm's non-emissive surfaces reflect on both sides (README.md, "Materials").
+                # clppm's non-emissive surfaces reflect on both sides (docs/scenes.md, "Materials").
                 inner = {"type": "diffuse", "reflectance": refl}
                 if "normalTexture" in m:
                     assert m["normalTexture"].get("scale", 1.0) == 1.0, "normal maps here have scale 1"
@@ -205,7 +205,7 @@ def mitsuba_scene(name, tmp, size=SIZE, max_depth=-1, vertex_normals=False):
                              "flip_invalid_normals": False,
                              "normalmap": texture(doc, m["normalTexture"]["index"], tmp, "%s_%d_normal" % (tag, k),
                                                   srgb=False)}
-                # clppm's non-emissive surfaces reflect on both sides (README.md, "Materials").
+                # clppm's non-emissive surfaces reflect on both sides (docs/scenes.md, "Materials").
                 shape["bsdf"] = {"type": "twosided", "bsdf": inner}
                 if m.get("alphaMode") == "MASK":
                     shape["bsdf"] = {"type": "mask", "bsdf": shape["bsdf"],

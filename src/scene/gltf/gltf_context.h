@@ -30,7 +30,7 @@ constexpr size_t kMaxByteStride = 252; // glTF 2.0 limit
 constexpr uint64_t kMaxExpandedAccessorBytes = uint64_t(1) << 30;
 constexpr double kPi = 3.14159265358979323846;
 
-// Each is read as its specification says (README, "glTF support").
+// Each is read as its specification says (docs/scenes.md).
 inline const std::set<std::string> kSupportedExtensions = {"KHR_lights_punctual",
                                                            "KHR_materials_emissive_strength",
                                                            "KHR_materials_transmission",

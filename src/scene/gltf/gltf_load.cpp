@@ -39,7 +39,7 @@ Scene load_bytes(const std::vector<unsigned char>& bytes, const std::string& bas
         ctx.warn(std::to_string(n) +
                  " material(s) in KHR_materials_pbrSpecularGlossiness (archived) converted to "
                  "metallic-roughness with KHR_materials_specular: F0 = the specular colour, roughness = 1 - "
-                 "glossiness (README, \"Scenes and conventions\")");
+                 "glossiness (docs/scenes.md, \"Scenes and conventions\")");
     SceneBuilder(model, ctx, scene).build();
     read_file_world(model, base, ctx, scene);
     return scene;

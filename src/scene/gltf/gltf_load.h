@@ -2,7 +2,7 @@
 // world-space triangles, materials, textures, punctual lights and cameras.
 //
 // Materials keep glTF's parameters (metallic, roughness, KHR_materials_transmission, _ior,
-// _specular); kernels/bsdf.cl is the scattering model they define, and README.md the mapping.
+// _specular); kernels/bsdf.cl is the scattering model they define, and docs/scenes.md the mapping.
 // A primitive without a material gets the glTF specification's default material: base colour 1,
 // metallic 1, roughness 1 (a rough white metal).
 // emission = emissiveFactor * KHR_materials_emissive_strength.emissiveStrength.

@@ -540,7 +540,7 @@ void MaterialConverter::append_texels(const tinygltf::Image& img, bool srgb) {
 }
 
 // The sampler's wrap modes, and magFilter NEAREST. minFilter is not read: every pixel averages
-// many samples over its footprint (README.md, "Materials"), so a minified texture converges to
+// many samples over its footprint (docs/scenes.md, "Materials"), so a minified texture converges to
 // its area average whatever the mip filter would have approximated.
 uint32_t MaterialConverter::sampler_bits(int sampler) {
     if (sampler < 0 || size_t(sampler) >= m_.samplers.size()) return 0; // repeat, linear

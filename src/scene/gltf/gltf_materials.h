@@ -1,4 +1,4 @@
-// glTF materials and their textures -> dev::Material and dev::Texture, as the README maps them:
+// glTF materials and their textures -> dev::Material and dev::Texture, as docs/scenes.md maps them:
 // factors checked finite and clamped, the material kind from metallic, roughness and
 // transmission, base colour textures decoded from sRGB, metallic-roughness textures linear.
 #pragma once
