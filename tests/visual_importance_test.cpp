@@ -234,8 +234,8 @@ TEST(VisualImportance, WhatItCannotDoIsRefusedByName) {
         const char* says;
     };
     for (const Case& c :
-         {Case{" --integrator pt", "needs --integrator sppm or ppm"},
-          Case{" --integrator pppm", "needs --integrator sppm or ppm"}, Case{"", "needs --integrator sppm or ppm"}}) {
+         {Case{" --integrator pt", "needs --integrator ppm or sppm"},
+          Case{" --integrator pppm", "needs --integrator ppm or sppm"}, Case{"", "needs --integrator ppm or sppm"}}) {
         EXPECT_EQ(run_clppm(a + c.args, &out), 1) << c.args << ": " << out;
         EXPECT_NE(out.find("--visual-importance"), std::string::npos) << c.args << ": " << out;
         EXPECT_NE(out.find(c.says), std::string::npos) << c.args << ": " << out;

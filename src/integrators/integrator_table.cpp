@@ -9,6 +9,7 @@
 #include "integrators/vcm_integrator.h"
 #include "shared_types.h"
 #include "util/error.h"
+#include "vcm_mis.h"
 
 namespace clppm {
 
@@ -46,20 +47,22 @@ constexpr uint64_t kPhotonPasses = 64, kPixelPasses = 512, kConnectionPasses = 1
 const std::vector<IntegratorRow> kTable = {
     {"ppm", nullptr, "progressive photon mapping (fixed hit points, Hachisuka et al. 2008)", "ppm_program.cl",
      PPM_EYE_SLOTS, WorkUnit::Photons, kPhotonPasses, true, true, true, "", PpmIntegrator::memory_needed, photon_memory,
-     make<PpmIntegrator>, nullptr},
+     make<PpmIntegrator>, nullptr, true, kProgressiveRadii},
     {"sppm", nullptr, "stochastic PPM (a new eye sample per pixel every pass)", "sppm_program.cl", SPPM_EYE_SLOTS,
-     WorkUnit::Photons, kPhotonPasses, true, true, true, "", sppm_memory, photon_memory, make<SppmIntegrator>, nullptr},
+     WorkUnit::Photons, kPhotonPasses, true, true, true, "", sppm_memory, photon_memory, make<SppmIntegrator>, nullptr,
+     true, kProgressiveRadii},
     {"pppm", nullptr, "probabilistic PPM (independent passes, Knaus and Zwicker 2011)", "sppm_program.cl",
      SPPM_EYE_SLOTS, WorkUnit::Photons, kPhotonPasses, true, true, true, "", sppm_memory, photon_memory,
-     make<SppmIntegrator>, nullptr},
+     make<SppmIntegrator>, nullptr, false, kProbabilisticRadii},
     {"pt", nullptr, "path tracing", "path_trace.cl", PPM_EYE_SLOTS, WorkUnit::Pixels, kPixelPasses, false, true, true,
-     "", pt_memory, no_transport_memory, make<PtIntegrator>, PtIntegrator::warnings},
+     "", pt_memory, no_transport_memory, make<PtIntegrator>, PtIntegrator::warnings, false, 0},
     {"vcm", nullptr, "vertex connection and merging (bidirectional path tracing and photon merging under MIS)",
      "vcm_program.cl", PPM_EYE_SLOTS, WorkUnit::Pixels, kConnectionPasses, true, false, true,
-     " (every process traces all light sub-paths)", vcm_memory, light_vertex_memory, make<VcmIntegrator>, nullptr},
+     " (every process traces all light sub-paths)", vcm_memory, light_vertex_memory, make<VcmIntegrator>, nullptr,
+     false, VCM_MODE_VCM},
     {"bpt", "bdpt", "bidirectional path tracing", "vcm_program.cl", PPM_EYE_SLOTS, WorkUnit::Pixels, kConnectionPasses,
      true, false, true, " (every process traces all light sub-paths)", vcm_memory, light_vertex_memory,
-     make<VcmIntegrator>, nullptr},
+     make<VcmIntegrator>, nullptr, false, VCM_MODE_BPT},
 };
 
 std::string lower(std::string s) {
@@ -82,6 +85,15 @@ std::string integrator_names() {
     std::string s;
     for (size_t i = 0; i < kTable.size(); ++i)
         s += (i == 0 ? "" : i + 1 == kTable.size() ? " or " : ", ") + std::string(kTable[i].name);
+    return s;
+}
+
+std::string visual_importance_integrators() {
+    std::vector<std::string> names;
+    for (const IntegratorRow& row : kTable)
+        if (row.visual_importance) names.push_back(row.name);
+    std::string s;
+    for (size_t i = 0; i < names.size(); ++i) s += (i == 0 ? "" : i + 1 == names.size() ? " or " : ", ") + names[i];
     return s;
 }
 

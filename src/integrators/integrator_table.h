@@ -42,7 +42,15 @@ struct IntegratorRow {
                                             const SecondaryDevices& secondaries);
     // What it cannot render of this scene, said as a warning before the first pass (may be null).
     std::vector<std::string> (*warnings)(const Scene& scene, const SceneFeatures& features);
+    bool visual_importance; // takes --visual-importance: photon paths that Markov chains guide
+    uint32_t mode;          // which variant of its class: kProbabilisticRadii (PPPM), VCM_MODE_* (VCM, BPT), or 0
 };
+
+// IntegratorRow::mode of the photon mappers: SPPM's shrinking radii, PPPM's independent passes.
+constexpr uint32_t kProgressiveRadii = 0, kProbabilisticRadii = 1;
+
+// "ppm or sppm": the integrators that take --visual-importance.
+std::string visual_importance_integrators();
 
 // Every integrator, in --help's order.
 const std::vector<IntegratorRow>& integrator_table();

@@ -5,6 +5,7 @@
 
 #include "integrators/checkpoint_checks.h"
 #include "integrators/direct_light.h"
+#include "integrators/integrator_table.h"
 #include "integrators/progressive_update.h"
 #include "util/error.h"
 
@@ -14,8 +15,9 @@ PhotonMappingIntegrator::PhotonMappingIntegrator(const DeviceContext& dc, const 
                                                  const RenderSettings& settings, const cl::Program& program,
                                                  const SecondaryDevices& secondaries)
     : IntegratorBase(dc, scene, settings, program) {
-    if (settings.visual_importance && settings.integrator == "pppm")
-        throw Error("--visual-importance: PPPM's passes are independent estimates; use --integrator sppm or ppm");
+    if (settings.visual_importance && !integrator_row(settings.integrator).visual_importance)
+        throw Error("--visual-importance: needs --integrator " + visual_importance_integrators() +
+                    " (photon paths that the chains guide)");
     photons_ = std::make_unique<PhotonPasses>(dc, scene, settings_, program, stats_, secondaries.devices,
                                               secondaries.program_file, secondaries.build_options);
     k_eye_ = cl::Kernel(program, "eye_pass");

@@ -6,6 +6,7 @@
 #include "integrators/checkpoint_checks.h"
 #include "integrators/film.h"
 #include "integrators/initial_radius.h"
+#include "integrators/integrator_table.h"
 #include "integrators/progressive_update.h"
 #include "util/error.h"
 
@@ -14,7 +15,7 @@ namespace clppm {
 SppmIntegrator::SppmIntegrator(const DeviceContext& dc, const DeviceScene& scene, const RenderSettings& settings,
                                const cl::Program& program, const SecondaryDevices& secondaries)
     : PhotonMappingIntegrator(dc, scene, settings, program, secondaries),
-      probabilistic_(settings.integrator == "pppm") {
+      probabilistic_(integrator_row(settings.integrator).mode == kProbabilisticRadii) {
     k_emission_ = cl::Kernel(program, "accumulate_emission");
     k_accumulate_ = cl::Kernel(program, "pppm_accumulate");
     k_film_ = cl::Kernel(program, probabilistic_ ? "pppm_film" : "sppm_film");

@@ -9,6 +9,7 @@
 #include "integrators/checkpoint_checks.h"
 #include "integrators/film.h"
 #include "integrators/initial_radius.h"
+#include "integrators/integrator_table.h"
 #include "integrators/progressive_update.h"
 #include "util/cancellation.h"
 #include "util/error.h"
@@ -28,7 +29,7 @@ constexpr double kSplatScale = 4294967296.0; // 2^32
 
 uint32_t technique_mode(const RenderSettings& s) {
     if (s.vcm_techniques >= 0) return uint32_t(s.vcm_techniques);
-    return s.integrator == "bpt" ? VCM_MODE_BPT : VCM_MODE_VCM;
+    return integrator_row(s.integrator).mode;
 }
 
 } // namespace

@@ -349,8 +349,10 @@ void check_render_options(const RenderOptions& o) {
     if (o.error_bound && !(o.target_error > 0)) throw Error("--error-bound: needs --target-error");
     if (o.confidence && !wants_error_estimate(o)) throw Error("--confidence: needs --target-error or --error-output");
     if (o.progressive_output > 0 && o.output.empty()) throw Error("--progressive-output: needs an output image");
-    if (o.settings.visual_importance && o.settings.integrator != "sppm" && o.settings.integrator != "ppm")
-        throw Error("--visual-importance: needs --integrator sppm or ppm (photon paths that the chains guide)");
+    if (o.settings.visual_importance &&
+        (o.settings.integrator == "auto" || !integrator_row(o.settings.integrator).visual_importance))
+        throw Error("--visual-importance: needs --integrator " + visual_importance_integrators() +
+                    " (photon paths that the chains guide)");
 }
 
 } // namespace clppm
