@@ -96,14 +96,20 @@ bool bit_identical(const Image& a, const Image& b) {
     return a.width == b.width && a.height == b.height && a.rgb == b.rgb;
 }
 
+// Why there are not two implementations to compare ("" when there are). Under
+// scripts/check_implementations.sh, which has seen both listed, one alone is also a failure.
+std::string why_not_two(const std::vector<DeviceInfo>& devices) {
+    if (devices.size() >= 2) return "";
+    if (std::getenv("CLPPM_REQUIRE_IMPLEMENTATIONS"))
+        ADD_FAILURE() << "CLPPM_REQUIRE_IMPLEMENTATIONS is set but " << devices.size()
+                      << " OpenCL implementation lists a CPU";
+    return "one OpenCL implementation with a CPU device here: nothing to compare; "
+           "scripts/check_implementations.sh adds Intel's CPU runtime";
+}
+
 void expect_same_image_everywhere(const std::string& integrator) {
     const std::vector<DeviceInfo> devices = one_cpu_per_platform();
-    // scripts/check_implementations.sh has seen both listed: there, one alone is a failure.
-    if (devices.size() < 2 && std::getenv("CLPPM_REQUIRE_IMPLEMENTATIONS"))
-        FAIL() << "CLPPM_REQUIRE_IMPLEMENTATIONS is set but " << devices.size() << " OpenCL implementation lists a CPU";
-    if (devices.size() < 2)
-        GTEST_SKIP() << "one OpenCL implementation with a CPU device here (" << devices.size()
-                     << "): nothing to compare; scripts/check_implementations.sh adds Intel's CPU runtime";
+    if (const std::string why = why_not_two(devices); !why.empty()) GTEST_SKIP() << why;
     const std::string dir = make_temp_dir("implementations_" + integrator);
     for (const Case& c : cases()) {
         const DeviceInfo& ref = devices[0];
@@ -141,9 +147,7 @@ void expect_same_image_everywhere(const std::string& integrator) {
 // image is the chosen device's bit for bit.
 TEST(Implementations, AutoMeasuresEachAndRemembers) {
     const std::vector<DeviceInfo> devices = one_cpu_per_platform();
-    if (devices.size() < 2 && std::getenv("CLPPM_REQUIRE_IMPLEMENTATIONS"))
-        FAIL() << "CLPPM_REQUIRE_IMPLEMENTATIONS is set but " << devices.size() << " OpenCL implementation lists a CPU";
-    if (devices.size() < 2) GTEST_SKIP() << "one OpenCL implementation with a CPU device here: nothing to measure";
+    if (const std::string why = why_not_two(devices); !why.empty()) GTEST_SKIP() << why;
     const std::string dir = make_temp_dir("implementations_auto"), cache = "CLPPM_CACHE_DIR='" + dir + "/cache' ";
     const std::string args = " --integrator pt --width 32 --height 32 --passes 4 --seed 3 --no-png -o '" + dir;
     std::string first, second, out;

@@ -13,6 +13,7 @@
 
 #include "util/cancellation.h"
 #include "util/error.h"
+#include "util/steady_seconds.h"
 
 namespace clppm {
 
@@ -54,8 +55,6 @@ std::string Cluster::prefix() const {
 
 namespace {
 
-double now_s() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
-
 // Waits for a non-blocking collective, polling for cancellation: a rank asked to stop does not
 // wait for ranks that may be gone (the request is abandoned; MPI is not finalised then).
 void wait(MPI_Request* req, Cluster& c, bool* abandoned) {
@@ -77,7 +76,7 @@ void wait(MPI_Request* req, Cluster& c, bool* abandoned) {
 
 void Cluster::sum(int64_t* data, size_t n) {
     if (size_ == 1 || n == 0) return;
-    const double t0 = now_s();
+    const double t0 = steady_seconds();
     MPI_Request req;
     // In chunks of at most 2^30 values: MPI counts are int.
     for (size_t at = 0; at < n; at += size_t(1) << 30) {
@@ -86,7 +85,7 @@ void Cluster::sum(int64_t* data, size_t n) {
         wait(&req, *this, &abandoned_);
     }
     comm_bytes_ += n * sizeof(int64_t);
-    comm_seconds_ += now_s() - t0;
+    comm_seconds_ += steady_seconds() - t0;
 }
 
 std::vector<double> Cluster::all_values(double value) { return all_values(std::vector<double>{value}); }
@@ -94,25 +93,25 @@ std::vector<double> Cluster::all_values(double value) { return all_values(std::v
 std::vector<double> Cluster::all_values(const std::vector<double>& values) {
     if (size_ == 1) return values;
     std::vector<double> all(values.size() * static_cast<size_t>(size_));
-    const double t0 = now_s();
+    const double t0 = steady_seconds();
     MPI_Request req;
     MPI_Iallgather(values.data(), int(values.size()), MPI_DOUBLE, all.data(), int(values.size()), MPI_DOUBLE,
                    MPI_COMM_WORLD, &req);
     wait(&req, *this, &abandoned_);
     comm_bytes_ += values.size() * sizeof(double);
-    comm_seconds_ += now_s() - t0;
+    comm_seconds_ += steady_seconds() - t0;
     return all;
 }
 
 bool Cluster::from_rank0(bool value) {
     if (size_ == 1) return value;
-    const double t0 = now_s();
+    const double t0 = steady_seconds();
     int v = value ? 1 : 0;
     MPI_Request req;
     MPI_Ibcast(&v, 1, MPI_INT, 0, MPI_COMM_WORLD, &req);
     wait(&req, *this, &abandoned_);
     comm_bytes_ += sizeof(int);
-    comm_seconds_ += now_s() - t0;
+    comm_seconds_ += steady_seconds() - t0;
     return v != 0;
 }
 
@@ -128,13 +127,13 @@ void Cluster::share_slices(double* data, const std::vector<size_t>& first, const
         displs[r] = int(first[r]);
         counts[r] = int(count[r]);
     }
-    const double t0 = now_s();
+    const double t0 = steady_seconds();
     MPI_Request req;
     MPI_Iallgatherv(MPI_IN_PLACE, 0, MPI_DATATYPE_NULL, data, counts.data(), displs.data(), MPI_DOUBLE, MPI_COMM_WORLD,
                     &req);
     wait(&req, *this, &abandoned_);
     comm_bytes_ += count[size_t(rank_)] * sizeof(double);
-    comm_seconds_ += now_s() - t0;
+    comm_seconds_ += steady_seconds() - t0;
 }
 
 ClusterSession::ClusterSession(int* argc, char*** argv) {

@@ -31,7 +31,7 @@ cl::Buffer make_buffer(const cl::Context& context, cl_mem_flags flags, size_t by
 void write_bytes(const cl::CommandQueue& q, const cl::Buffer& b, size_t offset, size_t bytes, const void* data) {
     if (bytes == 0) return;
     const size_t size = oclgrind_mode() ? b.getInfo<CL_MEM_SIZE>() : 0;
-    if (!oclgrind_mode() || (offset == 0 && bytes == size)) {
+    if (size == 0 || (offset == 0 && bytes == size)) { // outside oclgrind, or the whole buffer
         q.enqueueWriteBuffer(b, CL_TRUE, offset, bytes, data);
         return;
     }

@@ -1,19 +1,13 @@
 #include "integrators/device_fan_out.h"
 
 #include <algorithm>
-#include <chrono>
 #include <exception>
 #include <thread>
 
 #include "util/cancellation.h"
+#include "util/steady_seconds.h"
 
 namespace clppm {
-
-namespace {
-
-double now_s() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
-
-} // namespace
 
 DeviceFanOut::DeviceFanOut(const std::vector<unsigned>& compute_units) {
     for (unsigned cu : compute_units) rate_.push_back(std::max(1u, cu));
@@ -38,9 +32,9 @@ void DeviceFanOut::run(uint32_t first, const std::vector<uint32_t>& shares,
     auto one = [&](size_t k, uint32_t begin) {
         const CancelScope scope(token);
         try {
-            const double t0 = now_s();
+            const double t0 = steady_seconds();
             work(k, begin, shares[k]);
-            seconds[k] = now_s() - t0;
+            seconds[k] = steady_seconds() - t0;
         } catch (...) {
             errors[k] = std::current_exception();
         }

@@ -65,6 +65,13 @@ const std::vector<IntegratorRow> kTable = {
      make<VcmIntegrator>, nullptr, false, VCM_MODE_BPT},
 };
 
+// "a, b or c".
+std::string either(const std::vector<std::string>& names) {
+    std::string s;
+    for (size_t i = 0; i < names.size(); ++i) s += (i == 0 ? "" : i + 1 == names.size() ? " or " : ", ") + names[i];
+    return s;
+}
+
 std::string lower(std::string s) {
     for (char& c : s) c = char(std::tolower(static_cast<unsigned char>(c)));
     return s;
@@ -82,19 +89,16 @@ const IntegratorRow& integrator_row(const std::string& name) {
 }
 
 std::string integrator_names() {
-    std::string s;
-    for (size_t i = 0; i < kTable.size(); ++i)
-        s += (i == 0 ? "" : i + 1 == kTable.size() ? " or " : ", ") + std::string(kTable[i].name);
-    return s;
+    std::vector<std::string> names;
+    for (const IntegratorRow& row : kTable) names.push_back(row.name);
+    return either(names);
 }
 
 std::string visual_importance_integrators() {
     std::vector<std::string> names;
     for (const IntegratorRow& row : kTable)
         if (row.visual_importance) names.push_back(row.name);
-    std::string s;
-    for (size_t i = 0; i < names.size(); ++i) s += (i == 0 ? "" : i + 1 == names.size() ? " or " : ", ") + names[i];
-    return s;
+    return either(names);
 }
 
 std::unique_ptr<IntegratorBase> make_integrator(const DeviceContext& dc, const DeviceScene& scene,

@@ -1,12 +1,11 @@
 #include "integrators/photon_passes.h"
 
-#include <chrono>
-
 #include "device/cluster.h"
 #include "device/kernel_launch.h"
 #include "device/kernel_program.h"
 #include "integrators/work_balance.h"
 #include "util/error.h"
+#include "util/steady_seconds.h"
 
 namespace clppm {
 
@@ -17,8 +16,6 @@ std::vector<unsigned> compute_units(const DeviceInfo& primary, const std::vector
     for (const DeviceInfo& d : secondaries) cu.push_back(d.compute_units);
     return cu;
 }
-
-double now_s() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
 
 } // namespace
 
@@ -82,7 +79,7 @@ void PhotonPasses::run_pass(uint64_t pass, const cl::Buffer& hitpoints, const cl
         for (int r = 0; r < cl.rank(); ++r) first += rank_split_[size_t(r)];
         count = rank_split_[size_t(cl.rank())];
     }
-    const double t0 = now_s();
+    const double t0 = steady_seconds();
     const uint64_t stored_before = stats_.photons_stored;
     run_local(pass, first, count, hitpoints, stats, n, global_r2, typical_radius, max_radius, out);
     stats_.local_work += count;
@@ -99,7 +96,7 @@ void PhotonPasses::run_pass(uint64_t pass, const cl::Buffer& hitpoints, const cl
             dc_.queue.enqueueReadBuffer(second_out_, CL_TRUE, 0, size_t(n) * sizeof(int64_t), v.data() + size_t(n) * 4);
     }
     v.back() = int64_t(stats_.photons_stored - stored_before);
-    rank_balance_.record(count, now_s() - t0); // this rank's own work, up to its sums read back
+    rank_balance_.record(count, steady_seconds() - t0); // this rank's own work, up to its sums read back
     cl.sum(v.data(), v.size());
     if (n > 0) {
         write_bytes(dc_.queue, out, 0, size_t(n) * sizeof(dev::PassFlux), v.data());

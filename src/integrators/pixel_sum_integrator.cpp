@@ -1,23 +1,15 @@
 #include "integrators/pixel_sum_integrator.h"
 
 #include <algorithm>
-#include <chrono>
 
 #include "device/cluster.h"
 #include "device/kernel_launch.h"
 #include "integrators/checkpoint_checks.h"
 #include "integrators/film.h"
 #include "util/error.h"
+#include "util/steady_seconds.h"
 
 namespace clppm {
-
-namespace {
-
-double now_seconds() {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
-
-} // namespace
 
 PixelSumIntegrator::PixelSumIntegrator(const DeviceContext& dc, const DeviceScene& scene,
                                        const RenderSettings& settings, const cl::Program& program)
@@ -52,7 +44,7 @@ void PixelSumIntegrator::enable_error_estimation() {
 }
 
 PixelRanges PixelSumIntegrator::begin_pass() {
-    pass_start_s_ = now_seconds();
+    pass_start_s_ = steady_seconds();
     return split_pixels(num_pixels_, balance_);
 }
 
@@ -67,7 +59,7 @@ void PixelSumIntegrator::end_pass(const PixelRanges& ranges, uint64_t passes) {
         collect_event_times(stats_);
     }
     if (cluster().distributed()) {
-        balance_.record(ranges.count, now_seconds() - pass_start_s_);
+        balance_.record(ranges.count, steady_seconds() - pass_start_s_);
         share_pixels(dc_.queue, accum_, 3, ranges, num_pixels_);
         static_assert(sizeof(dev::ErrorStats) % sizeof(double) == 0, "ErrorStats is doubles");
         if (errors_)

@@ -1,6 +1,5 @@
 #include "render/device_auto.h"
 
-#include <chrono>
 #include <cstdio>
 #include <fstream>
 #include <map>
@@ -13,14 +12,11 @@
 #include "render/render_job.h"
 #include "util/error.h"
 #include "util/hash.h"
+#include "util/steady_seconds.h"
 
 namespace clppm {
 
 namespace {
-
-double now_seconds() {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
 
 std::string identity(const DeviceInfo& d) { return d.implementation() + "\t" + d.name; }
 
@@ -85,12 +81,12 @@ DeviceTrial trial(const RenderOptions& options, const DeviceInfo& device) {
     RenderJob job(o, quiet);
     job.run_pass();
     DeviceTrial t{device};
-    const double t0 = now_seconds();
+    const double t0 = steady_seconds();
     const uint64_t p0 = job.passes();
     do job.run_pass();
-    while (job.passes() - p0 < kTrialPasses || now_seconds() - t0 < kTrialSeconds);
+    while (job.passes() - p0 < kTrialPasses || steady_seconds() - t0 < kTrialSeconds);
     t.passes = job.passes() - p0;
-    t.seconds = now_seconds() - t0;
+    t.seconds = steady_seconds() - t0;
     return t;
 }
 

@@ -10,14 +10,11 @@
 #include "io/half_image.h"
 #include "render/live_view_page.h"
 #include "util/error.h"
+#include "util/steady_seconds.h"
 
 namespace clppm {
 
 namespace {
-
-double now_seconds() {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
 
 [[noreturn]] void bad_address(const std::string& text, const std::string& why) {
     throw Error("--serve " + (text.empty() ? std::string("''") : text) + ": " + why);
@@ -78,8 +75,8 @@ LiveView::LiveView(const ServeAddress& address, const ToneMapping& tone)
     thread_ = std::thread([this] { server_->listen_after_bind(); });
     // httplib's stop() does nothing until the server runs, and a listen that starts after it would
     // never end: the destructor's join would hang. Return only once it runs.
-    const double deadline = now_seconds() + 30;
-    while (!server_->is_running() && now_seconds() < deadline)
+    const double deadline = steady_seconds() + 30;
+    while (!server_->is_running() && steady_seconds() < deadline)
         std::this_thread::sleep_for(std::chrono::milliseconds(1));
     if (!server_->is_running()) {
         server_->stop();
@@ -100,17 +97,17 @@ std::string LiveView::url() const {
 
 void LiveView::touched() {
     ++requests_;
-    last_request_s_ = now_seconds();
+    last_request_s_ = steady_seconds();
 }
 
 bool LiveView::due() const {
-    const double now = now_seconds();
+    const double now = steady_seconds();
     return now - last_request_s_.load() <= kWatchedSeconds && now - last_publish_s_ >= 1.0 / kPublishHz;
 }
 
 void LiveView::publish(const Image& image, const std::vector<float>& error_relative, double error_scale,
                        const nlohmann::json& progress) {
-    last_publish_s_ = now_seconds();
+    last_publish_s_ = steady_seconds();
     std::lock_guard<std::mutex> lock(mutex_);
     snapshot_.image = image;
     snapshot_.image.attributes.clear();
@@ -174,9 +171,9 @@ void LiveView::routes() {
                             : snapshot_.image;
             version = snapshot_.version;
         }
-        const double t0 = now_seconds();
+        const double t0 = steady_seconds();
         std::string png = encode_png(img, error_map ? ToneMapping{ToneCurve::Clip, 0.0, false} : tone);
-        image_headers(res, version, now_seconds() - t0);
+        image_headers(res, version, steady_seconds() - t0);
         res.set_content(std::move(png), "image/png");
     });
     s.Get("/image.f16", [this](const httplib::Request&, httplib::Response& res) {
@@ -191,9 +188,9 @@ void LiveView::routes() {
             version = snapshot_.version;
             base_ev = snapshot_.base_ev;
         }
-        const double t0 = now_seconds();
+        const double t0 = steady_seconds();
         std::string bytes = encode_half_image(img, base_ev);
-        image_headers(res, version, now_seconds() - t0);
+        image_headers(res, version, steady_seconds() - t0);
         res.set_content(std::move(bytes), "application/octet-stream");
     });
     s.Post("/save", [this](const httplib::Request&, httplib::Response& res) {

@@ -1,6 +1,5 @@
 #include "render/render_job.h"
 
-#include <chrono>
 #include <cstdio>
 
 #include "device/cluster.h"
@@ -19,15 +18,12 @@
 #include "scene/scene_features.h"
 #include "scene/scene_fingerprint.h"
 #include "util/error.h"
+#include "util/steady_seconds.h"
 #include "util/version.h"
 
 namespace clppm {
 
 namespace {
-
-double now_seconds() {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
 
 std::string number(const char* format, double x) {
     char s[64];
@@ -38,7 +34,7 @@ std::string number(const char* format, double x) {
 } // namespace
 
 RenderJob::RenderJob(const RenderOptions& options, RenderLog& log)
-    : options_(options), log_(log), writer_(cluster().rank() == 0), created_s_(now_seconds()) {
+    : options_(options), log_(log), writer_(cluster().rank() == 0), created_s_(steady_seconds()) {
     require_ranks_agree(options_every_rank_shares(options_)); // before anything can fail on one rank alone
     const KernelDirScope kernels(options_.kernel_dir);        // this render's, not the process's
     const std::vector<DeviceInfo> devices = list_devices();
@@ -56,7 +52,7 @@ RenderJob::RenderJob(const RenderOptions& options, RenderLog& log)
     choose_integrator(chosen.size());
     set_up_device(chosen);
     build_kernels(chosen);
-    start_s_ = now_seconds();
+    start_s_ = steady_seconds();
     integ_->prepare();
     if (!options_.resume.empty()) resume();
 }
@@ -209,7 +205,7 @@ void RenderJob::run_pass(uint64_t max_passes) {
 
 uint64_t RenderJob::pass_limit() const { return clppm::pass_limit(options_, row_->default_passes); }
 
-double RenderJob::render_seconds() const { return now_seconds() - start_s_; }
+double RenderJob::render_seconds() const { return steady_seconds() - start_s_; }
 
 int RenderJob::width() const { return int(ds_->camera.width); }
 
@@ -301,7 +297,7 @@ Json RenderJob::stats_json(const RenderEnd& end, const Image* given) const {
     j["initial_radius"] = st.initial_radius;
     j["mean_radius"] = st.mean_radius;
     j["render_seconds"] = render_s;
-    j["total_seconds"] = now_seconds() - created_s_;
+    j["total_seconds"] = steady_seconds() - created_s_;
     j["passes_per_second"] = render_s > 0 ? double(st.passes) / render_s : 0.0;
     j["photons_per_second"] = render_s > 0 ? double(st.photons_emitted) / render_s : 0.0;
     Json phases = Json::object();

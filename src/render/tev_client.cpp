@@ -12,6 +12,7 @@
 #include <unistd.h>
 
 #include "util/error.h"
+#include "util/steady_seconds.h"
 
 namespace clppm {
 
@@ -83,10 +84,6 @@ std::string update_image_packet(const std::string& name, const Image& img, int x
 
 namespace {
 
-double now_seconds() {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
-
 // Connects a non-blocking socket to `a` within `seconds`; -1 when it cannot.
 int connect_within(const addrinfo* a, double seconds) {
     const int fd = ::socket(a->ai_family, a->ai_socktype | SOCK_NONBLOCK | SOCK_CLOEXEC, a->ai_protocol);
@@ -153,12 +150,12 @@ std::string TevClient::take_warning() {
 // viewer that took nothing for kStallSeconds.
 bool TevClient::write_all(const std::string& bytes) {
     size_t done = 0;
-    double last_progress = now_seconds();
+    double last_progress = steady_seconds();
     while (done < bytes.size()) {
         const ssize_t n = ::send(fd_, bytes.data() + done, bytes.size() - done, MSG_NOSIGNAL);
         if (n > 0) {
             done += size_t(n);
-            last_progress = now_seconds();
+            last_progress = steady_seconds();
             continue;
         }
         if (n < 0 && errno == EINTR) continue;
@@ -167,7 +164,7 @@ bool TevClient::write_all(const std::string& bytes) {
                 std::lock_guard<std::mutex> lock(mutex_);
                 if (stop_) return false;
             }
-            if (now_seconds() - last_progress > kStallSeconds) {
+            if (steady_seconds() - last_progress > kStallSeconds) {
                 char why[120];
                 std::snprintf(why, sizeof why, "the viewer has read nothing for %.0f s", kStallSeconds);
                 fail(why);
