@@ -11,6 +11,8 @@ float3 load3c(__constant const float* v) { return (float3)(v[0], v[1], v[2]); }
 
 float max3(float3 v) { return fmax(v.x, fmax(v.y, v.z)); }
 
+float mean3(float3 v) { return (v.x + v.y + v.z) * (1.0f / 3.0f); }
+
 /* An orthonormal basis around unit n (Duff et al. 2017, "Building an Orthonormal Basis, Revisited"). */
 void make_frame(float3 n, float3* t, float3* b) {
     float sign = n.z >= 0.0f ? 1.0f : -1.0f;

@@ -6,7 +6,7 @@
 //   B(mu, alpha) = int (1 - wo.h)^5 D G2 / (4 mu) dwi
 //   E(mu) = F0 A + (F90 - F0) B.
 // tabulated over cos_o and roughness (alpha = roughness^2), and their cosine-weighted
-// hemispherical means A_avg, B_avg (2 int E mu dmu) of the bilinear interpolant kernels/bsdf.cl uses, so that the coupled diffuse term integrates exactly.
+// hemispherical means A_avg, B_avg (2 int E mu dmu) of the bilinear interpolant kernels/albedo_table.cl uses, so that the coupled diffuse term integrates exactly.
 //
 // Build and run (deterministic: rerunning writes the same bytes):
 //   g++ -O2 -std=c++17 scripts/make_ggx_albedo.cpp -o /tmp/make_ggx_albedo && /tmp/make_ggx_albedo > kernels/ggx_albedo.h

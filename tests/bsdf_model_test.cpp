@@ -69,7 +69,7 @@ D3 kernel_tangent(D3 n) {
     return {1 + sign * f.x * f.x * a, sign * c, -sign * f.x};
 }
 
-// kernels/bsdf.cl aniso_albedo and aniso_albedo_avg, in double: the stretched lobe's albedo bound,
+// kernels/bsdf_metal.cl aniso_albedo and aniso_albedo_avg, in double: the stretched lobe's albedo bound,
 // multilinear in (cos, azimuth from t, roughness, stretch).
 double aniso_row(double alpha) {
     return std::clamp(std::sqrt(alpha) * (GGX_ANISO_ALPHA - 1), 0.0, GGX_ANISO_ALPHA - 1.0);
@@ -494,7 +494,7 @@ TEST(BsdfModel, WhiteFurnaceWithoutGain) {
                 // under a white sheen 0.863 (roughness 1, head-on): the extension's scaling takes
                 // the sheen's albedo at the worse of the two directions.
                 // Under a film 0.91 (white Lambertian, rough layer, head-on): its albedo is
-                // estimated 3% over (kernels/bsdf.cl film_layer_albedo).
+                // estimated 3% over (kernels/bsdf_dielectric.cl film_layer_albedo).
                 // A stretched metal's multiple scattering works on an upper bound of its albedo
                 // (kernels/ggx_aniso_albedo.h): 0.989 at the least. The diffuse under a stretched
                 // layer is coupled at the smaller alpha, which never gains but loses: at grazing
