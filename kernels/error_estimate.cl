@@ -14,7 +14,7 @@
  * error estimation is on. */
 #include "portability.h"
 #include "error_bound.cl"
-#include "gather_common.cl"
+#include "gather_query.cl"
 #include "radiance_estimate.cl"
 #include "dispersion.cl"
 
@@ -32,20 +32,13 @@ __kernel SCALAR_WORK_ITEMS void error_gather(__constant GridInfo* g, __global co
     __global const HitPoint* hp = &hitpoints[i];
     long acc = accumulate ? out[i] : 0;
     if (hp->pixel != HITPOINT_NONE) {
-        float3 x = load3g(hp->pos), n = oct_decode(hp->normal_oct);
-        HitBrdf brdf = hitpoint_brdf_make(hp, n);
-        float r2 = global_r2 > 0.0f ? global_r2 : (float)stats[i].r2;
+        const GatherQuery q = gather_query(hp, stats, i, global_r2, seed, pass, coverage);
         /* The path throughput folded into the luminance weights: one scalar sum per hit point. */
         float3 wy = (float3)(hp->weight[0] * (float)ERROR_LUMINANCE_R, hp->weight[1] * (float)ERROR_LUMINANCE_G,
                              hp->weight[2] * (float)ERROR_LUMINANCE_B);
-        const PassWavelength pw = pass_wavelength(seed, pass);
-        const bool hp_dispersed = hitpoint_dispersed(hp);
-        const float inv_cover = 1.0f / coverage[i].x, d2_mean = coverage[i].y;
-        GATHER_FOR_EACH_PHOTON(g, sorted, starts, x, n, brdf.both_sides, r2, {
-            float3 f = hitpoint_brdf(&brdf, wi);
-            float3 phi = load3_dispersed(ph->flux) * inv_cover;
-            if (HAS_DISPERSION) phi *= merge_dispersion(hp_dispersed, is_dispersed(ph->flux[0]), &pw);
-            float y = dot(wy, f * phi);
+        const float d2_mean = coverage[i].y, r2 = q.r2;
+        GATHER_QUERY_FOR_EACH_PHOTON(g, sorted, starts, q, {
+            float y = dot(wy, gather_photon(&q, ph, wi));
             acc += convert_long_rte((double)(y * (2.0f * d2 / r2 - d2_mean)) * FLUX_FIXED_SCALE);
         });
     }

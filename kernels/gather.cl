@@ -4,8 +4,7 @@
  * surface that faces the other way, are rejected, unless the hit point transmits diffusely
  * (gather_faces). */
 #include "portability.h"
-#include "gather_common.cl"
-#include "dispersion.cl"
+#include "gather_query.cl"
 
 __kernel SCALAR_WORK_ITEMS void gather(__constant GridInfo* g, __global const Photon* sorted,
                                        __global const uint* starts, __global const HitPoint* hitpoints,
@@ -22,24 +21,15 @@ __kernel SCALAR_WORK_ITEMS void gather(__constant GridInfo* g, __global const Ph
         }
         return;
     }
-    float3 x = load3g(hp->pos), n = oct_decode(hp->normal_oct);
-    HitBrdf brdf = hitpoint_brdf_make(hp, n);
-    /* PPPM: one radius for every hit point this pass; (S)PPM: each hit point's own R(x). */
-    float r2 = global_r2 > 0.0f ? global_r2 : (float)stats[i].r2;
+    const GatherQuery q = gather_query(hp, stats, i, global_r2, seed, pass, coverage);
     long acc0 = 0, acc1 = 0, acc2 = 0;
     uint m = 0;
-    const PassWavelength pw = pass_wavelength(seed, pass);
-    const bool hp_dispersed = hitpoint_dispersed(hp);
-    /* the disc's covered fraction (disc_coverage.cl): what was collected, as if over the whole disc */
-    const float inv_cover = 1.0f / coverage[i].x;
-    GATHER_FOR_EACH_PHOTON(g, sorted, starts, x, n, brdf.both_sides, r2, {
+    GATHER_QUERY_FOR_EACH_PHOTON(g, sorted, starts, q, {
         /* tau_M += f(x, w_p, w_o) Phi_p (Eq. 9); the path throughput is applied later. */
-        float3 f = hitpoint_brdf(&brdf, wi);
-        float3 phi = load3_dispersed(ph->flux) * inv_cover;
-        if (HAS_DISPERSION) phi *= merge_dispersion(hp_dispersed, is_dispersed(ph->flux[0]), &pw);
-        acc0 += convert_long_rte((double)(f.x * phi.x) * FLUX_FIXED_SCALE);
-        acc1 += convert_long_rte((double)(f.y * phi.y) * FLUX_FIXED_SCALE);
-        acc2 += convert_long_rte((double)(f.z * phi.z) * FLUX_FIXED_SCALE);
+        const float3 c = gather_photon(&q, ph, wi);
+        acc0 += convert_long_rte((double)c.x * FLUX_FIXED_SCALE);
+        acc1 += convert_long_rte((double)c.y * FLUX_FIXED_SCALE);
+        acc2 += convert_long_rte((double)c.z * FLUX_FIXED_SCALE);
         ++m;
     });
     /* A pass traced in several photon batches adds them up: integer sums, so the result is the

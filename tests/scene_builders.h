@@ -4,6 +4,7 @@
 #include <cmath>
 #include <vector>
 
+#include "scene/material_defaults.h"
 #include "scene/scene.h"
 #include "shared_types.h"
 
@@ -16,28 +17,14 @@ enum TestMaterial : uint32_t { MAT_DIFFUSE, MAT_MIRROR, MAT_GLASS, MAT_METAL };
 
 inline uint32_t add_material(Scene& s, float r, float g, float b, float emission = 0.f, bool double_sided = false,
                              TestMaterial kind = MAT_DIFFUSE, float ior = 1.5f, float roughness = 1.f) {
-    dev::Material m{};
+    dev::Material m = default_material(); // every texture absent
     m.base_color[0] = r, m.base_color[1] = g, m.base_color[2] = b, m.base_color[3] = 1;
     m.emission[0] = m.emission[1] = m.emission[2] = emission;
     m.roughness = kind == MAT_MIRROR ? 0.f : roughness;
     m.ior = ior;
     m.metallic = kind == MAT_MIRROR || kind == MAT_METAL ? 1.f : 0.f;
     m.transmission = kind == MAT_GLASS ? 1.f : 0.f;
-    m.specular_color[0] = m.specular_color[1] = m.specular_color[2] = 1.f;
     m.specular_color[3] = kind == MAT_DIFFUSE ? 0.f : 1.f;
-    m.base_color_tex = -1;
-    m.metallic_roughness_tex = -1;
-    m.emissive_tex = -1;
-    m.normal_tex = -1;
-    m.normal_scale = 1.f;
-    m.alpha_mode = ALPHA_OPAQUE;
-    m.alpha_cutoff = 0.5f;
-    m.transmission_tex = -1;
-    m.specular_tex = m.specular_color_tex = -1;
-    m.clearcoat_tex = m.clearcoat_roughness_tex = m.clearcoat_normal_tex = -1;
-    m.sheen_color_tex = m.sheen_roughness_tex = -1;
-    m.iridescence_tex = m.iridescence_thickness_tex = -1;
-    m.anisotropy_tex = -1;
     m.flags = double_sided ? MATERIAL_FLAG_DOUBLE_SIDED : 0u;
     s.materials.push_back(m);
     return uint32_t(s.materials.size() - 1);
