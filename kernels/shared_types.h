@@ -327,6 +327,23 @@ typedef struct {
 
 #define VCM_NO_VERTEX 0xffffffffu
 
+/* What both sub-path kernels of a VCM pass are told (vcm_light, vcm_camera in kernels/vcm.cl), passed
+ * by value; the host fills it once a pass (src/integrators/vcm_integrator.cpp). */
+typedef struct {
+    u64 seed, pass;    /* the render's seed and this pass (from 1): the random streams */
+    double light_unit; /* camera side: a light-side sum's unit in radiance, total power over area_scale */
+    double vm_norm;    /* camera side: area_scale / (pi r^2 N_L), the merging estimate's normalisation */
+    double splat_unit; /* camera side: light_unit / splat_scale, one fixed-point unit of a splat */
+    float light_paths; /* N_L: light sub-paths in a pass (one per pixel) */
+    float vm_factor;   /* eta^2 of the MIS sums (Georgiev et al. 2012), 0 without merging */
+    float vc_factor;   /* 1 / eta^2 when connecting and merging both (VCM), else 0 */
+    float area_scale;  /* the scene's unit of area: densities per scene-relative area */
+    float r2;          /* camera side: the merging radius squared */
+    float splat_scale; /* light side: fixed-point scale of the light tracer's splats */
+    u32 mode;          /* VCM_MODE_* (kernels/vcm_mis.h) */
+    u32 max_len;       /* the longest path, in segments */
+} VcmPass;             /* 72 bytes */
+
 /* Fixed point used for per-pass flux sums: exact, so the sum is the same in any order. */
 #define FLUX_FIXED_SCALE 4294967296.0 /* 2^32 */
 

@@ -92,32 +92,31 @@ void vcm_connect_to_camera(SCENE_PARAMS, __constant Camera* cam, const Surface* 
  * surfaces go to verts (counter counts them; more than capacity: the host grows the buffer and
  * runs the batch again), path_last[i] is sub-path first_path + i's last stored vertex. Paths have
  * at most max_len segments from light to camera. */
-__kernel SCALAR_WORK_ITEMS void vcm_light(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong pass, uint first_path,
-                                          uint num_paths, float light_paths, float vm_factor, float vc_factor,
-                                          float area_scale, uint mode, uint max_len, __global LightVertex* verts,
-                                          uint capacity, volatile __global uint* counter, __global uint* path_last,
-                                          volatile __global long* splat, float splat_scale) {
+__kernel SCALAR_WORK_ITEMS void vcm_light(SCENE_PARAMS, __constant Camera* cam, const VcmPass vp, uint first_path,
+                                          uint num_paths, __global LightVertex* verts, uint capacity,
+                                          volatile __global uint* counter, __global uint* path_last,
+                                          volatile __global long* splat) {
     uint i = get_global_id(0);
     if (i >= num_paths) return;
     uint last = VCM_NO_VERTEX;
     path_last[i] = last;
     if (info->num_lights == 0) return;
-    Rng rng = rng_make(seed, pass, first_path + i, RNG_VCM_LIGHT);
+    Rng rng = rng_make(vp.seed, vp.pass, first_path + i, RNG_VCM_LIGHT);
     LightEmission e;
     emit_light(SCENE_ARGS, &rng, &e);
     if (!(max3(e.flux) > 0.0f) || !(e.emission_pdf_w > 0.0f)) return;
     /* Densities per unit scene-relative area: an area light's both, the emission density of a light
      * at infinity (over its disc); a point's emission density is per solid angle alone and a light
      * at infinity's direct density per solid angle. */
-    float emission_pdf_w = e.finite && e.delta ? e.emission_pdf_w : e.emission_pdf_w * area_scale;
-    float direct_pdf_a = e.finite && !e.delta ? e.direct_pdf_a * area_scale : e.direct_pdf_a;
-    VcmMis m = vcm_light_start(emission_pdf_w, direct_pdf_a, e.cos_light, e.delta, e.finite, vc_factor);
-    const bool store = vcm_uses_connections(mode) || vcm_uses_merging(mode);
-    const bool to_camera = vcm_uses_connections(mode) || mode == VCM_MODE_LT;
+    float emission_pdf_w = e.finite && e.delta ? e.emission_pdf_w : e.emission_pdf_w * vp.area_scale;
+    float direct_pdf_a = e.finite && !e.delta ? e.direct_pdf_a * vp.area_scale : e.direct_pdf_a;
+    VcmMis m = vcm_light_start(emission_pdf_w, direct_pdf_a, e.cos_light, e.delta, e.finite, vp.vc_factor);
+    const bool store = vcm_uses_connections(vp.mode) || vcm_uses_merging(vp.mode);
+    const bool to_camera = vcm_uses_connections(vp.mode) || vp.mode == VCM_MODE_LT;
     float3 T = e.flux, org = e.org, dir = e.dir;
-    const PassWavelength pw = pass_wavelength(seed, pass);
+    const PassWavelength pw = pass_wavelength(vp.seed, vp.pass);
     bool dispersed = false; /* the sub-path has met a dispersive surface and carries W (dispersion.cl) */
-    for (uint len = 1; len <= max_len; ++len) {
+    for (uint len = 1; len <= vp.max_len; ++len) {
         Hit hit;
         if (!trace_closest(SCENE_ARGS, org, dir, INFINITY, &hit)) break;
         Surface sf = make_surface(SCENE_ARGS, dir, &hit);
@@ -126,7 +125,7 @@ __kernel SCALAR_WORK_ITEMS void vcm_light(SCENE_PARAMS, __constant Camera* cam, 
             if (!(max3(T) > 0.0f)) break;
         }
         float3 wo = -dir;
-        vcm_on_hit(&m, sf.t * sf.t * dot(dir, dir) / area_scale, fabs(dot(sf.ns, wo)), len == 1 && !e.finite);
+        vcm_on_hit(&m, sf.t * sf.t * dot(dir, dir) / vp.area_scale, fabs(dot(sf.ns, wo)), len == 1 && !e.finite);
         Bsdf b = surface_bsdf(SCENE_ARGS, &sf, TRANSPORT_IMPORTANCE);
         if (HAS_DISPERSION) disperse(SCENE_ARGS, &sf, &b, &pw, &dispersed, &T);
         if (bsdf_has_nondelta(&b)) {
@@ -154,10 +153,10 @@ __kernel SCALAR_WORK_ITEMS void vcm_light(SCENE_PARAMS, __constant Camera* cam, 
                 }
             }
             if (to_camera)
-                vcm_connect_to_camera(SCENE_ARGS, cam, &sf, &b, wo, T, &m, light_paths, vm_factor, area_scale, mode,
-                                      splat, splat_scale, &rng);
+                vcm_connect_to_camera(SCENE_ARGS, cam, &sf, &b, wo, T, &m, vp.light_paths, vp.vm_factor, vp.area_scale,
+                                      vp.mode, splat, vp.splat_scale, &rng);
         }
-        if (len + 2 > max_len) break; /* a further vertex would need a path longer than max_len */
+        if (len + 2 > vp.max_len) break; /* a further vertex would need a path longer than max_len */
         BsdfSample s;
         float u0 = rng_float(&rng), u1 = rng_float(&rng), u2 = rng_float(&rng);
         if (!bsdf_sample(&b, wo, LOBE_ALL, u0, u1, u2, &s)) break;
@@ -166,7 +165,7 @@ __kernel SCALAR_WORK_ITEMS void vcm_light(SCENE_PARAMS, __constant Camera* cam, 
         float q = fmin(max3(s.weight), 1.0f);
         if (q < 1.0f && !(rng_float(&rng) < q)) break;
         T *= s.weight / q;
-        vcm_on_scatter(&m, fabs(dot(b.ns, s.wi)), s.pdf, rev, s.delta, vm_factor, vc_factor);
+        vcm_on_scatter(&m, fabs(dot(b.ns, s.wi)), s.pdf, rev, s.delta, vp.vm_factor, vp.vc_factor);
         dir = s.wi;
         org = offset_origin(SCENE_ARGS, sf.p, s.below ? -sf.ng : sf.ng);
         if (!(max3(T) > 0.0f)) break;
@@ -267,68 +266,66 @@ float vcm_emission_weight(SCENE_PARAMS, const Surface* sf, float3 dir, uint t, b
  * last (the splat image joins the pixel). The grid holds this batch's light vertices (sorted); verts
  * and path_last hold its sub-paths [batch_first, batch_first + batch_count) as vcm_light left them.
  * A pixel's sample is radiance plus light_unit times the light side and splat_unit times its splats. */
-__kernel SCALAR_WORK_ITEMS void vcm_camera(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong pass, uint pixel_end,
+__kernel SCALAR_WORK_ITEMS void vcm_camera(SCENE_PARAMS, __constant Camera* cam, const VcmPass vp, uint pixel_end,
                                            __constant GridInfo* g, __global const LightVertex* sorted,
                                            __global const uint* starts, __global const LightVertex* verts,
                                            __global const uint* path_last, uint batch_first, uint batch_count,
-                                           uint batch_flags, float r2, float light_paths, float vm_factor,
-                                           float vc_factor, float area_scale, uint mode, uint max_len,
-                                           double light_unit, double vm_norm, __global long* splat, double splat_unit,
-                                           __global double* pass_sum, __global double* accum) {
+                                           uint batch_flags, __global long* splat, __global double* pass_sum,
+                                           __global double* accum) {
     uint p = get_global_id(0);
     if (p >= pixel_end) return; /* the launch covers [offset, pixel_end), padded to the work-group size */
     const bool first = (batch_flags & 1u) != 0u;
-    Rng rng = rng_make(seed, pass, p, RNG_VCM_CAMERA);
-    Rng rng_ls = rng_make(seed, pass, p, RNG_VCM_LIGHT_SAMPLE);
+    Rng rng = rng_make(vp.seed, vp.pass, p, RNG_VCM_CAMERA);
+    Rng rng_ls = rng_make(vp.seed, vp.pass, p, RNG_VCM_LIGHT_SAMPLE);
     float2 off = pixel_sample_offset(0, 1, true, &rng);
     float2 lens = (float2)(rng_float(&rng), rng_float(&rng));
     float3 org, dir;
     camera_ray(cam, (float)(p % cam->width) + off.x, (float)(p / cam->width) + off.y, lens, &org, &dir);
-    VcmMis m = vcm_camera_start(camera_pixel_pdf_w(cam, dot(dir, load3c(cam->forward))), light_paths);
+    VcmMis m = vcm_camera_start(camera_pixel_pdf_w(cam, dot(dir, load3c(cam->forward))), vp.light_paths);
     float3 L = (float3)(0.0f), Ll = (float3)(0.0f), beta = (float3)(1.0f);
     long acc0 = 0, acc1 = 0, acc2 = 0; /* merges, fixed point: independent of the grid's order */
     bool specular = true;
-    const PassWavelength pw = pass_wavelength(seed, pass);
+    const PassWavelength pw = pass_wavelength(vp.seed, vp.pass);
     bool dispersed = false; /* the sub-path has met a dispersive surface and carries W (dispersion.cl) */
-    const bool connections = vcm_uses_connections(mode), merging = vcm_uses_merging(mode);
+    const bool connections = vcm_uses_connections(vp.mode), merging = vcm_uses_merging(vp.mode);
     const bool in_batch = p >= batch_first && p - batch_first < batch_count;
     const uint lv_last = connections && in_batch ? path_last[p - batch_first] : VCM_NO_VERTEX;
-    for (uint t = 1; t <= max_len; ++t) {
+    for (uint t = 1; t <= vp.max_len; ++t) {
         Hit hit;
         if (!trace_closest(SCENE_ARGS, org, dir, INFINITY, &hit)) {
             if (first && HAS_ENV_LIGHT && info->env_light != ENV_UNIFORM) {
                 float3 d = normalize(dir);
                 float3 le = escaped_radiance(SCENE_ARGS, d, t == 1, true, 0.0f);
                 if (max3(le) > 0.0f)
-                    L += beta * le * vcm_emission_weight(SCENE_ARGS, 0, d, t, specular, &m, mode, area_scale);
+                    L += beta * le * vcm_emission_weight(SCENE_ARGS, 0, d, t, specular, &m, vp.mode, vp.area_scale);
             }
             break;
         }
         Surface sf = make_surface(SCENE_ARGS, dir, &hit);
         if (HAS_VOLUME) beta *= volume_transmittance(SCENE_ARGS, &sf, sf.t * length(dir));
         float3 wo = -dir;
-        vcm_on_hit(&m, sf.t * sf.t * dot(dir, dir) / area_scale, fabs(dot(sf.ns, wo)) / length(dir), false);
+        vcm_on_hit(&m, sf.t * sf.t * dot(dir, dir) / vp.area_scale, fabs(dot(sf.ns, wo)) / length(dir), false);
         if (first) {
             float3 le = surface_emission(SCENE_ARGS, &sf, dir);
             if (max3(le) > 0.0f)
-                L += beta * le * vcm_emission_weight(SCENE_ARGS, &sf, dir, t, specular, &m, mode, area_scale);
+                L += beta * le * vcm_emission_weight(SCENE_ARGS, &sf, dir, t, specular, &m, vp.mode, vp.area_scale);
             if (HAS_UNLIT && specular) L += beta * surface_unlit(SCENE_ARGS, &sf);
         }
-        if (t >= max_len) break;
+        if (t >= vp.max_len) break;
         wo = normalize(wo);
         Bsdf b = surface_bsdf(SCENE_ARGS, &sf, TRANSPORT_RADIANCE);
         if (HAS_DISPERSION) disperse(SCENE_ARGS, &sf, &b, &pw, &dispersed, &beta);
         if (bsdf_has_nondelta(&b)) {
-            if (connections && first && t + 1 <= max_len)
-                L += beta * vcm_light_sample(SCENE_ARGS, &sf, &b, wo, &m, vm_factor, area_scale, &rng_ls);
+            if (connections && first && t + 1 <= vp.max_len)
+                L += beta * vcm_light_sample(SCENE_ARGS, &sf, &b, wo, &m, vp.vm_factor, vp.area_scale, &rng_ls);
             for (uint k = lv_last; k != VCM_NO_VERTEX; k = verts[k].prev) {
                 __global const LightVertex* lv = &verts[k];
-                if (lv->path_length + t + 1 > max_len) continue;
-                Ll += beta * vcm_connect(SCENE_ARGS, &sf, &b, wo, &m, lv, vm_factor, area_scale, &pw, dispersed);
+                if (lv->path_length + t + 1 > vp.max_len) continue;
+                Ll += beta * vcm_connect(SCENE_ARGS, &sf, &b, wo, &m, lv, vp.vm_factor, vp.area_scale, &pw, dispersed);
             }
             if (merging) {
-                GRID_FOR_EACH_NEAR(g, sorted, starts, sf.p, r2, {
-                    if (ph->path_length + t > max_len) continue;
+                GRID_FOR_EACH_NEAR(g, sorted, starts, sf.p, vp.r2, {
+                    if (ph->path_length + t > vp.max_len) continue;
                     float3 wi = oct_decode(ph->wi_oct);
                     /* Light and camera on the same side of the surface (or on either side of rough
                      * glass, which the BSDF decides). */
@@ -336,13 +333,13 @@ __kernel SCALAR_WORK_ITEMS void vcm_camera(SCENE_PARAMS, __constant Camera* cam,
                     float3 f = bsdf_eval(&b, wo, wi, LOBE_ALL);
                     if (!(max3(f) > 0.0f)) continue;
                     float w = 1.0f;
-                    if (mode != VCM_MODE_VM) {
+                    if (vp.mode != VCM_MODE_VM) {
                         VcmMis ml;
                         ml.d_vcm = ph->d_vcm;
                         ml.d_vc = ph->d_vc;
                         ml.d_vm = ph->d_vm;
                         w = vcm_weight_merge(&m, &ml, bsdf_pdf(&b, wo, wi, LOBE_ALL),
-                                             bsdf_pdf_rev(&b, wo, wi, LOBE_ALL), vc_factor);
+                                             bsdf_pdf_rev(&b, wo, wi, LOBE_ALL), vp.vc_factor);
                     }
                     float3 c = beta * f * load3_dispersed(ph->throughput) * w;
                     if (HAS_DISPERSION) c *= merge_dispersion(dispersed, is_dispersed(ph->throughput[0]), &pw);
@@ -351,7 +348,7 @@ __kernel SCALAR_WORK_ITEMS void vcm_camera(SCENE_PARAMS, __constant Camera* cam,
                     acc1 += convert_long_sat_rte((double)c.y * FLUX_FIXED_SCALE);
                     acc2 += convert_long_sat_rte((double)c.z * FLUX_FIXED_SCALE);
                 });
-                if (mode == VCM_MODE_VM) break; /* PPM: merge at the first non-delta vertex only */
+                if (vp.mode == VCM_MODE_VM) break; /* PPM: merge at the first non-delta vertex only */
             }
         }
         BsdfSample s;
@@ -366,7 +363,7 @@ __kernel SCALAR_WORK_ITEMS void vcm_camera(SCENE_PARAMS, __constant Camera* cam,
         } else {
             beta *= s.weight;
         }
-        vcm_on_scatter(&m, fabs(dot(b.ns, s.wi)), s.pdf, rev, s.delta, vm_factor, vc_factor);
+        vcm_on_scatter(&m, fabs(dot(b.ns, s.wi)), s.pdf, rev, s.delta, vp.vm_factor, vp.vc_factor);
         specular = specular && s.delta;
         dir = s.wi;
         org = offset_origin(SCENE_ARGS, sf.p, s.below ? -sf.ng : sf.ng);
@@ -375,13 +372,13 @@ __kernel SCALAR_WORK_ITEMS void vcm_camera(SCENE_PARAMS, __constant Camera* cam,
     /* Never let one bad sample poison a pixel. */
     if (!all(isfinite(L))) L = (float3)(0.0f);
     if (!all(isfinite(Ll))) Ll = (float3)(0.0f);
-    double r0 = (double)L.x + light_unit * ((double)Ll.x + (double)acc0 * (vm_norm / FLUX_FIXED_SCALE));
-    double r1 = (double)L.y + light_unit * ((double)Ll.y + (double)acc1 * (vm_norm / FLUX_FIXED_SCALE));
-    double r2_ = (double)L.z + light_unit * ((double)Ll.z + (double)acc2 * (vm_norm / FLUX_FIXED_SCALE));
+    double r0 = (double)L.x + vp.light_unit * ((double)Ll.x + (double)acc0 * (vp.vm_norm / FLUX_FIXED_SCALE));
+    double r1 = (double)L.y + vp.light_unit * ((double)Ll.y + (double)acc1 * (vp.vm_norm / FLUX_FIXED_SCALE));
+    double r2_ = (double)L.z + vp.light_unit * ((double)Ll.z + (double)acc2 * (vp.vm_norm / FLUX_FIXED_SCALE));
     /* This batch's splats (light tracing) join the pixel (the host clears them before each batch). */
-    r0 += (double)splat[3 * p] * splat_unit;
-    r1 += (double)splat[3 * p + 1] * splat_unit;
-    r2_ += (double)splat[3 * p + 2] * splat_unit;
+    r0 += (double)splat[3 * p] * vp.splat_unit;
+    r1 += (double)splat[3 * p + 1] * vp.splat_unit;
+    r2_ += (double)splat[3 * p + 2] * vp.splat_unit;
     /* Batches add up in pass_sum; the last one adds the pass to the running sum (an abandoned pass
      * leaves accum as the last whole pass left it). */
     if (!first) {

@@ -36,7 +36,9 @@ namespace {
     X(sizeof(Photon)) X(offsetof(Photon, flux)) X(offsetof(Photon, wi_oct))                           \
     X(sizeof(GridInfo)) X(offsetof(GridInfo, inv_cell)) X(offsetof(GridInfo, num_photons))            \
     X(sizeof(LightVertex)) X(offsetof(LightVertex, throughput)) X(offsetof(LightVertex, d_vm))         \
-    X(offsetof(LightVertex, u)) X(offsetof(LightVertex, path_length))
+    X(offsetof(LightVertex, u)) X(offsetof(LightVertex, path_length))                              \
+    X(sizeof(VcmPass)) X(offsetof(VcmPass, light_unit)) X(offsetof(VcmPass, light_paths))          \
+    X(offsetof(VcmPass, r2)) X(offsetof(VcmPass, max_len))
 // clang-format on
 
 #define STR(x) #x ","
@@ -72,4 +74,47 @@ TEST(SharedTypes, DeviceLayoutMatchesHost) {
     std::vector<cl_uint> device(host.size());
     dc.queue.enqueueReadBuffer(out, CL_TRUE, 0, device.size() * sizeof(cl_uint), device.data());
     for (size_t k2 = 0; k2 < host.size(); ++k2) EXPECT_EQ(device[k2], host[k2]) << "layout entry " << k2;
+}
+
+// A struct passed by value (dev::VcmPass, vcm_light and vcm_camera) arrives as the host wrote it:
+// every field read back from the kernel's argument.
+TEST(SharedTypes, StructArgumentArrivesByValue) {
+    const std::string src = assemble_kernel_source("shared_types.h") + R"(
+__kernel void echo(const VcmPass vp, __global double* out) {
+    out[0] = (double)vp.seed; out[1] = (double)vp.pass; out[2] = vp.light_unit; out[3] = vp.vm_norm;
+    out[4] = vp.splat_unit; out[5] = vp.light_paths; out[6] = vp.vm_factor; out[7] = vp.vc_factor;
+    out[8] = vp.area_scale; out[9] = vp.r2; out[10] = vp.splat_scale; out[11] = vp.mode; out[12] = vp.max_len;
+}
+)";
+    DeviceContext dc(test::test_device());
+    cl::Program program(dc.context, src);
+    try {
+        program.build({dc.info.device}, "-cl-std=CL1.2");
+    } catch (const cl::Error&) {
+        FAIL() << program.getBuildInfo<CL_PROGRAM_BUILD_LOG>(dc.info.device);
+    }
+    VcmPass vp{};
+    vp.seed = 123456789;
+    vp.pass = 42;
+    vp.light_unit = 1.5e-7;
+    vp.vm_norm = 2.25;
+    vp.splat_unit = 3.0e-9;
+    vp.light_paths = 4096.f;
+    vp.vm_factor = 0.5f;
+    vp.vc_factor = 2.f;
+    vp.area_scale = 0.125f;
+    vp.r2 = 1e-4f;
+    vp.splat_scale = 65536.f;
+    vp.mode = 3;
+    vp.max_len = 9;
+    cl::Buffer out(dc.context, CL_MEM_WRITE_ONLY, 13 * sizeof(cl_double));
+    cl::Kernel k(program, "echo");
+    k.setArg(0, vp);
+    k.setArg(1, out);
+    dc.queue.enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(1));
+    std::vector<cl_double> got(13);
+    dc.queue.enqueueReadBuffer(out, CL_TRUE, 0, got.size() * sizeof(cl_double), got.data());
+    const std::vector<double> want = {123456789.0, 42.0,  1.5e-7,        2.25,    3.0e-9, 4096.0, 0.5,
+                                      2.0,         0.125, double(1e-4f), 65536.0, 3.0,    9.0};
+    for (size_t i = 0; i < want.size(); ++i) EXPECT_EQ(got[i], want[i]) << "field " << i;
 }

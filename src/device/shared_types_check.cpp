@@ -112,6 +112,16 @@ CLPPM_CHECK_OFFSET(LightVertex, prim, 44);
 CLPPM_CHECK_OFFSET(LightVertex, prev, 56);
 CLPPM_CHECK_OFFSET(LightVertex, path_length, 60);
 
+CLPPM_CHECK_SIZE(VcmPass, 72);
+CLPPM_CHECK_OFFSET(VcmPass, pass, 8);
+CLPPM_CHECK_OFFSET(VcmPass, light_unit, 16);
+CLPPM_CHECK_OFFSET(VcmPass, splat_unit, 32);
+CLPPM_CHECK_OFFSET(VcmPass, light_paths, 40);
+CLPPM_CHECK_OFFSET(VcmPass, r2, 56);
+CLPPM_CHECK_OFFSET(VcmPass, splat_scale, 60);
+CLPPM_CHECK_OFFSET(VcmPass, mode, 64);
+CLPPM_CHECK_OFFSET(VcmPass, max_len, 68);
+
 CLPPM_CHECK_SIZE(GridInfo, 32);
 CLPPM_CHECK_OFFSET(GridInfo, inv_cell, 16);
 CLPPM_CHECK_SIZE(PhotonChain, 80);

@@ -120,46 +120,55 @@ void VcmIntegrator::prepare() {
     for (auto& w : workers_) w->integ->prepare(); // their radius is set from this one's every pass
 }
 
-void VcmIntegrator::trace_light(uint64_t pass, uint32_t first, uint32_t count) {
-    fill_buffer(dc_.queue, splat_, cl_long(0), 0, size_t(num_pixels_) * 3 * sizeof(cl_long));
-    if (mode_ == VCM_MODE_PT) return; // camera sub-paths alone
+// What both sub-path kernels are told this pass (dev::VcmPass): the MIS factors from the merging
+// radius, eta = pi r^2 N_L in scene-relative area (Georgiev et al. 2012), and the units of the
+// light-side sums.
+dev::VcmPass VcmIntegrator::pass_constants(uint64_t pass) const {
     const double eta = M_PI * r2_ / area_scale_ * double(num_pixels_);
     const bool vm = mode_ == VCM_MODE_VCM || mode_ == VCM_MODE_VM;
-    const float vm_factor = vm ? float(std::min(eta * eta, 1e30)) : 0.f;
-    const float vc_factor = mode_ == VCM_MODE_VCM ? float(std::min(1.0 / (eta * eta), 1e30)) : 0.f;
-    set_args(k_light_, scene_.set_scene_args(k_light_), scene_.camera_buf, cl_ulong(settings_.seed), cl_ulong(pass),
-             cl_uint(first), cl_uint(count), cl_float(float(num_pixels_)), cl_float(vm_factor), cl_float(vc_factor),
-             cl_float(float(area_scale_)), cl_uint(mode_), cl_uint(scene_.info.max_bounces + 1), trace_->records(),
-             cl_uint(trace_->capacity()), trace_->counter(), path_last_, splat_, cl_float(float(kSplatScale)));
+    dev::VcmPass p{};
+    p.seed = settings_.seed;
+    p.pass = pass;
+    // Light-side sums are in units of total power per scene-relative area (kernels/vcm.cl).
+    p.light_unit = double(scene_.info.total_power) / area_scale_;
+    p.vm_norm = area_scale_ / (M_PI * r2_ * double(num_pixels_));
+    p.splat_unit = p.light_unit / kSplatScale;
+    p.light_paths = float(num_pixels_);
+    p.vm_factor = vm ? float(std::min(eta * eta, 1e30)) : 0.f;
+    p.vc_factor = mode_ == VCM_MODE_VCM ? float(std::min(1.0 / (eta * eta), 1e30)) : 0.f;
+    p.area_scale = float(area_scale_);
+    p.r2 = float(r2_);
+    p.splat_scale = float(kSplatScale);
+    p.mode = mode_;
+    p.max_len = scene_.info.max_bounces + 1;
+    return p;
+}
+
+void VcmIntegrator::trace_light(const dev::VcmPass& vp, uint32_t first, uint32_t count) {
+    fill_buffer(dc_.queue, splat_, cl_long(0), 0, size_t(num_pixels_) * 3 * sizeof(cl_long));
+    if (mode_ == VCM_MODE_PT) return; // camera sub-paths alone
+    set_args(k_light_, scene_.set_scene_args(k_light_), scene_.camera_buf, vp, cl_uint(first), cl_uint(count),
+             trace_->records(), cl_uint(trace_->capacity()), trace_->counter(), path_last_, splat_);
     cl::Event ev;
     enqueue_1d(dc_.queue, k_light_, count, &ev);
     add_event_time(stats_, "light_paths", ev);
 }
 
 void VcmIntegrator::render(uint64_t pass, uint32_t first_pixel, uint32_t pixels, const cl::Buffer& out) {
-    const double eta = M_PI * r2_ / area_scale_ * double(num_pixels_);
+    const dev::VcmPass vp = pass_constants(pass);
     const bool vm = mode_ == VCM_MODE_VCM || mode_ == VCM_MODE_VM;
-    const float vm_factor = vm ? float(std::min(eta * eta, 1e30)) : 0.f;
-    const float vc_factor = mode_ == VCM_MODE_VCM ? float(std::min(1.0 / (eta * eta), 1e30)) : 0.f;
-    // Light-side sums are in units of total power per scene-relative area (kernels/vcm.cl).
-    const double light_unit = double(scene_.info.total_power) / area_scale_;
-    const double vm_norm = area_scale_ / (M_PI * r2_ * double(num_pixels_));
     const double extent = 2.0 * scene_.info.radius;
     const double cell = std::max(2.0 * std::sqrt(r2_), extent / double(1 << 20));
-    const uint32_t max_len = scene_.info.max_bounces + 1;
     uint64_t stored_total = 0;
     trace_->run(
-        0, num_pixels_, [&](uint32_t first, uint32_t count) { trace_light(pass, first, count); },
+        0, num_pixels_, [&](uint32_t first, uint32_t count) { trace_light(vp, first, count); },
         [&](uint32_t first, uint32_t count, uint32_t stored) {
             grid_.build(trace_->records(), trace_->sorted(), vm ? stored : 0, scene_.bounds_min,
                         cell); // an empty grid without merging
             const uint32_t flags = (first == 0 ? 1u : 0u) | (first + count == num_pixels_ ? 2u : 0u);
-            set_args(k_camera_, scene_.set_scene_args(k_camera_), scene_.camera_buf, cl_ulong(settings_.seed),
-                     cl_ulong(pass), cl_uint(first_pixel + pixels), grid_.info(), trace_->sorted(), grid_.starts(),
-                     trace_->records(), path_last_, cl_uint(first), cl_uint(count), cl_uint(flags),
-                     cl_float(float(r2_)), cl_float(float(num_pixels_)), cl_float(vm_factor), cl_float(vc_factor),
-                     cl_float(float(area_scale_)), cl_uint(mode_), cl_uint(max_len), cl_double(light_unit),
-                     cl_double(vm_norm), splat_, cl_double(light_unit / kSplatScale), pass_sum_, out);
+            set_args(k_camera_, scene_.set_scene_args(k_camera_), scene_.camera_buf, vp, cl_uint(first_pixel + pixels),
+                     grid_.info(), trace_->sorted(), grid_.starts(), trace_->records(), path_last_, cl_uint(first),
+                     cl_uint(count), cl_uint(flags), splat_, pass_sum_, out);
             if (pixels > 0) {
                 cl::Event ev;
                 enqueue_1d_range(dc_.queue, k_camera_, first_pixel, pixels, &ev);

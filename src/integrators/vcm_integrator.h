@@ -44,7 +44,8 @@ private:
     // Pass `pass` for the camera sub-paths of pixels [first, first + count): the light sub-paths and
     // batches, then `out` (a running sum per pixel) gets each pixel's sample added.
     void render(uint64_t pass, uint32_t first, uint32_t count, const cl::Buffer& out);
-    void trace_light(uint64_t pass, uint32_t first, uint32_t count);
+    dev::VcmPass pass_constants(uint64_t pass) const;
+    void trace_light(const dev::VcmPass& vp, uint32_t first, uint32_t count);
     // Several devices: the rank's pixels between them, their samples joined into the sum.
     void render_on_devices(uint64_t pass, const PixelRanges& ranges);
 
