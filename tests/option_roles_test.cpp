@@ -6,13 +6,16 @@
 // option set gives the same image, bit for bit, as one without.
 #include <gtest/gtest.h>
 
+#include <cctype>
 #include <map>
 #include <string>
+#include <vector>
 
 #include "io/image_io.h"
 #include "render/option_table.h"
 #include "render/render_options.h"
 #include "test_util.h"
+#include "util/error.h"
 
 using namespace clppm;
 using namespace clppm::test;
@@ -130,5 +133,40 @@ TEST(OptionRoles, LocalOptionsLeaveTheImageAlone) {
                                  (name == "--output" ? "" : " -o " + target);
         ASSERT_EQ(run_clppm(args, &log), 0) << name << ": " << log;
         EXPECT_EQ(read_exr(target).rgb, base.rgb) << name << " " << value << " changed the image: is it Local?";
+    }
+}
+
+// An option that takes one of a list of names reads them from one place (util/enum_names.h beside
+// each enum, the integrator table): every name its range lists is accepted in any case and reads
+// back as itself, and a name it does not list is refused with the range in the message.
+TEST(OptionRoles, ChoiceOptionsTakeEveryNameTheirRangeLists) {
+    for (const char* option : {"--filter", "--sampler", "--disc-coverage", "--direct", "--integrator", "--tonemap"}) {
+        const RenderOptionSpec* spec = find_render_option(option);
+        ASSERT_NE(spec, nullptr) << option;
+        std::string range = spec->range;
+        std::vector<std::string> names;
+        for (size_t start = 0; start < range.size();) {
+            size_t end = range.find_first_of(", ", start);
+            if (end == std::string::npos) end = range.size();
+            const std::string word = range.substr(start, end - start);
+            if (!word.empty() && word != "or") names.push_back(word);
+            start = end + 1;
+        }
+        ASSERT_GE(names.size(), 2u) << option << " " << range;
+        for (const std::string& name : names) {
+            RenderOptions o;
+            std::string shouted = name;
+            for (char& c : shouted) c = char(std::toupper(static_cast<unsigned char>(c)));
+            ASSERT_NO_THROW(apply_render_option(o, *spec, option, shouted)) << option << " " << shouted;
+            const Json got = spec->value ? spec->value(o) : Json(to_string(o.tone.curve));
+            EXPECT_EQ(got, Json(name)) << option << " " << shouted;
+        }
+        RenderOptions o;
+        try {
+            apply_render_option(o, *spec, option, "bogus");
+            ADD_FAILURE() << option << " bogus was accepted";
+        } catch (const Error& e) {
+            EXPECT_NE(std::string(e.what()).find(range), std::string::npos) << e.what();
+        }
     }
 }

@@ -69,15 +69,12 @@ TEST(ToneMap, AutoExposurePutsTheLogAverageAtMiddleGrey) {
 }
 
 TEST(ToneMap, NamesParseCaseInsensitively) {
-    ToneCurve c = ToneCurve::Clip;
-    EXPECT_TRUE(parse_tone_curve("ACES", &c));
-    EXPECT_EQ(c, ToneCurve::Aces);
-    EXPECT_TRUE(parse_tone_curve("Reinhard", &c));
-    EXPECT_EQ(c, ToneCurve::Reinhard);
-    EXPECT_TRUE(parse_tone_curve("clip", &c));
-    EXPECT_EQ(c, ToneCurve::Clip);
-    EXPECT_FALSE(parse_tone_curve("agx", &c));
-    EXPECT_EQ(c, ToneCurve::Clip);
+    EXPECT_EQ(enum_from_name<ToneCurve>("ACES"), ToneCurve::Aces);
+    EXPECT_EQ(enum_from_name<ToneCurve>("Reinhard"), ToneCurve::Reinhard);
+    EXPECT_EQ(enum_from_name<ToneCurve>("clip"), ToneCurve::Clip);
+    EXPECT_EQ(enum_from_name<ToneCurve>("agx"), std::nullopt);
+    EXPECT_STREQ(to_string(ToneCurve::Reinhard), "reinhard");
+    EXPECT_EQ(enum_choices<ToneCurve>(), "clip, aces or reinhard");
 }
 
 } // namespace

@@ -12,6 +12,7 @@
 #include "io/image_io.h"
 #include "io/stats_json.h"
 #include "util/error.h"
+#include "util/text.h"
 
 namespace clppm {
 namespace {
@@ -45,12 +46,7 @@ std::unique_ptr<CLI::App> make_compare_app(CompareArgs& a) {
     return app;
 }
 
-bool ends_with_png(const std::string& s) {
-    if (s.size() <= 4) return false;
-    std::string tail = s.substr(s.size() - 4);
-    for (char& ch : tail) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
-    return tail == ".png";
-}
+bool ends_with_png(const std::string& s) { return s.size() > 4 && ends_with_ci(s, ".png"); }
 
 } // namespace
 

@@ -1,7 +1,5 @@
 #include "integrators/integrator_table.h"
 
-#include <cctype>
-
 #include "integrators/photon_map.h"
 #include "integrators/ppm_integrator.h"
 #include "integrators/pt_integrator.h"
@@ -9,6 +7,7 @@
 #include "integrators/vcm_integrator.h"
 #include "shared_types.h"
 #include "util/error.h"
+#include "util/text.h"
 #include "vcm_mis.h"
 
 namespace clppm {
@@ -64,18 +63,6 @@ const std::vector<IntegratorRow> kTable = {
      true, false, true, " (every process traces all light sub-paths)", vcm_memory, light_vertex_memory,
      make<VcmIntegrator>, nullptr, false, VCM_MODE_BPT},
 };
-
-// "a, b or c".
-std::string either(const std::vector<std::string>& names) {
-    std::string s;
-    for (size_t i = 0; i < names.size(); ++i) s += (i == 0 ? "" : i + 1 == names.size() ? " or " : ", ") + names[i];
-    return s;
-}
-
-std::string lower(std::string s) {
-    for (char& c : s) c = char(std::tolower(static_cast<unsigned char>(c)));
-    return s;
-}
 
 } // namespace
 

@@ -4,18 +4,27 @@
 #include <string>
 
 #include "scene/scene_settings.h"
+#include "util/enum_names.h"
 
 namespace clppm {
 
-enum class DirectLighting { Photons, Sample };     // --direct photons|sample
-enum class PixelFilter { Box, Tent };              // --filter box|tent
-enum class Sampler { Sobol, ZSobol, Independent }; // --sampler sobol|zsobol|independent (the path tracer's)
-enum class DiscCoverage { Auto, On, Off };         // --disc-coverage auto|on|off
+enum class DirectLighting { Photons, Sample };     // --direct
+enum class PixelFilter { Box, Tent };              // --filter
+enum class Sampler { Sobol, ZSobol, Independent }; // --sampler (the path tracer's)
+enum class DiscCoverage { Auto, On, Off };         // --disc-coverage
 
-const char* to_string(DirectLighting direct); // "photons", "sample"
-const char* to_string(PixelFilter filter);    // "box", "tent"
-const char* to_string(Sampler sampler);       // "sobol", "zsobol", "independent"
-const char* to_string(DiscCoverage coverage); // "auto", "on", "off"
+// Their names, spelled here alone (util/enum_names.h): the options parse them, to_string prints them.
+constexpr EnumName<DirectLighting> kDirectLightingNames[] = {{DirectLighting::Photons, "photons"},
+                                                             {DirectLighting::Sample, "sample"}};
+constexpr EnumName<PixelFilter> kPixelFilterNames[] = {{PixelFilter::Box, "box"}, {PixelFilter::Tent, "tent"}};
+constexpr EnumName<Sampler> kSamplerNames[] = {
+    {Sampler::Sobol, "sobol"}, {Sampler::ZSobol, "zsobol"}, {Sampler::Independent, "independent"}};
+constexpr EnumName<DiscCoverage> kDiscCoverageNames[] = {
+    {DiscCoverage::Auto, "auto"}, {DiscCoverage::On, "on"}, {DiscCoverage::Off, "off"}};
+constexpr const auto& enum_names(DirectLighting) { return kDirectLightingNames; }
+constexpr const auto& enum_names(PixelFilter) { return kPixelFilterNames; }
+constexpr const auto& enum_names(Sampler) { return kSamplerNames; }
+constexpr const auto& enum_names(DiscCoverage) { return kDiscCoverageNames; }
 
 // The one set of defaults for what shapes an image, whichever front end asks (the command line,
 // the Python module, the tests). The scene's part (camera, resolution, lens, path length) is the

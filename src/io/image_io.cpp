@@ -17,6 +17,7 @@
 
 #include "io/regular_file.h"
 #include "util/error.h"
+#include "util/text.h"
 
 namespace clppm {
 namespace {
@@ -111,13 +112,6 @@ std::vector<unsigned char> to_srgb8(const Image& img, const ToneMapping& tone) {
 
 void append_bytes(void* context, void* data, int size) {
     static_cast<std::string*>(context)->append(static_cast<const char*>(data), static_cast<size_t>(size));
-}
-
-bool ends_with_ci(const std::string& s, const std::string& suffix) {
-    if (s.size() < suffix.size()) return false;
-    return std::equal(suffix.begin(), suffix.end(), s.end() - suffix.size(), [](char a, char b) {
-        return std::tolower(static_cast<unsigned char>(a)) == std::tolower(static_cast<unsigned char>(b));
-    });
 }
 
 void read_rgb(Imf::InputFile& file, Image& img) {

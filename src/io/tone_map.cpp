@@ -41,25 +41,4 @@ double applied_exposure_ev(const ToneMapping& tm, const Image& img) {
     return tm.exposure_ev + (tm.auto_exposure ? auto_exposure_ev(img) : 0.0);
 }
 
-const char* to_string(ToneCurve curve) {
-    switch (curve) {
-    case ToneCurve::Clip: return "clip";
-    case ToneCurve::Aces: return "aces";
-    case ToneCurve::Reinhard: return "reinhard";
-    }
-    return "?";
-}
-
-bool parse_tone_curve(const std::string& name, ToneCurve* curve) {
-    std::string lower(name);
-    std::transform(lower.begin(), lower.end(), lower.begin(),
-                   [](unsigned char ch) { return static_cast<char>(std::tolower(ch)); });
-    for (ToneCurve c : {ToneCurve::Clip, ToneCurve::Aces, ToneCurve::Reinhard})
-        if (lower == to_string(c)) {
-            *curve = c;
-            return true;
-        }
-    return false;
-}
-
 } // namespace clppm

@@ -4,6 +4,8 @@
 #pragma once
 #include <string>
 
+#include "util/enum_names.h"
+
 namespace clppm {
 
 struct Image;
@@ -34,7 +36,8 @@ double auto_exposure_ev(const Image& img);
 double applied_exposure_ev(const ToneMapping& tm, const Image& img);
 
 // "clip", "aces", "reinhard", and back (case-insensitively); false for any other name.
-const char* to_string(ToneCurve curve);
-bool parse_tone_curve(const std::string& name, ToneCurve* curve);
+constexpr EnumName<ToneCurve> kToneCurveNames[] = {
+    {ToneCurve::Clip, "clip"}, {ToneCurve::Aces, "aces"}, {ToneCurve::Reinhard, "reinhard"}};
+constexpr const auto& enum_names(ToneCurve) { return kToneCurveNames; }
 
 } // namespace clppm

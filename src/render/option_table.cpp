@@ -66,11 +66,9 @@ const std::vector<RenderOptionSpec>& render_option_table() {
         {"Output", "--tonemap", nullptr, "CURVE",
          "The PNG's tone curve: clip = linear up to white, aces = a filmic curve (Narkowicz's ACES fit), "
          "reinhard = x / (1 + x); the EXR stays linear",
-         "clip, aces or reinhard", "aces",
-         [](RenderOptions& o, const OptionArg& a) {
-             if (!parse_tone_curve(a.value, &o.tone.curve)) bad_value(a);
-         },
-         OptionRole::Local, nullptr},
+         enum_range<ToneCurve>(), "aces",
+         [](RenderOptions& o, const OptionArg& a) { o.tone.curve = parse_enum<ToneCurve>(a); }, OptionRole::Local,
+         nullptr},
         {"Output", "--exposure", nullptr, "EV",
          "The PNG's exposure in stops (x 2^EV before the tone curve; with --auto-exposure, added to it)",
          "a number in -64..64", "0",
@@ -136,13 +134,8 @@ const std::vector<RenderOptionSpec>& render_option_table() {
          OptionRole::Image, [](const RenderOptions& o) -> Json { return o.settings.focus_distance; }},
         {"Image and camera", "--filter", nullptr, "NAME",
          "Pixel filter, importance-sampled: box = the pixel's square, tent = separable tent of radius 1 pixel",
-         "box or tent", "box",
-         [](RenderOptions& o, const OptionArg& a) {
-             const std::string v = lower(a.value);
-             if (v == "box") o.settings.filter = PixelFilter::Box;
-             else if (v == "tent") o.settings.filter = PixelFilter::Tent;
-             else bad_value(a);
-         },
+         enum_range<PixelFilter>(), "box",
+         [](RenderOptions& o, const OptionArg& a) { o.settings.filter = parse_enum<PixelFilter>(a); },
          OptionRole::Image, [](const RenderOptions& o) -> Json { return to_string(o.settings.filter); }},
         {"Integrator", "--integrator", nullptr, "NAME", integrator_help().c_str(), integrator_range().c_str(), "auto",
          [](RenderOptions& o, const OptionArg& a) {
@@ -182,24 +175,13 @@ const std::vector<RenderOptionSpec>& render_option_table() {
          OptionRole::Image, [](const RenderOptions& o) -> Json { return o.settings.spp; }},
         {"Integrator", "--disc-coverage", nullptr, "MODE",
          "PPM, SPPM, PPPM: divide each gather by the part of its disc on its surface (no dark edges and corners)",
-         "auto, on or off", "auto",
-         [](RenderOptions& o, const OptionArg& a) {
-             const std::string v = lower(a.value);
-             if (v == "auto") o.settings.disc_coverage = DiscCoverage::Auto;
-             else if (v == "on") o.settings.disc_coverage = DiscCoverage::On;
-             else if (v == "off") o.settings.disc_coverage = DiscCoverage::Off;
-             else bad_value(a);
-         },
+         enum_range<DiscCoverage>(), "auto",
+         [](RenderOptions& o, const OptionArg& a) { o.settings.disc_coverage = parse_enum<DiscCoverage>(a); },
          OptionRole::Image, [](const RenderOptions& o) -> Json { return to_string(o.settings.disc_coverage); }},
         {"Integrator", "--direct", nullptr, "MODE",
-         "Direct light from photons (density estimate) or by sampling lights at hit points", "photons or sample",
-         "sample",
-         [](RenderOptions& o, const OptionArg& a) {
-             const std::string v = lower(a.value);
-             if (v == "photons") o.settings.direct = DirectLighting::Photons;
-             else if (v == "sample") o.settings.direct = DirectLighting::Sample;
-             else bad_value(a);
-         },
+         "Direct light from photons (density estimate) or by sampling lights at hit points",
+         enum_range<DirectLighting>(), "sample",
+         [](RenderOptions& o, const OptionArg& a) { o.settings.direct = parse_enum<DirectLighting>(a); },
          OptionRole::Image, [](const RenderOptions& o) -> Json { return to_string(o.settings.direct); }},
         {"Integrator", "--max-bounces", nullptr, "N", "Longest eye or photon path", "an integer in 1..1024", "16",
          [](RenderOptions& o, const OptionArg& a) { o.settings.max_bounces = unsigned(parse_int(a, 1, 1024)); },
@@ -209,15 +191,9 @@ const std::vector<RenderOptionSpec>& render_option_table() {
          "equal time), zsobol = the same points laid out over the screen for the planned --passes, so that "
          "neighbouring pixels' errors cancel (needs a pass limit), independent = independent random streams; the "
          "other integrators draw independent ones",
-         "sobol, zsobol or independent", "sobol",
-         [](RenderOptions& o, const OptionArg& a) {
-             const std::string v = lower(a.value);
-             if (v == "sobol") o.settings.sampler = Sampler::Sobol;
-             else if (v == "zsobol") o.settings.sampler = Sampler::ZSobol;
-             else if (v == "independent") o.settings.sampler = Sampler::Independent;
-             else bad_value(a);
-         },
-         OptionRole::Image, [](const RenderOptions& o) -> Json { return to_string(o.settings.sampler); }},
+         enum_range<Sampler>(), "sobol",
+         [](RenderOptions& o, const OptionArg& a) { o.settings.sampler = parse_enum<Sampler>(a); }, OptionRole::Image,
+         [](const RenderOptions& o) -> Json { return to_string(o.settings.sampler); }},
         {"Integrator", "--visual-importance", nullptr, nullptr,
          "PPM and SPPM: photon paths from Markov chains whose target is their visibility to the hit points "
          "(Hachisuka and Jensen 2009), so that photons go where the camera sees; for light that reaches what the "

@@ -68,18 +68,4 @@ const std::string& non_empty(const OptionArg& a) {
     return a.value;
 }
 
-std::string lower(const std::string& v) {
-    std::string out(v);
-    for (char& ch : out) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
-    return out;
-}
-
-bool ends_with_ci(const std::string& s, const char* suffix) {
-    const std::string suf(suffix);
-    if (s.size() < suf.size()) return false;
-    for (size_t i = 0; i < suf.size(); ++i)
-        if (std::tolower(static_cast<unsigned char>(s[s.size() - suf.size() + i])) != suf[i]) return false;
-    return true;
-}
-
 } // namespace clppm

@@ -4,7 +4,11 @@
 #pragma once
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <string>
+
+#include "util/enum_names.h"
+#include "util/text.h"
 
 namespace clppm {
 
@@ -28,9 +32,17 @@ std::array<float, 3> parse_rgb(const OptionArg& a);
 // The value, refused when empty.
 const std::string& non_empty(const OptionArg& a);
 
-// The value lower-cased: choices ignore case ("--integrator SPPM").
-std::string lower(const std::string& v);
-// Whether `s` ends with the lower-case `suffix`, in any case.
-bool ends_with_ci(const std::string& s, const char* suffix);
+// One of an enum's names (util/enum_names.h), in any case ("--filter Tent").
+template <class E>
+E parse_enum(const OptionArg& a) {
+    if (const std::optional<E> v = enum_from_name<E>(a.value)) return *v;
+    bad_value(a);
+}
+// The enum's names as an option's range, "a, b or c", kept for the option table's lifetime.
+template <class E>
+const char* enum_range() {
+    static const std::string range = enum_choices<E>();
+    return range.c_str();
+}
 
 } // namespace clppm

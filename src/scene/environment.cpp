@@ -9,24 +9,18 @@
 #include "io/regular_file.h"
 #include "scene/studio_environment.h"
 #include "util/error.h"
+#include "util/text.h"
 
 namespace clppm {
 
 namespace {
 
-bool ends_with(const std::string& s, const std::string& tail) {
-    if (s.size() < tail.size()) return false;
-    std::string end = s.substr(s.size() - tail.size());
-    std::transform(end.begin(), end.end(), end.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-    return end == tail;
-}
-
 // The map as linear RGB rows, top first; `label` names it in messages ("--env FILE" or the
 // scene's extras).
 Image read_map(const std::string& path, const std::string& label) {
     if (const std::string why = not_a_regular_file(path); !why.empty()) throw Error(label + ": " + why);
-    if (ends_with(path, ".exr")) return read_exr(path);
-    if (ends_with(path, ".hdr")) {
+    if (ends_with_ci(path, ".exr")) return read_exr(path);
+    if (ends_with_ci(path, ".hdr")) {
         try {
             return read_radiance_hdr(path);
         } catch (const Error& e) {
