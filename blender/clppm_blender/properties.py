@@ -3,15 +3,18 @@ line's option table: 0 stands for "the integrator's default" or "none" where the
 value of its own)."""
 import bpy
 
+# The library's integrators in its order, each described as clppm.integrators() describes it
+# (tests/python/test_option_lists.py fails when they part); the labels are the add-on's own.
 INTEGRATORS = [
-    ("auto", "Auto", "The fastest for the scene: vertex connection and merging where glass or smooth metal "
-                     "casts caustics of the scene's own lights, stochastic PPM where the lights reach almost "
-                     "nothing the camera sees (light through a gap), the path tracer otherwise"),
-    ("sppm", "SPPM", "Stochastic progressive photon mapping"),
-    ("pppm", "PPPM", "Probabilistic progressive photon mapping"),
-    ("ppm", "PPM", "Progressive photon mapping (fixed hit points)"),
-    ("pt", "Path tracing", "Path tracing with next-event estimation"),
-    ("vcm", "VCM", "Vertex connection and merging"),
+    ("auto", "Auto", "The fastest for the scene (vcm where glass or smooth metal casts caustics from the scene's "
+                     "own lights (sppm for an orthographic camera or --filter tent), sppm where they reach under 5% "
+                     "of what the camera sees directly (light through a gap), pt otherwise; measured: "
+                     "bench/RESULTS.md)"),
+    ("ppm", "PPM", "Progressive photon mapping (fixed hit points, Hachisuka et al. 2008)"),
+    ("sppm", "SPPM", "Stochastic PPM (a new eye sample per pixel every pass)"),
+    ("pppm", "PPPM", "Probabilistic PPM (independent passes, Knaus and Zwicker 2011)"),
+    ("pt", "Path tracing", "Path tracing"),
+    ("vcm", "VCM", "Vertex connection and merging (bidirectional path tracing and photon merging under MIS)"),
     ("bpt", "BPT", "Bidirectional path tracing"),
 ]
 

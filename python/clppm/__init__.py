@@ -27,7 +27,7 @@ import os
 from . import _clppm
 from ._clppm import Error, devices
 
-__all__ = ["render", "Renderer", "Error", "Interrupted", "devices", "read_exr", "options", "__version__"]
+__all__ = ["render", "Renderer", "Error", "Interrupted", "devices", "read_exr", "options", "integrators", "__version__"]
 __version__ = _clppm.__version__
 mpi_rank = _clppm.mpi_rank
 mpi_size = _clppm.mpi_size
@@ -55,8 +55,14 @@ _OPTIONS = {_python_name(o["name"]): o for o in _clppm.option_table()}
 
 
 def options():
-    """The render options: {python name: {name, flag, range, default, help, group}}."""
+    """The render options: {python name: {name, flag, range, default, help, group, role}}; role is "image"
+    (shapes the image), "run" (when the render stops, what it estimates) or "local" (outputs, devices)."""
     return {k: dict(v) for k, v in _OPTIONS.items()}
+
+
+def integrators():
+    """The integrators --integrator takes: [{name, alias, summary}], "auto" first (the rule it follows)."""
+    return _clppm.integrators()
 
 
 def _scalar(value):
@@ -205,7 +211,8 @@ class Renderer:
 
     @property
     def settings(self):
-        """What is rendered: the integrator the scene got, the size, the limits."""
+        """What is rendered: every option that shapes the image or says when the render stops, by keyword
+        (the integrator the scene got for "auto"), and scene, output, pass_limit and time_limit."""
         return self._native.settings
 
     def close(self):

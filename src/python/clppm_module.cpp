@@ -23,6 +23,8 @@
 
 #include "device/cluster.h"
 #include "device/device.h"
+#include "integrators/default_integrator.h"
+#include "integrators/integrator_table.h"
 #include "io/image_io.h"
 #include "render/option_table.h"
 #include "render/render_job.h"
@@ -82,6 +84,14 @@ py::array_t<float> plane_to_numpy(const std::vector<float>& v, int width, int he
     py::array_t<float> a({py::ssize_t(height), py::ssize_t(width)});
     std::copy(v.begin(), v.end(), a.mutable_data());
     return a;
+}
+
+// An option's keyword argument: "--target-error" is target_error (python/clppm/__init__.py).
+std::string keyword_name(const std::string& option) {
+    std::string k = option.substr(2);
+    for (char& c : k)
+        if (c == '-') c = '_';
+    return k;
 }
 
 py::object json_to_python(const Json& j) { return py::module_::import("json").attr("loads")(j.dump()); }
@@ -234,22 +244,21 @@ public:
         return job_->pass_limit();
     }
     std::vector<std::string> warnings() const { return log_ ? log_->warnings() : std::vector<std::string>{}; }
-    py::dict settings() const {
+    // What is rendered: every option that shapes the image or says when the render stops, under its
+    // keyword name, as the option table reads it back (the values every MPI process shares), with
+    // the integrator the scene got; and the scene, the output and the resolved limits.
+    py::object settings() const {
         need_job();
         const RenderOptions& o = job_->options();
-        py::dict d;
+        const Json shared = options_every_rank_shares(o); // kept: items() refers to it
+        Json d = Json::object();
+        for (const auto& [name, value] : shared.items())
+            if (name.rfind("--", 0) == 0) d[keyword_name(name)] = value; // SCENE is scene, below
         d["scene"] = o.scene;
-        d["integrator"] = o.settings.integrator;
-        d["width"] = o.settings.width;
-        d["height"] = o.settings.height;
-        d["photons"] = o.settings.photons;
-        d["alpha"] = o.settings.alpha;
-        d["seed"] = o.settings.seed;
+        d["output"] = o.output;
         d["pass_limit"] = job_->pass_limit();
         d["time_limit"] = o.time_limit;
-        d["target_error"] = o.target_error;
-        d["output"] = o.output;
-        return d;
+        return json_to_python(d);
     }
 
 private:
@@ -311,7 +320,21 @@ py::object option_list() {
                        {"metavar", text(s.metavar)},
                        {"help", s.help},
                        {"range", text(s.range)},
-                       {"default", text(s.default_text)}});
+                       {"default", text(s.default_text)},
+                       {"role", s.role == OptionRole::Image ? "image"
+                                : s.role == OptionRole::Run ? "run"
+                                                            : "local"}});
+    return json_to_python(out);
+}
+
+// The integrators as the table lists them, "auto" first with its rule (--integrator's help).
+py::object integrator_list() {
+    Json out = Json::array();
+    out.push_back({{"name", "auto"},
+                   {"alias", Json()},
+                   {"summary", std::string("the fastest for the scene (") + kDefaultIntegratorRule + ")"}});
+    for (const IntegratorRow& row : integrator_table())
+        out.push_back({{"name", row.name}, {"alias", row.alias ? Json(row.alias) : Json()}, {"summary", row.summary}});
     return json_to_python(out);
 }
 
@@ -351,7 +374,8 @@ PYBIND11_MODULE(_clppm, m) {
     m.attr("mpi_rank") = cluster().rank();
     m.attr("mpi_size") = cluster().size();
     m.def("devices", &device_list, "The OpenCL devices, as --list-devices lists them.");
-    m.def("option_table", &option_list, "The render options: name, flag, range, default, help, group.");
+    m.def("option_table", &option_list, "The render options: name, flag, range, default, help, group, role.");
+    m.def("integrators", &integrator_list, "The integrators: name, alias, summary; auto first.");
     m.def(
         "read_exr",
         [](const std::string& path) {

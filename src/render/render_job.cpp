@@ -280,6 +280,9 @@ Json RenderJob::stats_json(const RenderEnd& end, const Image* given) const {
     j["scene"] = scene_.source;
     j["integrator"] = integ_->name();
     j["direct"] = to_string(options_.settings.direct);
+    // Every option that shapes the image or says when the render stops, as the option table reads it.
+    j["options"] = options_every_rank_shares(options_);
+    j["options"].erase("SCENE");
     j["device"] = {{"index", dc_->info.index},
                    {"name", dc_->info.name},
                    {"platform", dc_->info.platform_name},

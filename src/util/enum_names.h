@@ -12,20 +12,23 @@
 
 namespace clppm {
 
-template <class E> struct EnumName {
+template <class E>
+struct EnumName {
     E value;
     const char* name;
 };
 
 // The name of e ("?" for a value outside the table).
-template <class E, class = decltype(enum_names(E{}))> const char* to_string(E e) {
+template <class E, class = decltype(enum_names(E{}))>
+const char* to_string(E e) {
     for (const auto& n : enum_names(e))
         if (n.value == e) return n.name;
     return "?";
 }
 
 // The value whose name is `name`, ignoring ASCII case, or nullopt.
-template <class E> std::optional<E> enum_from_name(std::string_view name) {
+template <class E>
+std::optional<E> enum_from_name(std::string_view name) {
     const std::string folded = lower(std::string(name));
     for (const auto& n : enum_names(E{}))
         if (folded == n.name) return n.value;
@@ -33,7 +36,8 @@ template <class E> std::optional<E> enum_from_name(std::string_view name) {
 }
 
 // The names in order, as "a, b or c".
-template <class E> std::string enum_choices() {
+template <class E>
+std::string enum_choices() {
     std::vector<std::string> names;
     for (const auto& n : enum_names(E{})) names.push_back(n.name);
     return either(names);
