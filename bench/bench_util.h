@@ -16,12 +16,11 @@
 #include "scene/gltf/gltf_load.h"
 #include "scene/scene_features.h"
 #include "util/error.h"
+#include "util/steady_seconds.h"
 
 namespace clppm::bench {
 
-inline double now_s() {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
+inline double now_s() { return steady_seconds(); }
 
 // A benchmark scene by name, or a glTF file by path; lit as the command line lights it (a scene
 // without lights by the default white environment).

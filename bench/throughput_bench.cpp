@@ -55,14 +55,6 @@ Measure measure(const DeviceInfo& dev, const std::string& scene, const RenderSet
     return m;
 }
 
-RenderSettings settings(const std::string& integ, unsigned size, uint64_t photons) {
-    RenderSettings s;
-    s.integrator = integ;
-    s.width = s.height = size;
-    s.photons = photons;
-    return s;
-}
-
 // Build time and time to first image of the clppm binary with empty caches, then with warm ones.
 Json build_times(const std::string& dir, bool quick) {
     Json out = Json::array();
@@ -128,7 +120,7 @@ int main(int argc, char** argv) try {
     Json rows = Json::array();
     for (const std::string& scene : scenes) {
         for (std::string integ : {"ppm", "sppm", "pppm", "pt"}) {
-            RenderSettings s = settings(integ, size, photons);
+            RenderSettings s = square_settings(integ, size, photons);
             Measure m = measure(dev, scene, s, a.seconds);
             Measure g;
             const bool compare_generic = integ == "ppm" || integ == "sppm";
@@ -159,7 +151,7 @@ int main(int argc, char** argv) try {
     // 2. Scaling of one SPPM pass: photons per pass, resolution, triangles.
     Json scaling = Json::array();
     auto scale_row = [&](const std::string& what, const std::string& scene, unsigned sz, uint64_t ph) {
-        Measure m = measure(dev, scene, settings("sppm", sz, ph), a.seconds);
+        Measure m = measure(dev, scene, square_settings("sppm", sz, ph), a.seconds);
         scaling.push_back({{"vary", what},
                            {"scene", scene},
                            {"size", sz},

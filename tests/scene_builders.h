@@ -4,6 +4,7 @@
 #include <cmath>
 #include <vector>
 
+#include "io/image_io.h"
 #include "scene/material_defaults.h"
 #include "scene/scene.h"
 #include "shared_types.h"
@@ -132,6 +133,35 @@ inline Scene plane_under_point_light(float rho, float intensity, float light_hei
     add_point_light(s, {0, light_height, 0}, intensity);
     add_camera(s, {0, 3, 0}, {0, -1, 0}, {0, 0, -1}, 0.6f);
     return s;
+}
+
+// The radiance plane_under_point_light's plane (albedo rho, a point light of intensity I at height
+// h) shows through pixel (px, py) of camera cam: rho / pi * I cos(theta) / d^2.
+inline double plane_radiance(const dev::Camera& cam, double px, double py, double rho, double I, double h) {
+    double sx = 2 * px / cam.width - 1, sy = 1 - 2 * py / cam.height;
+    double d[3], o[3];
+    for (int k = 0; k < 3; ++k) d[k] = cam.forward[k] + cam.right[k] * sx + cam.up[k] * sy, o[k] = cam.origin[k];
+    double t = -o[1] / d[1];
+    double x = o[0] + t * d[0], z = o[2] + t * d[2];
+    double d2 = x * x + z * z + h * h;
+    return rho / M_PI * I * (h / std::sqrt(d2)) / d2;
+}
+
+// sum |L - L_ref| / sum L_ref of channel c over the pixels [lo, hi) x [lo, hi) of a square image
+// against plane_radiance; the signed sum (L - L_ref) / sum L_ref in *bias.
+inline double plane_error(const Image& img, const dev::Camera& cam, int lo, int hi, int c, double rho, double I,
+                          double h, double* bias = nullptr) {
+    double err = 0, ref = 0, signed_err = 0;
+    for (int y = lo; y < hi; ++y)
+        for (int x = lo; x < hi; ++x) {
+            const double expect = plane_radiance(cam, x + 0.5, y + 0.5, rho, I, h);
+            const double got = img.rgb[3 * (size_t(y) * img.width + x) + c];
+            err += std::fabs(got - expect);
+            signed_err += got - expect;
+            ref += expect;
+        }
+    if (bias) *bias = signed_err / ref;
+    return err / ref;
 }
 
 // The white furnace: a closed sphere, albedo rho, emitting Le from both sides; the camera inside.

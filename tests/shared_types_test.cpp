@@ -60,19 +60,12 @@ TEST(SharedTypes, DeviceLayoutMatchesHost) {
     std::string src = assemble_kernel_source("shared_types.h") +
                       "\n#define offsetof(T, f) ((size_t)&(((T*)0)->f))\n__kernel void layout(__global uint* out) {\n" +
                       body + "}\n";
-    DeviceContext dc(test::test_device());
-    cl::Program program(dc.context, src);
-    try {
-        program.build({dc.info.device}, "-cl-std=CL1.2");
-    } catch (const cl::Error&) {
-        FAIL() << program.getBuildInfo<CL_PROGRAM_BUILD_LOG>(dc.info.device);
-    }
-    cl::Buffer out(dc.context, CL_MEM_WRITE_ONLY, host.size() * sizeof(cl_uint));
-    cl::Kernel k(program, "layout");
+    test::KernelHarness h(src);
+    cl::Buffer out = h.output(host.size() * sizeof(cl_uint));
+    cl::Kernel k(h.program, "layout");
     k.setArg(0, out);
-    dc.queue.enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(1));
-    std::vector<cl_uint> device(host.size());
-    dc.queue.enqueueReadBuffer(out, CL_TRUE, 0, device.size() * sizeof(cl_uint), device.data());
+    h.run(k, 1);
+    const std::vector<cl_uint> device = h.read<cl_uint>(out, host.size());
     for (size_t k2 = 0; k2 < host.size(); ++k2) EXPECT_EQ(device[k2], host[k2]) << "layout entry " << k2;
 }
 
@@ -86,13 +79,7 @@ __kernel void echo(const VcmPass vp, __global double* out) {
     out[8] = vp.area_scale; out[9] = vp.r2; out[10] = vp.splat_scale; out[11] = vp.mode; out[12] = vp.max_len;
 }
 )";
-    DeviceContext dc(test::test_device());
-    cl::Program program(dc.context, src);
-    try {
-        program.build({dc.info.device}, "-cl-std=CL1.2");
-    } catch (const cl::Error&) {
-        FAIL() << program.getBuildInfo<CL_PROGRAM_BUILD_LOG>(dc.info.device);
-    }
+    test::KernelHarness h(src);
     VcmPass vp{};
     vp.seed = 123456789;
     vp.pass = 42;
@@ -107,13 +94,12 @@ __kernel void echo(const VcmPass vp, __global double* out) {
     vp.splat_scale = 65536.f;
     vp.mode = 3;
     vp.max_len = 9;
-    cl::Buffer out(dc.context, CL_MEM_WRITE_ONLY, 13 * sizeof(cl_double));
-    cl::Kernel k(program, "echo");
+    cl::Buffer out = h.output(13 * sizeof(cl_double));
+    cl::Kernel k(h.program, "echo");
     k.setArg(0, vp);
     k.setArg(1, out);
-    dc.queue.enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(1));
-    std::vector<cl_double> got(13);
-    dc.queue.enqueueReadBuffer(out, CL_TRUE, 0, got.size() * sizeof(cl_double), got.data());
+    h.run(k, 1);
+    const std::vector<cl_double> got = h.read<cl_double>(out, 13);
     const std::vector<double> want = {123456789.0, 42.0,  1.5e-7,        2.25,    3.0e-9, 4096.0, 0.5,
                                       2.0,         0.125, double(1e-4f), 65536.0, 3.0,    9.0};
     for (size_t i = 0; i < want.size(); ++i) EXPECT_EQ(got[i], want[i]) << "field " << i;

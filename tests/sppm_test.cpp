@@ -14,14 +14,6 @@ using namespace clppm::test;
 
 namespace {
 
-RenderSettings settings(const std::string& integ, unsigned size, uint64_t photons) {
-    RenderSettings s;
-    s.integrator = integ;
-    s.width = s.height = size;
-    s.photons = photons;
-    return s;
-}
-
 void expect_images_agree(const Image& a, const Image& b, double mean_tol, double quad_tol, const std::string& what) {
     ASSERT_EQ(count_nonfinite(a), 0u) << what;
     ASSERT_EQ(count_nonfinite(b), 0u) << what;
@@ -41,7 +33,7 @@ void expect_images_agree(const Image& a, const Image& b, double mean_tol, double
 // Without distributed effects (pixel-centred PPM vs jittered SPPM/PPPM differ only by the pixel
 // filter, which averages out in region means) the three photon mappers agree.
 TEST(Sppm, ThreeIntegratorsConvergeToTheSameImage) {
-    RenderSettings s = settings("ppm", 32, 50000);
+    RenderSettings s = square_settings("ppm", 32, 50000);
     s.radius = 0.04;
     Image ppm = render_passes(diffuse_box(), s, 48);
     s.integrator = "sppm";
@@ -53,7 +45,7 @@ TEST(Sppm, ThreeIntegratorsConvergeToTheSameImage) {
 }
 
 TEST(Sppm, GlossyBoxAgreesWithPathTracer) {
-    RenderSettings s = settings("sppm", 32, 50000);
+    RenderSettings s = square_settings("sppm", 32, 50000);
     s.radius = 0.04;
     Image sppm = render_passes(glossy_box(), s, 64);
     s.integrator = "pt";
@@ -64,7 +56,7 @@ TEST(Sppm, GlossyBoxAgreesWithPathTracer) {
 // A glossy conductor never reflects more than arrives: the glossy furnace stays below the
 // Lambertian furnace of the same F0 (Le / (1 - F0)), and SPPM and PT agree on it.
 TEST(Sppm, GlossyFurnaceDoesNotGainEnergy) {
-    RenderSettings s = settings("sppm", 16, 50000);
+    RenderSettings s = square_settings("sppm", 16, 50000);
     Image sppm = render_passes(glossy_furnace(0.5f, 0.6f, 1.f), s, 16);
     s.integrator = "pt";
     Image pt = render_passes(glossy_furnace(0.5f, 0.6f, 1.f), s, 512);

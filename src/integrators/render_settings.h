@@ -60,6 +60,15 @@ struct RenderSettings : SceneSettings {
     int vcm_techniques = -1;
 };
 
+// The defaults with a square image of `size` pixels and `photons` a pass (the tests and benchmarks).
+inline RenderSettings square_settings(const std::string& integrator, unsigned size, uint64_t photons) {
+    RenderSettings s;
+    s.integrator = integrator;
+    s.width = s.height = size;
+    s.photons = photons;
+    return s;
+}
+
 // Whether a pass of `hitpoints` hit points and `photons` photons measures its discs' coverage:
 // always (on), never (off), or (auto) where the hit points number at most twice the photons. A hit
 // point inside a flat surface costs one BVH query (about 0.09 us on the two-core PoCL CPU), one
