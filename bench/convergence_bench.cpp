@@ -16,6 +16,8 @@
 #include <sstream>
 #include <sys/stat.h>
 
+#include <CLI/CLI.hpp>
+
 #include "bench_util.h"
 #include "io/image_compare.h"
 #include "io/image_io.h"
@@ -65,21 +67,15 @@ Image reference_image(const Args& a, const DeviceInfo& dev) {
 
 int main(int argc, char** argv) try {
     Args a;
-    for (int i = 1; i < argc; ++i) {
-        std::string s = argv[i];
-        auto next = [&]() -> std::string {
-            if (i + 1 >= argc) throw Error(s + ": missing value");
-            return argv[++i];
-        };
-        if (s == "--quick") a.quick = true;
-        else if (s == "--scene") a.scene = next();
-        else if (s == "--size") a.size = unsigned(std::stoul(next()));
-        else if (s == "--seconds") a.seconds = std::stod(next());
-        else if (s == "--reference-seconds") a.reference_seconds = std::stod(next());
-        else if (s == "--device") a.device = next();
-        else if (s == "--out") a.out = next();
-        else throw Error("unknown option " + s);
-    }
+    CLI::App app{"convergence_bench: error against time for each integrator's settings"};
+    app.add_flag("--quick", a.quick, "A smoke run: small, short");
+    app.add_option("--scene", a.scene, "cornell_box, caustic, ... or a glTF file");
+    app.add_option("--size", a.size, "Image width and height");
+    app.add_option("--seconds", a.seconds, "Seconds per setting");
+    app.add_option("--reference-seconds", a.reference_seconds, "Seconds for the reference");
+    app.add_option("--device", a.device, "An OpenCL device, as clppm --device takes it");
+    app.add_option("--out", a.out, "Where the results go");
+    CLI11_PARSE(app, argc, argv);
     if (a.quick) a.size = 24, a.seconds = 0.4, a.reference_seconds = 3;
     const DeviceInfo& dev = bench_device(a.device);
     const Image ref = reference_image(a, dev);

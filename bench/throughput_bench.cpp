@@ -9,6 +9,8 @@
 #include <iostream>
 #include <sstream>
 
+#include <CLI/CLI.hpp>
+
 #include "bench_util.h"
 #include "io/stats_json.h"
 
@@ -84,20 +86,12 @@ Json build_times(const std::string& dir, bool quick) {
 
 int main(int argc, char** argv) try {
     Args a;
-    for (int i = 1; i < argc; ++i) {
-        std::string s = argv[i];
-        auto next = [&]() -> std::string {
-            if (i + 1 >= argc) throw Error(s + ": missing value");
-            return argv[++i];
-        };
-        if (s == "--quick") a.quick = true;
-        else if (s == "--device") a.device = next();
-        else if (s == "--out") a.out = next();
-        else if (s == "--seconds") a.seconds = std::stod(next());
-        else
-            throw Error("unknown option " + s +
-                        " (throughput_bench [--quick] [--device SPEC] [--out DIR] [--seconds S])");
-    }
+    CLI::App app{"throughput_bench: passes and photons per second, device time per phase, build times"};
+    app.add_flag("--quick", a.quick, "A smoke run: one small scene, short");
+    app.add_option("--device", a.device, "An OpenCL device, as clppm --device takes it");
+    app.add_option("--out", a.out, "Where throughput.json goes");
+    app.add_option("--seconds", a.seconds, "Seconds per measurement");
+    CLI11_PARSE(app, argc, argv);
     if (a.quick) a.seconds = 0.2;
     const DeviceInfo& dev = bench_device(a.device);
     const unsigned size = a.quick ? 32 : 256;

@@ -22,11 +22,7 @@
  * sum over accepted photons of (2 rho^2 - 1) Y(w f Phi_p), rho = |x_p - x| / R, in fixed point
  * (FLUX_FIXED_SCALE) so the sum does not depend on the visiting order; 24 / (pi R^4) times it is
  * the pass's Laplacian estimate (error_update). One writer per hit point. */
-__kernel SCALAR_WORK_ITEMS void error_gather(__constant GridInfo* g, __global const Photon* sorted,
-                                             __global const uint* starts, __global const HitPoint* hitpoints,
-                                             __global const HitStats* stats, uint num_hitpoints, float global_r2,
-                                             uint accumulate, __global long* out, ulong seed, ulong pass,
-                                             __global const float2* coverage) {
+__kernel SCALAR_WORK_ITEMS void error_gather(GATHER_KERNEL_PARAMS(long)) {
     uint i = get_global_id(0);
     if (i >= num_hitpoints) return;
     __global const HitPoint* hp = &hitpoints[i];

@@ -6,11 +6,7 @@
 #include "portability.h"
 #include "gather_query.cl"
 
-__kernel SCALAR_WORK_ITEMS void gather(__constant GridInfo* g, __global const Photon* sorted,
-                                       __global const uint* starts, __global const HitPoint* hitpoints,
-                                       __global const HitStats* stats, uint num_hitpoints, float global_r2,
-                                       uint accumulate, __global PassFlux* out, ulong seed, ulong pass,
-                                       __global const float2* coverage) {
+__kernel SCALAR_WORK_ITEMS void gather(GATHER_KERNEL_PARAMS(PassFlux)) {
     uint i = get_global_id(0);
     if (i >= num_hitpoints) return;
     __global const HitPoint* hp = &hitpoints[i];

@@ -8,6 +8,15 @@
 #include "gather_common.cl"
 #include "dispersion.cl"
 
+/* The parameters of both gather kernels (gather.cl, error_estimate.cl's error_gather) in the order
+ * PhotonMap::enqueue_gather sets them, one call for either: the grid, the photons sorted by cell and
+ * each cell's first, the hit points and their statistics, PPPM's radius (global_r2 > 0), whether
+ * to add to `out` (a pass in several photon batches), the pass's wavelength and disc coverage. */
+#define GATHER_KERNEL_PARAMS(out_type)                                                                                 \
+    __constant GridInfo *g, __global const Photon *sorted, __global const uint *starts,                                \
+        __global const HitPoint *hitpoints, __global const HitStats *stats, uint num_hitpoints, float global_r2,       \
+        uint accumulate, __global out_type *out, ulong seed, ulong pass, __global const float2 *coverage
+
 typedef struct {
     float3 x, n;       /* position and normal */
     HitBrdf brdf;      /* the lobes the hit point keeps */
