@@ -399,6 +399,12 @@ struct HalfVectorGrid {
         *phi = std::atan2(dot(h, b), dot(h, t));
         if (*phi < 0) *phi += 2 * M_PI;
     }
+    // The cell of wi_ in a grid of nu x nphi equal cells over (u, phi), row by row.
+    int cell(D3 wi_, int nu, int nphi) const {
+        double u, phi;
+        coords(wi_, &u, &phi);
+        return std::min(nu - 1, int(u * nu)) * nphi + std::min(nphi - 1, int(phi / (2 * M_PI) * nphi));
+    }
 };
 
 // Quadrature points over (u, phi) in [0,1] x [0, 2 pi): nu x nphi cells of 4 x 4 Gauss-Legendre

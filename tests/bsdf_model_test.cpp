@@ -401,10 +401,7 @@ TEST(BsdfModel, SampleMatchesPdfChiSquare) {
                         observed[nu * nphi] += 1;
                         continue;
                     }
-                    double u, phi;
-                    grid.coords(D3{s[8 * i], s[8 * i + 1], s[8 * i + 2]}, &u, &phi);
-                    int bu = std::min(nu - 1, int(u * nu)), bp = std::min(nphi - 1, int(phi / (2 * M_PI) * nphi));
-                    observed[bu * nphi + bp] += 1;
+                    observed[grid.cell(D3{s[8 * i], s[8 * i + 1], s[8 * i + 2]}, nu, nphi)] += 1;
                 }
                 Chi2Result c = chi2_test(observed, expected);
                 EXPECT_TRUE(c.error.empty()) << c.error;
@@ -551,10 +548,7 @@ TEST(BsdfModel, TranslucentSamplesMatchPdfBelow) {
                     continue;
                 }
                 D3 w{s[8 * i], s[8 * i + 1], s[8 * i + 2]};
-                double u, phi;
-                grid.coords(w - (2 * dot(w, n)) * n, &u, &phi);
-                int bu = std::min(nu - 1, int(u * nu)), bp = std::min(nphi - 1, int(phi / (2 * M_PI) * nphi));
-                observed[bu * nphi + bp] += 1;
+                observed[grid.cell(w - (2 * dot(w, n)) * n, nu, nphi)] += 1; // mirrored back above
             }
             Chi2Result c = chi2_test(observed, expected);
             EXPECT_TRUE(c.error.empty()) << c.error;

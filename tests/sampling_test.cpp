@@ -110,6 +110,22 @@ std::string describe(D3 n) {
 // Significance per chi-square test: 1e-3 spread over the (at most 40) tests of this program.
 const double kAlpha = sidak(1e-3, 40);
 
+// Directions for a kernel's input, x, y, z floats each: given ones made unit, exact values (signed
+// zeros) kept as they are, and Gaussian ones (uniform over the sphere once made unit).
+struct DirectionList {
+    std::vector<float> xyz;
+    void unit(D3 v) {
+        v = normalized(v);
+        xyz.insert(xyz.end(), {float(v.x), float(v.y), float(v.z)});
+    }
+    void exact(const std::array<float, 3>& v) { xyz.insert(xyz.end(), v.begin(), v.end()); }
+    void gaussian(std::mt19937_64& g, int count) {
+        std::normal_distribution<double> gauss;
+        for (int i = 0; i < count; ++i) unit({gauss(g), gauss(g), gauss(g)});
+    }
+    size_t size() const { return xyz.size() / 3; }
+};
+
 } // namespace
 
 // pdf = cos(theta) / pi on the hemisphere about n, zero below: 1M samples per axis in 20 x 16
@@ -273,28 +289,25 @@ TEST(Sampling, TriangleIsUniformByAreaChiSquare) {
 // most sqrt(3), so the angle error stays below 3 * 2.2e-5 = 6.5e-5 rad; 7e-5 leaves room for float.
 TEST(Sampling, OctahedralRoundTripErrorIsBounded) {
     const Device& d = device();
-    std::vector<float> dirs;
-    auto push = [&](D3 v) {
-        v = normalized(v);
-        dirs.push_back(float(v.x)), dirs.push_back(float(v.y)), dirs.push_back(float(v.z));
-    };
+    DirectionList dirs;
     for (double s : {1.0, -1.0}) {
-        push({s, 0, 0}), push({0, s, 0}), push({0, 0, s});
+        dirs.unit({s, 0, 0}), dirs.unit({0, s, 0}), dirs.unit({0, 0, s});
         for (double e : {1e-3, 1e-5, 1e-7, 1e-20})
-            push({e, -e, s}), push({s, e, e}), push({e, s, -e}), push({1, s, e}), push({1, s, -e});
+            dirs.unit({e, -e, s}), dirs.unit({s, e, e}), dirs.unit({e, s, -e}), dirs.unit({1, s, e}),
+                dirs.unit({1, s, -e});
         for (double a : {1.0, -1.0})
-            for (double b : {1.0, -1.0}) push({a, b, s}), push({a, b, 0}), push({a * 0.25, b * 0.75, s * 1e-4});
+            for (double b : {1.0, -1.0})
+                dirs.unit({a, b, s}), dirs.unit({a, b, 0}), dirs.unit({a * 0.25, b * 0.75, s * 1e-4});
     }
     // Signed zeros (normalized() would keep them, push them directly).
     for (std::array<float, 3> v :
          {std::array<float, 3>{-0.0f, -0.0f, -1.0f}, {-0.0f, 0.0f, 1.0f}, {1.0f, -0.0f, -0.0f}, {-0.0f, -1.0f, -0.0f}})
-        dirs.insert(dirs.end(), v.begin(), v.end());
-    const size_t special = dirs.size() / 3;
+        dirs.exact(v);
+    const size_t special = dirs.size();
     std::mt19937_64 g(14);
-    std::normal_distribution<double> gauss;
-    for (int i = 0; i < 1000000; ++i) push({gauss(g), gauss(g), gauss(g)});
-    const size_t n = dirs.size() / 3;
-    cl::Buffer db = d.input(dirs), cb(d.dc.context, CL_MEM_WRITE_ONLY, n * sizeof(cl_uint)),
+    dirs.gaussian(g, 1000000);
+    const size_t n = dirs.size();
+    cl::Buffer db = d.input(dirs.xyz), cb(d.dc.context, CL_MEM_WRITE_ONLY, n * sizeof(cl_uint)),
                ob(d.dc.context, CL_MEM_WRITE_ONLY, 3 * n * sizeof(float));
     cl::Kernel k(d.program, "oct_roundtrip");
     k.setArg(0, db), k.setArg(1, cb), k.setArg(2, ob);
@@ -303,7 +316,7 @@ TEST(Sampling, OctahedralRoundTripErrorIsBounded) {
     double worst = 0, worst_special = 0, worst_len = 0;
     size_t worst_i = 0, flipped = 0;
     for (size_t i = 0; i < n; ++i) {
-        D3 a{dirs[3 * i], dirs[3 * i + 1], dirs[3 * i + 2]}, b{out[3 * i], out[3 * i + 1], out[3 * i + 2]};
+        D3 a{dirs.xyz[3 * i], dirs.xyz[3 * i + 1], dirs.xyz[3 * i + 2]}, b{out[3 * i], out[3 * i + 1], out[3 * i + 2]};
         ASSERT_TRUE(std::isfinite(b.x) && std::isfinite(b.y) && std::isfinite(b.z)) << "direction " << i;
         double la = std::sqrt(dot(a, a)), lb = std::sqrt(dot(b, b));
         worst_len = std::max(worst_len, std::fabs(lb - 1));
@@ -315,7 +328,7 @@ TEST(Sampling, OctahedralRoundTripErrorIsBounded) {
         if (std::fabs(a.z) > 7e-5 && (a.z > 0) != (b.z > 0)) ++flipped;
     }
     EXPECT_LT(worst, 7e-5) << "direction " << worst_i << " "
-                           << describe({dirs[3 * worst_i], dirs[3 * worst_i + 1], dirs[3 * worst_i + 2]});
+                           << describe({dirs.xyz[3 * worst_i], dirs.xyz[3 * worst_i + 1], dirs.xyz[3 * worst_i + 2]});
     EXPECT_LT(worst_special, 7e-5);
     EXPECT_LT(worst_len, 1e-6);
     EXPECT_EQ(flipped, 0u);
@@ -363,29 +376,25 @@ TEST(Sampling, OctahedralDecodeOfAnyCodeIsUnitAndStable) {
 // breaks down, and signed zeros. Tolerance 2e-6: a few float ulps.
 TEST(Sampling, MakeFrameIsOrthonormalEverywhere) {
     const Device& d = device();
-    std::vector<float> normals;
-    auto push = [&](D3 v) {
-        v = normalized(v);
-        normals.push_back(float(v.x)), normals.push_back(float(v.y)), normals.push_back(float(v.z));
-    };
+    DirectionList normals;
     for (double s : {1.0, -1.0}) {
-        push({0, 0, s}), push({s, 0, 0}), push({0, s, 0});
-        for (double e : {1e-2, 1e-4, 1e-6, 1e-8, 1e-12, 1e-30}) push({e, e, s}), push({-e, 2 * e, s}), push({e, 0, s});
-        push({1, 1, s * 1e-7});
+        normals.unit({0, 0, s}), normals.unit({s, 0, 0}), normals.unit({0, s, 0});
+        for (double e : {1e-2, 1e-4, 1e-6, 1e-8, 1e-12, 1e-30})
+            normals.unit({e, e, s}), normals.unit({-e, 2 * e, s}), normals.unit({e, 0, s});
+        normals.unit({1, 1, s * 1e-7});
     }
     for (std::array<float, 3> v : {std::array<float, 3>{0.0f, 0.0f, -0.0f} /* invalid, skipped below */,
                                    {1.0f, 0.0f, -0.0f},
                                    {-0.0f, -0.0f, -1.0f},
                                    {-0.0f, 0.0f, 1.0f}})
-        if (v[0] != 0 || v[1] != 0 || v[2] != 0) normals.insert(normals.end(), v.begin(), v.end());
+        if (v[0] != 0 || v[1] != 0 || v[2] != 0) normals.exact(v);
     std::mt19937_64 g(16);
-    std::normal_distribution<double> gauss;
-    for (int i = 0; i < 200000; ++i) push({gauss(g), gauss(g), gauss(g)});
+    normals.gaussian(g, 200000);
     // Normals within 1e-3 of -z, where sign(n.z) + n.z is small.
     std::uniform_real_distribution<double> tiny(-1e-3, 1e-3);
-    for (int i = 0; i < 20000; ++i) push({tiny(g), tiny(g), -1});
-    const size_t n = normals.size() / 3;
-    cl::Buffer nb = d.input(normals), ob(d.dc.context, CL_MEM_WRITE_ONLY, 6 * n * sizeof(float));
+    for (int i = 0; i < 20000; ++i) normals.unit({tiny(g), tiny(g), -1});
+    const size_t n = normals.size();
+    cl::Buffer nb = d.input(normals.xyz), ob(d.dc.context, CL_MEM_WRITE_ONLY, 6 * n * sizeof(float));
     cl::Kernel k(d.program, "frames");
     k.setArg(0, nb), k.setArg(1, ob);
     d.run(k, n);
@@ -393,13 +402,14 @@ TEST(Sampling, MakeFrameIsOrthonormalEverywhere) {
     double worst = 0;
     size_t worst_i = 0;
     for (size_t i = 0; i < n; ++i) {
-        D3 nn{normals[3 * i], normals[3 * i + 1], normals[3 * i + 2]}, t{f[6 * i], f[6 * i + 1], f[6 * i + 2]},
-            b{f[6 * i + 3], f[6 * i + 4], f[6 * i + 5]};
+        D3 nn{normals.xyz[3 * i], normals.xyz[3 * i + 1], normals.xyz[3 * i + 2]},
+            t{f[6 * i], f[6 * i + 1], f[6 * i + 2]}, b{f[6 * i + 3], f[6 * i + 4], f[6 * i + 5]};
         D3 c = cross(t, b);
         double err = std::max({std::fabs(dot(t, t) - 1), std::fabs(dot(b, b) - 1), std::fabs(dot(t, b)),
                                std::fabs(dot(t, nn)), std::fabs(dot(b, nn)), std::fabs(dot(c, nn) - 1)});
         if (!(err <= worst)) worst = err, worst_i = i; // NaN counts as worst
     }
     EXPECT_LT(worst, 2e-6) << "normal "
-                           << describe({normals[3 * worst_i], normals[3 * worst_i + 1], normals[3 * worst_i + 2]});
+                           << describe({normals.xyz[3 * worst_i], normals.xyz[3 * worst_i + 1],
+                                        normals.xyz[3 * worst_i + 2]});
 }
