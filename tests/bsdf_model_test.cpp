@@ -438,6 +438,23 @@ TEST(BsdfModel, SampleWeightIsEvalCosOverPdf) {
         }
 }
 
+namespace {
+
+// The mean weight (f cos / pdf, the G of model_sample's output) of m samples, counting those not
+// drawn as 0: the albedo the sampler sees, with its standard error in *se.
+double sampled_albedo(const std::vector<float>& s, size_t m, double* se) {
+    double sum = 0, sum2 = 0;
+    for (size_t i = 0; i < m; ++i) {
+        double w = int(s[8 * i + 7]) & 1 ? s[8 * i + 4] : 0.0;
+        sum += w, sum2 += w * w;
+    }
+    const double mean = sum / m;
+    *se = std::sqrt(std::max(0.0, sum2 / m - mean * mean) / m);
+    return mean;
+}
+
+} // namespace
+
 // White furnace: the albedo (the mean sample weight, delta lobes included) never exceeds 1, and a
 // white metal or a white dielectric reflects everything at every roughness and view: the
 // coupled diffuse takes exactly what the layer does not reflect, Kulla-Conty gives back what
@@ -456,12 +473,8 @@ TEST(BsdfModel, WhiteFurnaceWithoutGain) {
             for (const Params& p : white) {
                 SCOPED_TRACE(p.name() + " cos_o " + std::to_string(cos_o));
                 std::vector<float> s = model_sample(p, n, view(cos_o), m, kAll, 9 + uint64_t(alpha * 100));
-                double sum = 0, sum2 = 0;
-                for (size_t i = 0; i < m; ++i) {
-                    double w = int(s[8 * i + 7]) & 1 ? s[8 * i + 4] : 0.0;
-                    sum += w, sum2 += w * w;
-                }
-                const double mean = sum / m, se = std::sqrt(std::max(0.0, sum2 / m - mean * mean) / m);
+                double se;
+                const double mean = sampled_albedo(s, m, &se);
                 EXPECT_LE(mean, 1 + 4 * se + 2e-3);
                 // At grazing views the part of GGX's samples that falls below the horizon is lost
                 // to the sampler as to the model; the tables cover it within 1%.
@@ -480,12 +493,8 @@ TEST(BsdfModel, WhiteFurnaceWithoutGain) {
                   stretched(metal(alpha, {1, 1, 1}), alpha + (1 - alpha) * 0.8)}) {
                 SCOPED_TRACE(p.name() + " cos_o " + std::to_string(cos_o));
                 std::vector<float> s = model_sample(p, n, view(cos_o), m, kAll, 17 + uint64_t(alpha * 100));
-                double sum = 0, sum2 = 0;
-                for (size_t i = 0; i < m; ++i) {
-                    double w = int(s[8 * i + 7]) & 1 ? s[8 * i + 4] : 0.0;
-                    sum += w, sum2 += w * w;
-                }
-                const double mean = sum / m, se = std::sqrt(std::max(0.0, sum2 / m - mean * mean) / m);
+                double se;
+                const double mean = sampled_albedo(s, m, &se);
                 EXPECT_LE(mean, 1 + 4 * se + 2e-3);
                 // The least measured: 0.969, a white Lambertian under a smooth coat seen head-on;
                 // under a white sheen 0.863 (roughness 1, head-on): the extension's scaling takes

@@ -202,6 +202,22 @@ TEST(Sampling, ConeMatchesPdfChiSquare) {
         }
 }
 
+namespace {
+
+// Every direction of v (x, y, z floats, drawn from the pairs u) finite, unit to 1e-6 and within
+// cos_max of axis.
+void expect_unit_within(const std::vector<float>& v, const std::vector<float>& u, D3 axis, float cos_max) {
+    for (size_t i = 0; i < v.size() / 3; ++i) {
+        D3 dir{v[3 * i], v[3 * i + 1], v[3 * i + 2]};
+        ASSERT_TRUE(std::isfinite(dir.x) && std::isfinite(dir.y) && std::isfinite(dir.z));
+        EXPECT_NEAR(std::sqrt(dot(dir, dir)), 1.0, 1e-6);
+        EXPECT_GE(dot(dir, axis), double(cos_max) - 1e-6)
+            << "cos_max " << cos_max << " u " << u[2 * i] << "," << u[2 * i + 1];
+    }
+}
+
+} // namespace
+
 // A cone narrower than float resolution around 1 and the u extremes still give unit directions
 // inside the cone.
 TEST(Sampling, ConeAndHemisphereAtExtremeInputsAreFiniteUnitAndInside) {
@@ -218,26 +234,14 @@ TEST(Sampling, ConeAndHemisphereAtExtremeInputsAreFiniteUnitAndInside) {
             k.setArg(0, float(axis.x)), k.setArg(1, float(axis.y)), k.setArg(2, float(axis.z)), k.setArg(3, cm);
             k.setArg(4, ub), k.setArg(5, ob);
             d.run(k, n);
-            std::vector<float> v = d.read<float>(ob, 3 * n);
-            for (size_t i = 0; i < n; ++i) {
-                D3 dir{v[3 * i], v[3 * i + 1], v[3 * i + 2]};
-                ASSERT_TRUE(std::isfinite(dir.x) && std::isfinite(dir.y) && std::isfinite(dir.z));
-                EXPECT_NEAR(std::sqrt(dot(dir, dir)), 1.0, 1e-6);
-                EXPECT_GE(dot(dir, axis), double(cm) - 1e-6)
-                    << "cos_max " << cm << " u " << u[2 * i] << "," << u[2 * i + 1];
-            }
+            expect_unit_within(d.read<float>(ob, 3 * n), u, axis, cm);
         }
         cl::Kernel k(d.program, "cosine_dirs");
         k.setArg(0, float(axis.x)), k.setArg(1, float(axis.y)), k.setArg(2, float(axis.z)), k.setArg(3, ub),
             k.setArg(4, ob);
         d.run(k, n);
         std::vector<float> v = d.read<float>(ob, 3 * n);
-        for (size_t i = 0; i < n; ++i) {
-            D3 dir{v[3 * i], v[3 * i + 1], v[3 * i + 2]};
-            ASSERT_TRUE(std::isfinite(dir.x) && std::isfinite(dir.y) && std::isfinite(dir.z));
-            EXPECT_NEAR(std::sqrt(dot(dir, dir)), 1.0, 1e-6);
-            EXPECT_GE(dot(dir, axis), -1e-6);
-        }
+        expect_unit_within(v, u, axis, 0.0f);
         // u1 = 0 is the normal itself.
         D3 first{v[0], v[1], v[2]};
         EXPECT_NEAR(dot(first, axis), 1.0, 1e-6);
