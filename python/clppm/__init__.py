@@ -213,7 +213,7 @@ class Renderer:
     def settings(self):
         """What is rendered: every option that shapes the image or says when the render stops, by keyword
         (the integrator the scene got for "auto"), and scene, output, pass_limit and time_limit."""
-        return self._native.settings
+        return {_python_name(k) if k.startswith("--") else k: v for k, v in self._native.settings.items()}
 
     def close(self):
         """Ends the render (writing what the options ask for, if not yet) and frees the device."""

@@ -86,14 +86,6 @@ py::array_t<float> plane_to_numpy(const std::vector<float>& v, int width, int he
     return a;
 }
 
-// An option's keyword argument: "--target-error" is target_error (python/clppm/__init__.py).
-std::string keyword_name(const std::string& option) {
-    std::string k = option.substr(2);
-    for (char& c : k)
-        if (c == '-') c = '_';
-    return k;
-}
-
 py::object json_to_python(const Json& j) { return py::module_::import("json").attr("loads")(j.dump()); }
 
 RenderOptions options_from(const std::optional<std::string>& scene,
@@ -244,16 +236,15 @@ public:
         return job_->pass_limit();
     }
     std::vector<std::string> warnings() const { return log_ ? log_->warnings() : std::vector<std::string>{}; }
-    // What is rendered: every option that shapes the image or says when the render stops, under its
-    // keyword name, as the option table reads it back (the values every MPI process shares), with
-    // the integrator the scene got; and the scene, the output and the resolved limits.
+    // What is rendered: every option that shapes the image or says when the render stops, by its
+    // flag ("--alpha"), as the option table reads it back (the values every MPI process shares), with
+    // the integrator the scene got; and the scene, the output and the resolved limits. The package
+    // (python/clppm/__init__.py) gives the flags their keyword names.
     py::object settings() const {
         need_job();
         const RenderOptions& o = job_->options();
-        const Json shared = options_every_rank_shares(o); // kept: items() refers to it
-        Json d = Json::object();
-        for (const auto& [name, value] : shared.items())
-            if (name.rfind("--", 0) == 0) d[keyword_name(name)] = value; // SCENE is scene, below
+        Json d = options_every_rank_shares(o);
+        d.erase("SCENE");
         d["scene"] = o.scene;
         d["output"] = o.output;
         d["pass_limit"] = job_->pass_limit();
