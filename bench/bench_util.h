@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include <CLI/CLI.hpp>
+
 #include "device/device.h"
 #include "device/kernel_program.h"
 #include "integrators/integrator_table.h"
@@ -66,6 +68,22 @@ inline const DeviceInfo& bench_device(const std::string& spec) {
     for (const DeviceInfo& d : devices)
         if (d.type & CL_DEVICE_TYPE_GPU) return d;
     return select_device(devices, "0");
+}
+
+// The options every timed benchmark takes; a benchmark's own Args derive from it.
+struct BenchOptions {
+    bool quick = false;    // a smoke run: small and short
+    std::string device;    // as clppm --device takes it; empty: a GPU if there is one
+    std::string out = "."; // where the results go
+    double seconds = 6;    // per measurement
+};
+
+inline void add_bench_options(CLI::App& app, BenchOptions& o, const std::string& quick, const std::string& out,
+                              const std::string& seconds) {
+    app.add_flag("--quick", o.quick, quick);
+    app.add_option("--device", o.device, "An OpenCL device, as clppm --device takes it");
+    app.add_option("--out", o.out, out);
+    app.add_option("--seconds", o.seconds, seconds);
 }
 
 inline std::string fmt(const char* f, double v) {

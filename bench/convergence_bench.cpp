@@ -28,11 +28,11 @@ using namespace clppm::bench;
 
 namespace {
 
-struct Args {
-    bool quick = false;
-    std::string scene = "cornell_box", device, out = ".";
+struct Args : BenchOptions {
+    std::string scene = "cornell_box";
     unsigned size = 128;
-    double seconds = 32, reference_seconds = 600;
+    double reference_seconds = 600;
+    Args() { seconds = 32; }
 };
 
 struct Setting {
@@ -68,13 +68,10 @@ Image reference_image(const Args& a, const DeviceInfo& dev) {
 int main(int argc, char** argv) try {
     Args a;
     CLI::App app{"convergence_bench: error against time for each integrator's settings"};
-    app.add_flag("--quick", a.quick, "A smoke run: small, short");
+    add_bench_options(app, a, "A smoke run: small, short", "Where the results go", "Seconds per setting");
     app.add_option("--scene", a.scene, "cornell_box, caustic, ... or a glTF file");
     app.add_option("--size", a.size, "Image width and height");
-    app.add_option("--seconds", a.seconds, "Seconds per setting");
     app.add_option("--reference-seconds", a.reference_seconds, "Seconds for the reference");
-    app.add_option("--device", a.device, "An OpenCL device, as clppm --device takes it");
-    app.add_option("--out", a.out, "Where the results go");
     CLI11_PARSE(app, argc, argv);
     if (a.quick) a.size = 24, a.seconds = 0.4, a.reference_seconds = 3;
     const DeviceInfo& dev = bench_device(a.device);

@@ -7,7 +7,7 @@
 # --target-error states). CPU time is reported with the wall time: these machines are shared.
 #   bench/default_integrator.sh [BUILD_DIR]   (env: TIMES="10 30", REF_SECONDS=240, SCENES=...,
 #   INTEGRATORS="ppm sppm pppm pt vcm bpt auto", REFS=sppm|pt|unbiased, REF_DIR=...)
-# SCENES may name cornell_box (the built-in default), cornell_diffuse (the same box without its two
+# SCENES may name cornell_box (scenes/cornell_box.gltf, the built-in default), cornell_diffuse (the same box without its two
 # spheres: diffuse only), asset_env or asset_sun (bench/asset_scenes.py) or glTF files. References: SPPM, and the path tracer for env_outdoor
 # (issue 16); REFS=pt also for cornell_diffuse, doorway and bunny_100k (scenes/), diffuse only,
 # where the path tracer misses no light and has no bias. Scenes with glass need a photon reference: a caustic seen through glass or in a mirror is a
@@ -18,29 +18,21 @@
 # dispersion_box_plain. REF_DIR: a reference there named NAME-ref.exr (NAME: the scene's base name)
 # is used instead of rendering one. `auto` in INTEGRATORS is the default; its row says what it picked.
 set -euo pipefail
-here=$(cd "$(dirname "$0")/.." && pwd)
-bin=${1:-$here/build}/clppm
+source "$(dirname "${BASH_SOURCE[0]}")/bench_lib.sh"
+bench_binary "${1:-}"
 times=${TIMES:-10 30}
 ref_seconds=${REF_SECONDS:-240}
-scenes=${SCENES:-"cornell_box $here/scenes/caustic.gltf $here/scenes/bunny_100k.gltf $here/tests/data/env_outdoor.gltf"}
+scenes=${SCENES:-"cornell_box caustic bunny_100k $bench_root/tests/data/env_outdoor.gltf"}
 integrators=${INTEGRATORS:-ppm sppm pppm pt vcm bpt}
 refs=${REFS:-sppm}
-out=$(mktemp -d)
-# The Cornell box without its glass and mirror spheres (nodes 2 and 3).
-python3 "$here/bench/cornell_diffuse.py" "$here/scenes/cornell_box.gltf" "$out/cornell_diffuse.gltf"
-# An asset in the open, under the default world and under directional lights (bench/asset_scenes.py).
-python3 "$here/bench/asset_scenes.py" "$here/scenes/bunny_100k.gltf" "$out"
+bench_scratch
 common="--width 128 --height 128 --quiet --no-png"
-echo "Reference: $ref_seconds s each; $(nproc) cores; $(date -u +%F)"
+echo "Reference: $ref_seconds s each; $(bench_machine)"
 echo
 echo "| scene | integrator | seconds | CPU s | passes | mean ratio | box-4 relative MSE | p90 relative error |"
 echo "|---|---|---:|---:|---:|---:|---:|---:|"
 for scene in $scenes; do
-  name=$(basename "$scene" .gltf)
-  arg=$scene
-  [ "$scene" = cornell_box ] && arg=""
-  [ "$scene" = cornell_diffuse ] && arg="$out/cornell_diffuse.gltf"
-  case "$scene" in asset_env | asset_sun) arg="$out/$scene.gltf" ;; esac
+  use_scene "$scene"
   ref_integ=sppm
   [ "$name" = env_outdoor ] && ref_integ=pt
   [ "$refs" = pt ] && case "$name" in cornell_diffuse | doorway | bunny_100k | asset_env | asset_sun) ref_integ=pt ;; esac
@@ -52,11 +44,11 @@ for scene in $scenes; do
     cp "$REF_DIR/$name-ref.exr" "$out/$name-ref.exr"
   else
     echo "reference for $name: $ref_integ, $ref_seconds s" >&2
-    "$bin" $arg $common --integrator $ref_integ --time "$ref_seconds" --seed 1000 -o "$out/$name-ref.exr"
+    "$bin" "$file" $common --integrator $ref_integ --time "$ref_seconds" --seed 1000 -o "$out/$name-ref.exr"
   fi
   for integ in $integrators; do
     for t in $times; do
-      /usr/bin/time -f "%U %S" -o "$out/time" "$bin" $arg $common --integrator "$integ" --time "$t" \
+      /usr/bin/time -f "%U %S" -o "$out/time" "$bin" "$file" $common --integrator "$integ" --time "$t" \
         -o "$out/$name-$integ$t.exr" --stats-json "$out/$name-$integ$t.json"
       python3 - "$out" "$name" "$integ" "$t" "$bin" <<'PY'
 import json, subprocess, sys
@@ -74,4 +66,3 @@ PY
     done
   done
 done
-rm -rf "$out"

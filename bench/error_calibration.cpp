@@ -40,18 +40,20 @@ struct Args {
     double confidence = 0.95;
 };
 
-// An integrator's name; "+vi" after ppm or sppm adds visual importance (--visual-importance).
+// An integrator's name (integrator_row's); "+vi" after one that takes --visual-importance adds it.
 std::string parse_integrator(const std::string& name, bool* visual_importance = nullptr) {
     const bool vi = name.size() > 3 && name.compare(name.size() - 3, 3, "+vi") == 0;
-    const std::string base = vi ? name.substr(0, name.size() - 3) : name;
-    for (const char* i : {"ppm", "sppm", "pppm", "pt", "vcm", "bpt"})
-        if (base == i && (!vi || (visual_importance && (base == "ppm" || base == "sppm")))) {
-            if (visual_importance) *visual_importance = vi;
-            return i;
-        }
-    throw Error("--integrators: " + name +
-                " is not ppm, sppm, pppm, pt, vcm or bpt (ppm+vi and sppm+vi: with "
-                "visual importance)");
+    const IntegratorRow* row = nullptr;
+    try {
+        row = &integrator_row(vi ? name.substr(0, name.size() - 3) : name);
+    } catch (const Error& e) {
+        throw Error(std::string("--integrators: ") + e.what());
+    }
+    if (vi && (!visual_importance || !row->visual_importance))
+        throw Error("--integrators: " + name + ": only " + visual_importance_integrators() +
+                    " take visual importance (+vi)");
+    if (visual_importance) *visual_importance = vi;
+    return row->name;
 }
 
 // A file name part for a scene name or path.
@@ -109,6 +111,9 @@ int main(int argc, char** argv) {
         }
     }
     try {
+        bool vi = false;
+        for (const std::string& name : split(a.integrators)) parse_integrator(name, &vi); // refused before any work
+        parse_integrator(a.ref_integrator);
         const DeviceInfo& device = bench_device(a.device);
         std::vector<Row> rows;
         const double t_start = now_s();

@@ -8,25 +8,23 @@
 #
 #   bench/implementations.sh [BUILD_DIR]   (env: ROUNDS=3, SECONDS_PER_RUN=8, INTEGRATORS="ppm sppm pppm pt vcm bpt")
 set -euo pipefail
-here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
-build=$(cd "${1:-$here/build}" && pwd)
+source "$(dirname "${BASH_SOURCE[0]}")/bench_lib.sh"
+bench_binary "${1:-}"
 rounds=${ROUNDS:-3}
 seconds=${SECONDS_PER_RUN:-8}
 integrators=${INTEGRATORS:-ppm sppm pppm pt vcm bpt}
 set +e
-source "$here/scripts/intel_opencl_env.sh" "$build" || exit $?
+source "$bench_root/scripts/intel_opencl_env.sh" "$build" || exit $?
 set -e
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-python3 "$here/bench/cornell_diffuse.py" "$here/scenes/cornell_box.gltf" "$tmp/cornell_diffuse.gltf"
+bench_scratch
+tmp=$out
 devices=(pocl "Intel(R) OpenCL")
-echo "machine: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs), $(nproc) cores"
+echo "machine: $(bench_machine)"
 echo
 echo "| scene | integrator | PoCL passes/s | Intel passes/s | Intel / PoCL | PoCL CPU s/pass | Intel CPU s/pass |"
 echo "|---|---|---:|---:|---:|---:|---:|"
 for scene in cornell_box cornell_diffuse; do
-  file="$here/scenes/cornell_box.gltf"
-  [ "$scene" = cornell_diffuse ] && file="$tmp/cornell_diffuse.gltf"
+  use_scene "$scene"
   for integrator in $integrators; do
     declare -A pps=() cpu=()
     for r in $(seq "$rounds"); do

@@ -6,19 +6,16 @@
 #
 #   bench/pass_batching.sh [BUILD_DIR]   (env: ROUNDS=3, SAMPLES=26214400 pixel samples a run)
 set -euo pipefail
-here=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
-build=$(cd "${1:-$here/build}" && pwd)
+source "$(dirname "${BASH_SOURCE[0]}")/bench_lib.sh"
+bench_binary "${1:-}"
 rounds=${ROUNDS:-3}
 samples=${SAMPLES:-26214400}
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
-python3 "$here/bench/cornell_diffuse.py" "$here/scenes/cornell_box.gltf" "$tmp/cornell_diffuse.gltf"
-python3 "$here/bench/asset_scenes.py" "$here/scenes/bunny_100k.gltf" "$tmp"
+bench_scratch
+tmp=$out
 echo "| scene | size | passes | batched wall s | one a launch wall s | batched CPU s | one a launch CPU s | launches | same image |"
 echo "|---|---|---:|---:|---:|---:|---:|---:|---|"
 for scene in cornell_diffuse asset_env asset_sun doorway; do
-  file="$tmp/$scene.gltf"
-  [ "$scene" = doorway ] && file="$here/scenes/doorway.gltf"
+  use_scene "$scene"
   for size in 128 256; do
     passes=$((samples / (size * size)))
     args=("$file" --integrator pt --width "$size" --height "$size" --passes "$passes" --quiet --no-png)

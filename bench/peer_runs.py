@@ -11,6 +11,15 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
 
 
+def mitsuba_fastest_variant(mi):
+    """Mitsuba's LLVM variant where Dr.Jit finds an LLVM it accepts, else the scalar one; returns its name."""
+    try:
+        mi.set_variant("llvm_ad_rgb")
+    except Exception:  # no LLVM that Dr.Jit accepts
+        mi.set_variant("scalar_rgb")
+    return mi.variant()
+
+
 def arguments():
     """[BUILD_DIR] [SECONDS] [SIZE] [REF_PASSES] from the command line, and REF_FACTOR from the
     environment: (clppm binary, seconds, size, ref_passes, ref_factor)."""

@@ -31,7 +31,8 @@ ROOT = os.path.dirname(HERE)
 sys.path.insert(0, HERE)
 sys.path.insert(0, os.path.join(ROOT, "tests", "references"))
 import make_references  # noqa: E402
-from peer_runs import arguments, clppm_timed, compare, diffuse_box, print_report  # noqa: E402
+from peer_runs import (arguments, clppm_timed, compare, diffuse_box, mitsuba_fastest_variant,  # noqa: E402
+                       print_report)
 
 
 def render(scene, spp, seed):
@@ -73,10 +74,7 @@ def timed_render(scene, seconds, tmp, ref_factor, name):
 
 def main():
     binary, seconds, size, ref_passes, ref_factor = arguments()
-    try:
-        mi.set_variant("llvm_ad_rgb")
-    except Exception:  # no LLVM that Dr.Jit accepts
-        mi.set_variant("scalar_rgb")
+    mitsuba_fastest_variant(mi)
     rows = []
     with tempfile.TemporaryDirectory() as tmp:
         scene_file, common, ref = diffuse_box(binary, tmp, size, ref_passes)

@@ -26,7 +26,7 @@ ROOT = os.path.dirname(HERE)
 sys.path.insert(0, HERE)
 sys.path.insert(0, os.path.join(ROOT, "tests", "references"))
 import make_references  # noqa: E402
-from peer_runs import clppm_timed, compare  # noqa: E402
+from peer_runs import clppm_timed, compare, mitsuba_fastest_variant  # noqa: E402
 from peers_diffuse_box import timed_render  # noqa: E402
 
 
@@ -38,10 +38,7 @@ def main():
     methods = (sys.argv[5] if len(sys.argv) > 5 else "sppm+vi,sppm,pt").split(",")
     ref_factor = int(os.environ.get("REF_FACTOR", "20"))
     binary = os.path.join(build, "clppm")
-    try:
-        mi.set_variant("llvm_ad_rgb")
-    except Exception:  # no LLVM that Dr.Jit accepts
-        mi.set_variant("scalar_rgb")
+    mitsuba_fastest_variant(mi)
     rows = []
     with tempfile.TemporaryDirectory() as tmp:
         scene = mi.load_dict(make_references.mitsuba_scene(scene_file, tmp, size=size, max_depth=17))

@@ -39,7 +39,7 @@ ROOT = os.path.dirname(HERE)
 sys.path.insert(0, HERE)
 sys.path.insert(0, os.path.join(ROOT, "tests", "references"))
 import make_references  # noqa: E402
-from peer_runs import clppm_timed, compare  # noqa: E402
+from peer_runs import clppm_timed, compare, mitsuba_fastest_variant  # noqa: E402
 from peers_diffuse_box import timed_render  # noqa: E402
 
 ALL_SCENES = ("cornell_diffuse", "cornell_box", "asset_env", "asset_sun", "doorway", "skylight")
@@ -78,10 +78,7 @@ def main():
     samplers = os.environ.get("MI_SAMPLERS", "independent,multijitter").split(",")
     ref_factor = int(os.environ.get("MI_REF_FACTOR", "4"))
     ref_seconds = float(os.environ.get("REF_SECONDS", "300"))
-    try:
-        mi.set_variant("llvm_ad_rgb")
-    except Exception:  # no LLVM that Dr.Jit accepts
-        mi.set_variant("scalar_rgb")
+    mitsuba_fastest_variant(mi)
     rows, agreement = [], []
     with tempfile.TemporaryDirectory() as tmp:
         ref_dir = os.environ.get("REF_DIR", "") or tmp

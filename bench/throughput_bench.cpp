@@ -19,11 +19,7 @@ using namespace clppm::bench;
 
 namespace {
 
-struct Args {
-    bool quick = false;
-    std::string device, out = ".";
-    double seconds = 6;
-};
+using Args = BenchOptions;
 
 struct Measure {
     double passes_per_s = 0, photons_per_s = 0, seconds_per_pass = 0;
@@ -87,10 +83,8 @@ Json build_times(const std::string& dir, bool quick) {
 int main(int argc, char** argv) try {
     Args a;
     CLI::App app{"throughput_bench: passes and photons per second, device time per phase, build times"};
-    app.add_flag("--quick", a.quick, "A smoke run: one small scene, short");
-    app.add_option("--device", a.device, "An OpenCL device, as clppm --device takes it");
-    app.add_option("--out", a.out, "Where throughput.json goes");
-    app.add_option("--seconds", a.seconds, "Seconds per measurement");
+    add_bench_options(app, a, "A smoke run: one small scene, short", "Where throughput.json goes",
+                      "Seconds per measurement");
     CLI11_PARSE(app, argc, argv);
     if (a.quick) a.seconds = 0.2;
     const DeviceInfo& dev = bench_device(a.device);

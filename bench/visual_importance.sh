@@ -24,8 +24,8 @@ common="--width $size --height $size --quiet --no-png"
 methods="sppm sppm+vi ppm ppm+vi pt vcm"
 echo "$(nproc) cores, $(date -u +%F), ${size}x${size}, $secs s per run, references: the path tracer, $ref_passes passes"
 echo
-echo "| scene | method | seed | wall s | CPU s | passes | mean ratio | box-4 relative MSE | p90 relative error |"
-echo "|---|---|---:|---:|---:|---:|---:|---:|---:|"
+echo "| scene | method | seed | wall s | CPU s | passes | mean ratio | box-4 relative MSE | p90 relative error | relative MSE |"
+echo "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|"
 for name in $scenes; do
   scene="$here/scenes/$name.gltf"
   var="REF_$name"
