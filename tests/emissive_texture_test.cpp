@@ -10,6 +10,7 @@
 
 #include "device/kernel_program.h"
 #include "io/image_io.h"
+#include "photon_emission.h"
 #include "scene/device_scene.h"
 #include "scene/gltf/gltf_load.h"
 #include "scene/light_power.h"
@@ -31,25 +32,11 @@ __kernel void lookup_many(SCENE_PARAMS, int tex, __global const float* uv, __glo
     float3 c = texture_lookup(SCENE_ARGS, tex, (float4)(uv[4 * i], uv[4 * i + 1], uv[4 * i + 2], uv[4 * i + 3]));
     out[3 * i] = c.x; out[3 * i + 1] = c.y; out[3 * i + 2] = c.z;
 }
-__kernel void emit_many(SCENE_PARAMS, ulong seed, __global float* out) {
-    uint i = get_global_id(0);
-    Rng rng = rng_make(seed, 1, i, RNG_PHOTON);
-    float3 org, dir, flux;
-    emit_photon(SCENE_ARGS, &rng, &org, &dir, &flux);
-    __global float* o = &out[6 * (size_t)i];
-    o[0] = org.x; o[1] = org.y; o[2] = org.z; o[3] = flux.x; o[4] = flux.y; o[5] = flux.z;
-}
 )CL";
 
 cl::Program build(const DeviceContext& dc) {
-    return build_test_program(dc, assemble_kernel_source("rng.cl") + assemble_kernel_source("lights.cl") + kWrappers);
-}
-
-template <class T>
-std::vector<T> read(const DeviceContext& dc, const cl::Buffer& b, size_t n) {
-    std::vector<T> v(n);
-    dc.queue.enqueueReadBuffer(b, CL_TRUE, 0, n * sizeof(T), v.data());
-    return v;
+    return build_test_program(dc, assemble_kernel_source("rng.cl") + assemble_kernel_source("lights.cl") +
+                                      kEmitManyKernel + kWrappers);
 }
 
 } // namespace
@@ -96,7 +83,7 @@ TEST(TextureSampling, DeviceLookupMatchesTheHostReference) {
         int a = ds.set_scene_args(k);
         k.setArg(a++, cl_int(tex)), k.setArg(a++, in), k.setArg(a++, out);
         dc.queue.enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(n));
-        std::vector<float> got = read<float>(dc, out, 3 * n);
+        std::vector<float> got = read_buffer<float>(dc, out, 3 * n);
         const dev::Texture& t = s.textures[size_t(tex)];
         const bool nearest = (t.wrap & TEXTURE_NEAREST) != 0;
         double worst = 0;
@@ -144,16 +131,11 @@ TEST(EmissiveTexture, PhotonsLeaveWhereTheTextureIsBrightWithUnbiasedFlux) {
     DeviceScene ds = upload_scene(dc, s, RenderSettings{});
     cl::Program program = build(dc);
     const size_t n = 400000;
-    cl::Buffer out(dc.context, CL_MEM_WRITE_ONLY, 6 * n * sizeof(float));
-    cl::Kernel k(program, "emit_many");
-    int a = ds.set_scene_args(k);
-    k.setArg(a++, cl_ulong(3)), k.setArg(a++, out);
-    dc.queue.enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(n));
-    std::vector<float> p = read<float>(dc, out, 6 * n);
+    const std::vector<float> p = emit_photons(dc, ds, program, 3, n);
     double sum = 0, sum_sq = 0, dark = 0, ramp = 0;
     for (size_t i = 0; i < n; ++i) {
-        const float* o = &p[6 * i];
-        const double flux = (double(o[3]) + o[4] + o[5]) / 3, u = o[0] + 0.5;
+        const float* o = &p[kEmittedFloats * i];
+        const double flux = (double(o[6]) + o[7] + o[8]) / 3, u = o[0] + 0.5;
         sum += flux, sum_sq += flux * flux;
         if (u > 0.5 + 1.0 / 128) dark += flux;
         else if (u > 0.5 - 1.0 / 128) ramp += flux;

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cctype>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
@@ -475,43 +476,47 @@ TEST(GltfCameras, NoCameraGivesAnEmptyList) {
 
 // ---- errors -------------------------------------------------------------------------------------
 
-TEST(GltfErrors, MissingFile) { expect_error("does_not_exist.gltf", "cannot open file"); }
-TEST(GltfErrors, MalformedJson) { expect_error("malformed.gltf", "malformed JSON"); }
-TEST(GltfErrors, NotGltf) { expect_error("not_gltf.gltf", "invalid glTF: \"asset\" object not found"); }
-TEST(GltfErrors, UnsupportedRequiredExtension) {
-    expect_error("ext_required.gltf", "required extension 'EXT_meshopt_compression' is not supported");
-}
-TEST(GltfErrors, AccessorIndexOutOfRange) { expect_error("accessor_range.gltf", "POSITION accessor 99 out of range"); }
-TEST(GltfErrors, IndexBeyondVertices) { expect_error("index_range.gltf", "reference vertex 7 beyond the 3 vertices"); }
-TEST(GltfErrors, AccessorPastBufferView) {
-    expect_error("accessor_past_view.gltf", "accessor 0 reads past the end of bufferView 0");
-}
-TEST(GltfErrors, BufferViewPastBuffer) {
-    expect_error("view_past_buffer.gltf", "bufferView 0 extends past the end of buffer 0");
-}
-TEST(GltfErrors, ImageBufferViewPastBuffer) {
-    expect_error("image_view_past_buffer.gltf", "bufferView 3 extends past the end of buffer 0");
-}
-TEST(GltfErrors, AbsurdAccessorCount) {
-    expect_error("huge_count.gltf", "accessor 0 count 3000000000 exceeds the limit of 2^31");
-}
-TEST(GltfErrors, NonFiniteNodeTransform) {
-    expect_error("nonfinite_node.gltf", "node 0 ('overflow') has a non-finite transform");
-}
-TEST(GltfErrors, NodeCycle) { expect_error("cycle.gltf", "node graph cycle: node 0 ('a') is its own ancestor"); }
-TEST(GltfErrors, NoTriangles) { expect_error("no_triangles.gltf", "no triangle geometry"); }
-TEST(GltfErrors, UriEscapingTheDirectory) {
-    expect_error("uri_parent.gltf", "buffer 0 URI '../outside.bin' points outside the scene directory");
-    expect_error("uri_absolute.gltf", "URI '/etc/passwd' points outside the scene directory");
-    expect_error("uri_sneaky.gltf", "points outside the scene directory");
-    expect_error("uri_image_parent.gltf", "image 0 URI '..%2F..%2Fsecret.png' points outside");
-}
-TEST(GltfErrors, MissingExternalBuffer) { expect_error("missing_bin.gltf", "File not found : missing.bin"); }
-TEST(GltfErrors, NonFiniteMaterialFactor) {
-    expect_error("nonfinite_material.gltf", "material 0 ('hot') has a non-finite baseColorFactor");
-}
-TEST(GltfErrors, DeeplyNestedJson) { expect_error("deep_json.gltf", "nested deeper than 64 levels"); }
-TEST(GltfErrors, TruncatedGlb) { expect_error("truncated.glb", "invalid GLB"); }
+// A file the loader refuses, and what its one line must say.
+struct RefusedFile {
+    const char* file; // in tests/data
+    const char* says;
+};
+
+const RefusedFile kRefusedFiles[] = {
+    {"does_not_exist.gltf", "cannot open file"},
+    {"malformed.gltf", "malformed JSON"},
+    {"not_gltf.gltf", "invalid glTF: \"asset\" object not found"},
+    {"ext_required.gltf", "required extension 'EXT_meshopt_compression' is not supported"},
+    {"accessor_range.gltf", "POSITION accessor 99 out of range"},
+    {"index_range.gltf", "reference vertex 7 beyond the 3 vertices"},
+    {"accessor_past_view.gltf", "accessor 0 reads past the end of bufferView 0"},
+    {"view_past_buffer.gltf", "bufferView 0 extends past the end of buffer 0"},
+    {"image_view_past_buffer.gltf", "bufferView 3 extends past the end of buffer 0"},
+    {"huge_count.gltf", "accessor 0 count 3000000000 exceeds the limit of 2^31"},
+    {"nonfinite_node.gltf", "node 0 ('overflow') has a non-finite transform"},
+    {"cycle.gltf", "node graph cycle: node 0 ('a') is its own ancestor"},
+    {"no_triangles.gltf", "no triangle geometry"},
+    {"uri_parent.gltf", "buffer 0 URI '../outside.bin' points outside the scene directory"},
+    {"uri_absolute.gltf", "URI '/etc/passwd' points outside the scene directory"},
+    {"uri_sneaky.gltf", "points outside the scene directory"},
+    {"uri_image_parent.gltf", "image 0 URI '..%2F..%2Fsecret.png' points outside"},
+    {"missing_bin.gltf", "File not found : missing.bin"},
+    {"nonfinite_material.gltf", "material 0 ('hot') has a non-finite baseColorFactor"},
+    {"deep_json.gltf", "nested deeper than 64 levels"},
+    {"truncated.glb", "invalid GLB"},
+};
+
+class GltfRefused : public ::testing::TestWithParam<RefusedFile> {};
+
+TEST_P(GltfRefused, InOneLineNamingTheFile) { expect_error(GetParam().file, GetParam().says); }
+
+INSTANTIATE_TEST_SUITE_P(GltfErrors, GltfRefused, ::testing::ValuesIn(kRefusedFiles),
+                         [](const ::testing::TestParamInfo<RefusedFile>& refused) {
+                             std::string name = refused.param.file; // the file's name, as a test name
+                             for (char& c : name)
+                                 if (!std::isalnum(static_cast<unsigned char>(c))) c = '_';
+                             return name;
+                         });
 
 TEST(GltfErrors, TextNamesTheDisplayNameAndRefusesFilesWithoutADirectory) {
     try {

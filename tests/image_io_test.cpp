@@ -73,6 +73,19 @@ std::vector<unsigned char> load_png(const std::string& path, int* w, int* h) {
     return pixels;
 }
 
+// The pixels of img written as a PNG (with the tone mapping, or write_png's default) and decoded.
+std::vector<unsigned char> png_pixels(const Image& img, const ToneMapping* tone = nullptr) {
+    const std::string path = test::make_temp_dir("image_io") + "/img.png";
+    if (tone) write_png(path, img, *tone);
+    else write_png(path, img);
+    int w = 0, h = 0;
+    std::vector<unsigned char> px = load_png(path, &w, &h);
+    EXPECT_EQ(size_t(w) * size_t(h) * 3, px.size());
+    EXPECT_EQ(w, img.width);
+    EXPECT_EQ(h, img.height);
+    return px;
+}
+
 std::string error_of(const std::function<void()>& f) {
     try {
         f();
@@ -171,7 +184,6 @@ TEST(ImageIo, SrgbCodesOfKnownValues) {
 }
 
 TEST(ImageIo, PngHasSrgbValuesAndMagentaForNonFinite) {
-    std::string dir = test::make_temp_dir("image_io");
     const float nan = std::numeric_limits<float>::quiet_NaN();
     const float inf = std::numeric_limits<float>::infinity();
     Image img;
@@ -179,21 +191,14 @@ TEST(ImageIo, PngHasSrgbValuesAndMagentaForNonFinite) {
     img.height = 2;
     img.rgb = {0.5f,  0.0f,  1.0f,  2.0f, -1.0f, 0.18f, nan,  0.5f, 0.5f, // top row
                0.25f, 0.25f, 0.25f, 0.5f, inf,   0.5f,  0.5f, 0.5f, -inf};
-    write_png(dir + "/p.png", img);
-    int w = 0, h = 0;
-    std::vector<unsigned char> px = load_png(dir + "/p.png", &w, &h);
-    ASSERT_EQ(w, 3);
-    ASSERT_EQ(h, 2);
     std::vector<unsigned char> expected = {188, 0,   255, 255, 0, 118, 255, 0, 255,
                                            137, 137, 137, 255, 0, 255, 255, 0, 255};
-    EXPECT_EQ(px, expected);
+    EXPECT_EQ(png_pixels(img), expected);
 }
 
 TEST(ImageIo, PngExposureScalesBeforeEncoding) {
-    std::string dir = test::make_temp_dir("image_io");
-    write_png(dir + "/q.png", solid(2, 2, 0.25f, 0.09f, 1.0f), ToneMapping{ToneCurve::Clip, 1.0, false});
-    int w = 0, h = 0;
-    std::vector<unsigned char> px = load_png(dir + "/q.png", &w, &h);
+    const ToneMapping clip{ToneCurve::Clip, 1.0, false};
+    std::vector<unsigned char> px = png_pixels(solid(2, 2, 0.25f, 0.09f, 1.0f), &clip);
     ASSERT_EQ(px.size(), 12u);
     EXPECT_EQ(px[0], 188); // 0.25 * 2 = 0.5
     EXPECT_EQ(px[1], 118); // 0.09 * 2 = 0.18
@@ -203,16 +208,13 @@ TEST(ImageIo, PngExposureScalesBeforeEncoding) {
 // The tone curve after the exposure: Reinhard at 2 x 0.5 = 1 is 0.5 (code 188), at 2 x 0.09 is
 // 0.18 / 1.18; auto exposure of a uniform 0.045 grey is +2 stops, to 0.18 (code 118) under clip.
 TEST(ImageIo, PngToneCurveAfterExposure) {
-    std::string dir = test::make_temp_dir("image_io");
-    write_png(dir + "/r.png", solid(1, 1, 0.5f, 0.09f, 0.0f), ToneMapping{ToneCurve::Reinhard, 1.0, false});
-    int w = 0, h = 0;
-    std::vector<unsigned char> px = load_png(dir + "/r.png", &w, &h);
+    const ToneMapping reinhard{ToneCurve::Reinhard, 1.0, false}, auto_clip{ToneCurve::Clip, 0.0, true};
+    std::vector<unsigned char> px = png_pixels(solid(1, 1, 0.5f, 0.09f, 0.0f), &reinhard);
     ASSERT_EQ(px.size(), 3u);
     EXPECT_EQ(px[0], 188);
     EXPECT_EQ(px[1], linear_to_srgb8(float(0.18 / 1.18)));
     EXPECT_EQ(px[2], 0);
-    write_png(dir + "/a.png", solid(2, 1, 0.045f, 0.045f, 0.045f), ToneMapping{ToneCurve::Clip, 0.0, true});
-    px = load_png(dir + "/a.png", &w, &h);
+    px = png_pixels(solid(2, 1, 0.045f, 0.045f, 0.045f), &auto_clip);
     ASSERT_EQ(px.size(), 6u);
     EXPECT_EQ(px[0], 118);
 }

@@ -13,6 +13,7 @@
 #include <random>
 
 #include "device/kernel_program.h"
+#include "photon_emission.h"
 #include "scene/device_scene.h"
 #include "scene_builders.h"
 #include "stat_tests.h"
@@ -24,16 +25,6 @@ using namespace clppm::test;
 namespace {
 
 const char* kWrappers = R"CL(
-__kernel void emit_many(SCENE_PARAMS, ulong seed, __global float* out) {
-    uint i = get_global_id(0);
-    Rng rng = rng_make(seed, 1, i, RNG_PHOTON);
-    float3 org, dir, flux;
-    emit_photon(SCENE_ARGS, &rng, &org, &dir, &flux);
-    __global float* o = &out[9 * (size_t)i];
-    o[0] = org.x; o[1] = org.y; o[2] = org.z;
-    o[3] = dir.x; o[4] = dir.y; o[5] = dir.z;
-    o[6] = flux.x; o[7] = flux.y; o[8] = flux.z;
-}
 /* SAMPLES sample_light calls per work item at x with normal n: the sums of (contrib * max(0, cos_x)).rgb
  * and of their squares, and the smallest shadow-ray distance of a sample that counted. */
 #define SAMPLES 16
@@ -168,16 +159,14 @@ struct Fixture {
     Fixture()
         : ds(upload_scene(dc, scene, RenderSettings{})),
           program(build_test_program(dc, assemble_kernel_source("rng.cl") + assemble_kernel_source("lights.cl") +
-                                             kWrappers)) {
+                                             kEmitManyKernel + kWrappers)) {
         lights = describe_lights(scene, ds);
         emit();
     }
 
     template <class T>
     std::vector<T> read(const cl::Buffer& b, size_t n) const {
-        std::vector<T> v(n);
-        dc.queue.enqueueReadBuffer(b, CL_TRUE, 0, n * sizeof(T), v.data());
-        return v;
+        return read_buffer<T>(dc, b, n);
     }
 
     // Which light a photon left: punctual lights by origin, the directional one by direction,
@@ -210,12 +199,7 @@ struct Fixture {
     }
 
     void emit() {
-        cl::Buffer out(dc.context, CL_MEM_WRITE_ONLY, 9 * kPhotons * sizeof(float));
-        cl::Kernel k(program, "emit_many");
-        int a = ds.set_scene_args(k);
-        k.setArg(a++, cl_ulong(99)), k.setArg(a++, out);
-        dc.queue.enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(kPhotons));
-        photons = read<float>(out, 9 * kPhotons);
+        photons = emit_photons(dc, ds, program, 99, kPhotons);
         source.resize(kPhotons);
         for (size_t i = 0; i < kPhotons; ++i) source[i] = identify(&photons[9 * i]);
     }

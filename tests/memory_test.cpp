@@ -13,12 +13,9 @@ using namespace clppm::test;
 
 namespace {
 
-DeviceInfo fake_device(size_t mem, size_t max_alloc) {
-    DeviceInfo d;
-    d.name = "test device";
-    d.global_mem = mem;
-    d.max_alloc = max_alloc;
-    return d;
+// A device with this much memory and this largest allocation.
+DeviceInfo device_with(size_t mem, size_t max_alloc) {
+    return fake_device(0, "test platform", "test device", 0, mem, max_alloc);
 }
 
 constexpr size_t GiB = size_t(1) << 30;
@@ -31,9 +28,9 @@ TEST(Memory, SppmAndPppmAt1080pWithAMillionPhotonsFitInOneGiB) {
         RenderSettings s;
         s.integrator = integ;
         s.photons = 1000000;
-        MemoryEstimate m = estimate_memory(scene, s, 1920, 1080, fake_device(8 * GiB, 2 * GiB));
+        MemoryEstimate m = estimate_memory(scene, s, 1920, 1080, device_with(8 * GiB, 2 * GiB));
         EXPECT_LT(m.total(), GiB) << integ << ": " << m.total() / (1 << 20) << " MiB";
-        EXPECT_NO_THROW(check_memory_fits(m, fake_device(GiB + GiB / 8, GiB / 2)));
+        EXPECT_NO_THROW(check_memory_fits(m, device_with(GiB + GiB / 8, GiB / 2)));
     }
 }
 
@@ -65,9 +62,9 @@ TEST(Memory, TooLargeForTheDeviceIsAClearError) {
     RenderSettings s;
     s.integrator = "ppm";
     s.spp = 16;
-    MemoryEstimate m = estimate_memory(diffuse_box(), s, 4096, 4096, fake_device(GiB, GiB / 4));
+    MemoryEstimate m = estimate_memory(diffuse_box(), s, 4096, 4096, device_with(GiB, GiB / 4));
     try {
-        check_memory_fits(m, fake_device(GiB, GiB / 4));
+        check_memory_fits(m, device_with(GiB, GiB / 4));
         FAIL() << "no error";
     } catch (const Error& e) {
         std::string msg = e.what();
@@ -84,7 +81,7 @@ TEST(Memory, PhotonMemoryIsBoundedByTheBatchNotThePass) {
     big.integrator = batch.integrator = "sppm";
     big.photons = 1000000000;
     batch.photons = kMaxBatchPhotons;
-    const DeviceInfo dev = fake_device(8 * GiB, 2 * GiB);
+    const DeviceInfo dev = device_with(8 * GiB, 2 * GiB);
     const MemoryEstimate a = estimate_memory(diffuse_box(), big, 256, 256, dev);
     const MemoryEstimate b = estimate_memory(diffuse_box(), batch, 256, 256, dev);
     EXPECT_EQ(a.photons, b.photons);

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <cctype>
+#include <cstdlib>
 #include <map>
 #include <string>
 #include <vector>
@@ -108,6 +109,31 @@ TEST(OptionRoles, ImageAndRunOptionsReadBackWhatTheySet) {
     }
     // The drift issue 61 found: --disc-coverage shapes the image and every process must share it.
     EXPECT_EQ(find_render_option("--disc-coverage")->role, OptionRole::Image);
+}
+
+// --help's "Default: X" is the value an Image or Run option has when it is not given, wherever X is a
+// plain number or word (the rest describe where the value comes from: "the camera's, else 0").
+TEST(OptionRoles, HelpsDefaultIsTheValueWhenNotGiven) {
+    const RenderOptions defaults;
+    int checked = 0;
+    for (const RenderOptionSpec& spec : render_option_table()) {
+        if (spec.role == OptionRole::Local || !spec.default_text) continue;
+        const std::string text = spec.default_text;
+        const Json value = spec.value(defaults);
+        char* end = nullptr;
+        const double number = std::strtod(text.c_str(), &end);
+        if (!text.empty() && *end == '\0') {
+            ASSERT_TRUE(value.is_number())
+                << spec.name << ": --help says " << text << ", the value is " << value.dump();
+            EXPECT_EQ(value.get<double>(), number) << spec.name;
+            ++checked;
+        } else if (text.find_first_of(" ,'") == std::string::npos && value.is_string() &&
+                   !value.get<std::string>().empty()) { // "none", "embedded": an empty value in words
+            EXPECT_EQ(value.get<std::string>(), text) << spec.name;
+            ++checked;
+        }
+    }
+    EXPECT_GE(checked, 14) << "fewer plain defaults than the table had when this test was written";
 }
 
 // A Local option changes how the render runs and reports, never its image: the EXR is the same bit

@@ -88,40 +88,44 @@ inline void add_sphere(Scene& s, Vec3 c, float r, int rings, int segments, uint3
     }
 }
 
+// A float[3] of a shared struct from a vector.
+inline void set3(float* v, Vec3 p) { v[0] = p.x, v[1] = p.y, v[2] = p.z; }
+
 inline void add_camera(Scene& s, Vec3 pos, Vec3 forward, Vec3 up, float yfov) {
     CameraDesc c;
-    c.position[0] = pos.x, c.position[1] = pos.y, c.position[2] = pos.z;
-    c.forward[0] = forward.x, c.forward[1] = forward.y, c.forward[2] = forward.z;
-    c.up[0] = up.x, c.up[1] = up.y, c.up[2] = up.z;
+    set3(c.position, pos);
+    set3(c.forward, forward);
+    set3(c.up, up);
     c.yfov = yfov;
     c.aspect = 1;
     s.cameras.push_back(c);
 }
 
-inline void add_point_light(Scene& s, Vec3 pos, float intensity) {
+// A punctual light of the type with the same power in each channel (intensity, or irradiance for
+// a directional light), placed and aimed by the caller.
+inline dev::Light& add_light(Scene& s, uint32_t type, float power) {
     dev::Light l{};
-    l.type = LIGHT_POINT;
-    l.position[0] = pos.x, l.position[1] = pos.y, l.position[2] = pos.z;
-    l.radiance[0] = l.radiance[1] = l.radiance[2] = intensity;
+    l.type = type;
+    l.radiance[0] = l.radiance[1] = l.radiance[2] = power;
     s.punctual_lights.push_back(l);
+    return s.punctual_lights.back();
+}
+
+inline void add_point_light(Scene& s, Vec3 pos, float intensity) {
+    set3(add_light(s, LIGHT_POINT, intensity).position, pos);
 }
 
 // A spot light at pos pointing straight down, cones given as half-angles in radians.
 inline void add_spot_light(Scene& s, Vec3 pos, float intensity, float inner, float outer) {
-    add_point_light(s, pos, intensity);
-    dev::Light& l = s.punctual_lights.back();
-    l.type = LIGHT_SPOT;
-    l.direction[0] = 0, l.direction[1] = -1, l.direction[2] = 0;
+    dev::Light& l = add_light(s, LIGHT_SPOT, intensity);
+    set3(l.position, pos);
+    set3(l.direction, {0, -1, 0});
     l.cos_inner = std::cos(inner), l.cos_outer = std::cos(outer);
 }
 
 // A directional light travelling along unit direction d with irradiance E.
 inline void add_directional_light(Scene& s, Vec3 d, float irradiance) {
-    dev::Light l{};
-    l.type = LIGHT_DIRECTIONAL;
-    l.direction[0] = d.x, l.direction[1] = d.y, l.direction[2] = d.z;
-    l.radiance[0] = l.radiance[1] = l.radiance[2] = irradiance;
-    s.punctual_lights.push_back(l);
+    set3(add_light(s, LIGHT_DIRECTIONAL, irradiance).direction, d);
 }
 
 // A diffuse plane y = 0 of half-size `half`, albedo rho, seen from straight above.

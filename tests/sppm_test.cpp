@@ -14,6 +14,12 @@ using namespace clppm::test;
 
 namespace {
 
+// The scene rendered by `integrator` for `passes` passes, with s's other settings.
+Image render_with(const Scene& scene, RenderSettings s, const char* integrator, uint64_t passes) {
+    s.integrator = integrator;
+    return render_passes(scene, s, passes);
+}
+
 void expect_images_agree(const Image& a, const Image& b, double mean_tol, double quad_tol, const std::string& what) {
     ASSERT_EQ(count_nonfinite(a), 0u) << what;
     ASSERT_EQ(count_nonfinite(b), 0u) << what;
@@ -35,31 +41,25 @@ void expect_images_agree(const Image& a, const Image& b, double mean_tol, double
 TEST(Sppm, ThreeIntegratorsConvergeToTheSameImage) {
     RenderSettings s = square_settings("ppm", 32, 50000);
     s.radius = 0.04;
-    Image ppm = render_passes(diffuse_box(), s, 48);
-    s.integrator = "sppm";
-    Image sppm = render_passes(diffuse_box(), s, 48);
-    s.integrator = "pppm";
-    Image pppm = render_passes(diffuse_box(), s, 48);
-    expect_images_agree(sppm, ppm, 0.015, 0.04, "sppm vs ppm");
-    expect_images_agree(pppm, ppm, 0.015, 0.04, "pppm vs ppm");
+    const Scene box = diffuse_box();
+    const Image ppm = render_with(box, s, "ppm", 48);
+    expect_images_agree(render_with(box, s, "sppm", 48), ppm, 0.015, 0.04, "sppm vs ppm");
+    expect_images_agree(render_with(box, s, "pppm", 48), ppm, 0.015, 0.04, "pppm vs ppm");
 }
 
 TEST(Sppm, GlossyBoxAgreesWithPathTracer) {
     RenderSettings s = square_settings("sppm", 32, 50000);
     s.radius = 0.04;
-    Image sppm = render_passes(glossy_box(), s, 64);
-    s.integrator = "pt";
-    Image pt = render_passes(glossy_box(), s, 1024);
-    expect_images_agree(sppm, pt, 0.02, 0.06, "glossy sppm vs pt");
+    expect_images_agree(render_with(glossy_box(), s, "sppm", 64), render_with(glossy_box(), s, "pt", 1024), 0.02, 0.06,
+                        "glossy sppm vs pt");
 }
 
 // A glossy conductor never reflects more than arrives: the glossy furnace stays below the
 // Lambertian furnace of the same F0 (Le / (1 - F0)), and SPPM and PT agree on it.
 TEST(Sppm, GlossyFurnaceDoesNotGainEnergy) {
-    RenderSettings s = square_settings("sppm", 16, 50000);
-    Image sppm = render_passes(glossy_furnace(0.5f, 0.6f, 1.f), s, 16);
-    s.integrator = "pt";
-    Image pt = render_passes(glossy_furnace(0.5f, 0.6f, 1.f), s, 512);
+    const RenderSettings s = square_settings("sppm", 16, 50000);
+    const Scene furnace = glossy_furnace(0.5f, 0.6f, 1.f);
+    const Image sppm = render_with(furnace, s, "sppm", 16), pt = render_with(furnace, s, "pt", 512);
     EXPECT_LT(mean_radiance(sppm), 2.0 * 1.01);
     EXPECT_LT(mean_radiance(pt), 2.0 * 1.01);
     EXPECT_GT(mean_radiance(pt), 1.5); // Schlick raises F above F0 at grazing angles; G loses a little

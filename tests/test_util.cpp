@@ -17,12 +17,15 @@
 
 namespace clppm::test {
 
-DeviceInfo fake_device(int index, const std::string& platform, const std::string& name, cl_device_type type) {
+DeviceInfo fake_device(int index, const std::string& platform, const std::string& name, cl_device_type type,
+                       size_t global_mem, size_t max_alloc) {
     DeviceInfo d;
     d.index = index;
     d.platform_name = platform;
     d.name = name;
     d.type = type;
+    d.global_mem = global_mem;
+    d.max_alloc = max_alloc;
     return d;
 }
 

@@ -11,8 +11,9 @@ namespace clppm::test {
 // device, else device 0.
 const DeviceInfo& test_device();
 
-// A made-up device for tests of device choice: no OpenCL object behind it.
-DeviceInfo fake_device(int index, const std::string& platform, const std::string& name, cl_device_type type);
+// A made-up device for tests of device choice and memory: no OpenCL object behind it.
+DeviceInfo fake_device(int index, const std::string& platform, const std::string& name, cl_device_type type,
+                       size_t global_mem = 0, size_t max_alloc = 0);
 
 // A fresh empty directory under the build's temporary space.
 std::string make_temp_dir(const std::string& tag);
@@ -99,6 +100,14 @@ cl::Program build_test_program(const DeviceContext& dc, const std::string& sourc
 // A test's own kernel program on test_device(): kernel files' sources (assemble_kernel_source)
 // followed by the test's wrapper kernels, built as OpenCL C 1.2; a build failure is a test failure
 // with the build log. Buffers in and out, and 1-D launches.
+// n values of T from a device buffer (a blocking read on dc's queue).
+template <class T>
+std::vector<T> read_buffer(const DeviceContext& dc, const cl::Buffer& b, size_t n) {
+    std::vector<T> v(n);
+    dc.queue.enqueueReadBuffer(b, CL_TRUE, 0, n * sizeof(T), v.data());
+    return v;
+}
+
 struct KernelHarness {
     DeviceContext dc{test_device()};
     cl::Program program;
@@ -112,9 +121,7 @@ struct KernelHarness {
     cl::Buffer output(size_t bytes) const { return cl::Buffer(dc.context, CL_MEM_WRITE_ONLY, bytes); }
     template <class T>
     std::vector<T> read(const cl::Buffer& b, size_t n) const {
-        std::vector<T> v(n);
-        dc.queue.enqueueReadBuffer(b, CL_TRUE, 0, n * sizeof(T), v.data());
-        return v;
+        return read_buffer<T>(dc, b, n);
     }
     void run(cl::Kernel& k, size_t n) const { dc.queue.enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(n)); }
 };
