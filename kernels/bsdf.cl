@@ -47,7 +47,8 @@
  *    (the extension's mapping; Heitz 2014's anisotropic D and Smith Lambda, sampled by visible
  *    normals); the coupled diffuse reads the albedo tables at the smaller alpha, and a stretched
  *    metal's multiple scattering takes its albedo from kernels/ggx_aniso_albedo.h, an upper
- *    bound over (cos, azimuth, alpha, stretch) (metal_ms_eval).
+ *    bound over (cos, azimuth, alpha, stretch), and leaves mostly as the lobe does (the share
+ *    1 - alpha / alpha_t; a groove's light stays in its plane), sampled with it (metal_ms_eval).
  *  - KHR_materials_iridescence: a thin film of weight irid on the specular layer and the metal,
  *    whose Fresnel becomes (1 - irid) Schlick + irid F_film (kernels/iridescence.cl; for the
  *    layer F_film over the layer's F0, times its F90). Under the film the diffuse lobe is scaled,
@@ -125,10 +126,14 @@ LobeWeights lobe_weights(const Bsdf* b, float3 wo, uint mask) {
         bool mirror = bsdf_is_mirror(b);
         float a_o = mirror ? 1.0f : ggx_table(ggx_albedo_a, cos_o, al_o);
         w.metal = b->metal * mean3(metal_fresnel(b, cos_o)) * a_o;
-        if (!mirror && has_aniso(b)) {
+        if (!mirror && has_aniso(b)) { /* the lobe-shaped share of the multiple scattering: the lobe's technique */
             float a_avg = aniso_albedo_avg(b);
-            if (1.0f - a_avg > 1e-6f)
-                w.metal_ms = b->metal * mean3(metal_ms_color(b, a_avg)) * (1.0f - aniso_albedo(b, wo));
+            if (1.0f - a_avg > 1e-6f) {
+                float ms = b->metal * mean3(metal_ms_color(b, a_avg)) * (1.0f - aniso_albedo(b, wo));
+                float share = aniso_lobe_share(b);
+                w.metal += ms * share;
+                w.metal_ms = ms * (1.0f - share);
+            }
         } else if (!mirror) {
             float a_avg = ggx_avg(b, ggx_albedo_a_avg);
             if (1.0f - a_avg > 1e-6f) w.metal_ms = b->metal * mean3(metal_ms_color(b, a_avg)) * (1.0f - a_o);
@@ -181,12 +186,12 @@ float3 bsdf_eval_under(const Bsdf* b, float3 wo, float3 wi, uint mask) {
             if (layer) f += (b->f0 + (b->f90 - b->f0) * s5) * (b->dielectric * g);
             if (metal)
                 f += (b->base + (1.0f - b->base) * s5) * (b->metal * g) +
-                     metal_ms_eval(b, wo, wi, cos_o, cos_i, dir_alpha(b, wo), dir_alpha(b, wi));
+                     metal_ms_eval(b, wo, wi, cos_o, cos_i, dir_alpha(b, wo), dir_alpha(b, wi), g);
         } else {
             if (layer) f += layer_fresnel(b, cos_d) * (b->dielectric * g);
             if (metal)
                 f += metal_fresnel(b, cos_d) * (b->metal * g) +
-                     metal_ms_eval(b, wo, wi, cos_o, cos_i, dir_alpha(b, wo), dir_alpha(b, wi));
+                     metal_ms_eval(b, wo, wi, cos_o, cos_i, dir_alpha(b, wo), dir_alpha(b, wi), g);
         }
     }
     return f;

@@ -1,6 +1,8 @@
 /* bsdf_metal.cl: the Bsdf's conductor, GGX with Schlick's Fresnel from the base colour (or the
- * iridescent film's), and the multiple scattering of Kulla and Conty 2017 that gives back the
- * energy single-scattering GGX loses, for stretched lobes from kernels/ggx_aniso_albedo.h. */
+ * iridescent film's), and the multiple scattering that gives back the energy single-scattering
+ * GGX loses: Kulla and Conty 2017's term for an isotropic lobe; for a stretched lobe (kernels/
+ * ggx_aniso_albedo.h) mostly the lobe itself reweighted, so that what scatters twice or more
+ * leaves where the grooves send it, as Heitz et al. 2016's random walk on the microsurface does. */
 #ifndef CLPPM_BSDF_METAL_CL
 #define CLPPM_BSDF_METAL_CL
 
@@ -36,9 +38,9 @@ float aniso_stretch(const Bsdf* b) {
     return clamp(t * (float)(GGX_ANISO_T - 1), 0.0f, (float)(GGX_ANISO_T - 1));
 }
 
-/* E(v) of the stretched metal lobe (F = 1), from above: the table holds an upper bound of the
- * albedo over (cos, azimuth from ta, alpha, stretch), multilinear in all four. */
-float aniso_albedo(const Bsdf* b, float3 v) {
+/* A table of kernels/ggx_aniso_albedo.h at v: multilinear over (cos, azimuth from ta, alpha,
+ * stretch). */
+float aniso_table(const Bsdf* b, __constant const float* table, float3 v) {
     float3 l = mf_local(b, v);
     float x = sqrt(clamp(l.z, 0.0f, 1.0f)) * (float)(GGX_ANISO_MU - 1); /* rows dense at grazing */
     float y = atan2(fabs(l.y), fabs(l.x)) * (2.0f * INV_PI_F) * (float)(GGX_ANISO_PHI - 1);
@@ -51,25 +53,37 @@ float aniso_albedo(const Bsdf* b, float3 v) {
     for (int c = 0; c < 16; ++c) {
         int di = c & 1, dj = (c >> 1) & 1, dk = (c >> 2) & 1, dm = (c >> 3) & 1;
         float wt = (di ? fx : 1.0f - fx) * (dj ? fy : 1.0f - fy) * (dk ? fz : 1.0f - fz) * (dm ? fw : 1.0f - fw);
-        e += wt *
-             ggx_aniso_albedo[(((m + dm) * GGX_ANISO_ALPHA + k + dk) * GGX_ANISO_PHI + j + dj) * GGX_ANISO_MU + i + di];
+        e += wt * table[(((m + dm) * GGX_ANISO_ALPHA + k + dk) * GGX_ANISO_PHI + j + dj) * GGX_ANISO_MU + i + di];
     }
-    return fmin(e, 1.0f);
+    return e;
 }
+
+/* E(v) of the stretched metal lobe (F = 1), from above: the table holds an upper bound of the
+ * albedo. */
+float aniso_albedo(const Bsdf* b, float3 v) { return fmin(aniso_table(b, ggx_aniso_albedo, v), 1.0f); }
+
+/* The share of a stretched lobe's multiple scattering that leaves as the lobe does: 1 - alpha /
+ * alpha_t, from 0 for a round lobe (Kulla-Conty's broad term, right there) to 1 for a line. */
+float aniso_lobe_share(const Bsdf* b) { return 1.0f - b->alpha / fmax(b->alpha_t, b->alpha); }
 
 /* The cosine-weighted mean of that bound over the hemisphere. */
 float aniso_albedo_avg(const Bsdf* b) {
     return table_bilinear(ggx_aniso_albedo_avg, GGX_ANISO_ALPHA, GGX_ANISO_T, aniso_row(b), aniso_stretch(b));
 }
 
-float3 metal_ms_eval(const Bsdf* b, float3 wo, float3 wi, float cos_o, float cos_i, float al_o, float al_i) {
-    /* A stretched lobe: Kulla-Conty on the upper bound of its albedo (kernels/ggx_aniso_albedo.h),
-     * which gives back what the lobe loses, a little less, never more. */
+/* g: the white single-scattering lobe at (wo, wi), D G2 / (4 cos_o cos_i) (mf_reflection). */
+float3 metal_ms_eval(const Bsdf* b, float3 wo, float3 wi, float cos_o, float cos_i, float al_o, float al_i, float g) {
+    /* A stretched lobe: Kulla-Conty on the upper bound of its albedo, and the lobe reweighted,
+     * F_ms k(wo) k(wi) g, with k from kernels/ggx_aniso_albedo.h so that each gives back what the
+     * lobe loses, a little less, never more; aniso_lobe_share splits between them. Both are
+     * reciprocal. */
     if (has_aniso(b)) {
         float a_avg = aniso_albedo_avg(b);
         if (!(1.0f - a_avg > 1e-6f)) return (float3)(0.0f);
-        float s = (1.0f - aniso_albedo(b, wo)) * (1.0f - aniso_albedo(b, wi));
-        return metal_ms_color(b, a_avg) * (b->metal * s * INV_PI_F / (1.0f - a_avg));
+        float share = aniso_lobe_share(b);
+        float broad = (1.0f - aniso_albedo(b, wo)) * (1.0f - aniso_albedo(b, wi)) * INV_PI_F / (1.0f - a_avg);
+        float lobe = aniso_table(b, ggx_aniso_ms_scale, wo) * aniso_table(b, ggx_aniso_ms_scale, wi) * g;
+        return metal_ms_color(b, a_avg) * (b->metal * ((1.0f - share) * broad + share * lobe));
     }
     float a_avg = ggx_avg(b, ggx_albedo_a_avg);
     if (!(1.0f - a_avg > 1e-6f)) return (float3)(0.0f);

@@ -307,6 +307,13 @@ inline D3 view(double cos_o) {
     D3 w = normalized((std::sqrt(1 - cos_o * cos_o)) * t + cos_o * kNormal);
     return {float(w.x), float(w.y), float(w.z)};
 }
+// kernels/sampling.cl make_frame's t (Duff et al. 2017), the test BSDF's anisotropy direction.
+inline D3 kernel_tangent(D3 n) {
+    const D3 f{float(n.x), float(n.y), float(n.z)};
+    const double sign = f.z >= 0 ? 1 : -1, a = -1 / (sign + f.z), c = f.x * f.y * a;
+    return {1 + sign * f.x * f.x * a, sign * c, -sign * f.x};
+}
+
 inline D3 float_normal() { return {float(kNormal.x), float(kNormal.y), float(kNormal.z)}; }
 
 inline const double kAlphas[] = {0.05, 0.2, 0.6, 1.0};

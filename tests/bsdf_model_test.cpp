@@ -62,15 +62,9 @@ double table_avg(const float* t, double alpha) {
 
 double comp(D3 v, int c) { return c == 0 ? v.x : c == 1 ? v.y : v.z; }
 
-// kernels/sampling.cl make_frame's t (Duff et al. 2017), the test BSDF's anisotropy direction.
-D3 kernel_tangent(D3 n) {
-    const D3 f{float(n.x), float(n.y), float(n.z)};
-    const double sign = f.z >= 0 ? 1 : -1, a = -1 / (sign + f.z), c = f.x * f.y * a;
-    return {1 + sign * f.x * f.x * a, sign * c, -sign * f.x};
-}
-
-// kernels/bsdf_metal.cl aniso_albedo and aniso_albedo_avg, in double: the stretched lobe's albedo bound,
-// multilinear in (cos, azimuth from t, roughness, stretch).
+// kernels/bsdf_metal.cl aniso_table, aniso_albedo and aniso_albedo_avg, in double: the stretched
+// lobe's tables (its albedo bound, its multiple scattering's scale), multilinear in (cos, azimuth
+// from t, roughness, stretch).
 double aniso_row(double alpha) {
     return std::clamp(std::sqrt(alpha) * (GGX_ANISO_ALPHA - 1), 0.0, GGX_ANISO_ALPHA - 1.0);
 }
@@ -78,7 +72,7 @@ double aniso_stretch(double alpha, double alpha_t) {
     const double t = alpha < 1 ? (alpha_t - alpha) / (1 - alpha) : 0.0;
     return std::clamp(t * (GGX_ANISO_T - 1), 0.0, GGX_ANISO_T - 1.0);
 }
-double ref_aniso_albedo(double alpha, double alpha_t, double lx, double ly, double lz) {
+double ref_aniso_table(const float* table, double alpha, double alpha_t, double lx, double ly, double lz) {
     const double x = std::sqrt(std::clamp(lz, 0.0, 1.0)) * (GGX_ANISO_MU - 1);
     const double y =
         std::clamp(std::atan2(std::fabs(ly), std::fabs(lx)) * 2 / M_PI * (GGX_ANISO_PHI - 1), 0.0, GGX_ANISO_PHI - 1.0);
@@ -90,10 +84,13 @@ double ref_aniso_albedo(double alpha, double alpha_t, double lx, double ly, doub
         const int di = c & 1, dj = (c >> 1) & 1, dk = (c >> 2) & 1, dm = (c >> 3) & 1;
         const double wt = (di ? x - i : 1 - (x - i)) * (dj ? y - j : 1 - (y - j)) * (dk ? z - k : 1 - (z - k)) *
                           (dm ? w - m : 1 - (w - m));
-        e += wt * ggx_aniso_albedo[size_t(
-                      (((m + dm) * GGX_ANISO_ALPHA + k + dk) * GGX_ANISO_PHI + j + dj) * GGX_ANISO_MU + i + di)];
+        e += wt *
+             table[size_t((((m + dm) * GGX_ANISO_ALPHA + k + dk) * GGX_ANISO_PHI + j + dj) * GGX_ANISO_MU + i + di)];
     }
-    return std::min(e, 1.0);
+    return e;
+}
+double ref_aniso_albedo(double alpha, double alpha_t, double lx, double ly, double lz) {
+    return std::min(ref_aniso_table(ggx_aniso_albedo, alpha, alpha_t, lx, ly, lz), 1.0);
 }
 double ref_aniso_albedo_avg(double alpha, double alpha_t) {
     const double z = aniso_row(alpha), w = aniso_stretch(alpha, alpha_t);
@@ -197,7 +194,14 @@ double ref_under(const Params& p, D3 n, D3 wo, D3 wi, unsigned mask, int c) {
                 g_ms = (1 - p.irid) * g_ms + p.irid * g * g * b_avg / (1 - g * (1 - b_avg));
             }
             auto e = [&](D3 v) { return ref_aniso_albedo(p.alpha, at, dot(v, tt), dot(v, tb), dot(v, n)); };
-            if (1 - b_avg > 1e-6) f += p.metal * g_ms * (1 - e(wo)) * (1 - e(wi)) / (M_PI * (1 - b_avg));
+            auto k = [&](D3 v) {
+                return ref_aniso_table(ggx_aniso_ms_scale, p.alpha, at, dot(v, tt), dot(v, tb), dot(v, n));
+            };
+            // Kulla-Conty's broad term, and the lobe reweighted, 1 - alpha / alpha_t of it
+            const double share = 1 - p.alpha / std::max(at, p.alpha);
+            if (1 - b_avg > 1e-6)
+                f += p.metal * g_ms *
+                     ((1 - share) * (1 - e(wo)) * (1 - e(wi)) / (M_PI * (1 - b_avg)) + share * k(wo) * k(wi) * dg);
         } else if (1 - a_avg > 1e-6) {
             f += p.metal * f_ms * (1 - table(ggx_albedo_a, co, al_o)) * (1 - table(ggx_albedo_a, ci, al_i)) /
                  (M_PI * (1 - a_avg));
