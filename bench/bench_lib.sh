@@ -48,6 +48,16 @@ scene_file() {
   esac
 }
 
+# sample_model REPO MODEL DIR: the model's glTF folder and screenshot from a copy of the Khronos
+# sample repository (git archive, so a bare mirror serves) into DIR; $gltf is its .gltf file and
+# $shot its screenshot, each empty when the copy has none.
+sample_model() {
+  mkdir -p "$3"
+  (cd "$1" && git archive HEAD "Models/$2/glTF" "Models/$2/screenshot" 2> /dev/null) | tar -x -C "$3" --strip-components=2 || true
+  gltf=$(ls "$3"/glTF/*.gltf 2> /dev/null | head -1 || true)
+  shot=$(ls "$3"/screenshot/screenshot.jpg "$3"/screenshot/screenshot.png 2> /dev/null | head -1 || true)
+}
+
 # cpu_seconds FILE: user + system seconds from `/usr/bin/time -f "%U %S" -o FILE`.
 cpu_seconds() { awk '{print $(NF - 1) + $NF}' "$1"; }
 

@@ -28,10 +28,7 @@ echo "| model | integrator | passes | CPU s | mean ratio to Cycles | box-4 relat
 echo "|---|---|---:|---:|---:|---:|"
 for m in $models; do
   d=$out/models/$m
-  mkdir -p "$d"
-  (cd "$repo" && git archive HEAD "Models/$m/glTF" "Models/$m/screenshot" 2> /dev/null) | tar -x -C "$d" --strip-components=2 || true
-  gltf=$(ls "$d"/glTF/*.gltf 2> /dev/null | head -1 || true)
-  shot=$(ls "$d"/screenshot/screenshot.jpg "$d"/screenshot/screenshot.png 2> /dev/null | head -1 || true)
+  sample_model "$repo" "$m" "$d"
   if [ -z "$gltf" ]; then
     echo "| $m | not in the copy | | | | |"
     continue

@@ -9,7 +9,8 @@
 #   (env: BPY_PYTHON, SECONDS_EACH=20, SIZE=192, SHEET_HEIGHT=96, MODELS="ClearCoatTest ...")
 # bench/contact_sheets/<Model>.png were made so (SECONDS_EACH=15).
 set -euo pipefail
-here=$(cd "$(dirname "$0")/.." && pwd)
+source "$(dirname "${BASH_SOURCE[0]}")/bench_lib.sh"
+here=$bench_root
 repo=$1
 out=$2
 build=$(cd "${3:-$here/build}" && pwd)
@@ -27,10 +28,7 @@ mkdir -p "$out/models"
 sheets=()
 for m in $models; do
   d=$out/models/$m
-  mkdir -p "$d"
-  (cd "$repo" && git archive HEAD "Models/$m/glTF" "Models/$m/screenshot" 2> /dev/null) | tar -x -C "$d" --strip-components=2 || true
-  gltf=$(ls "$d"/glTF/*.gltf 2> /dev/null | head -1 || true)
-  shot=$(ls "$d"/screenshot/screenshot.jpg "$d"/screenshot/screenshot.png 2> /dev/null | head -1 || true)
+  sample_model "$repo" "$m" "$d"
   if [ -z "$gltf" ] || [ -z "$shot" ]; then
     echo "$m: not in the copy"
     continue
