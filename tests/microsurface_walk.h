@@ -15,8 +15,8 @@
 namespace clppm::test {
 
 struct Microsurface {
-    double ax, ay; // GGX alpha along x and along y
-    double f0;     // Schlick's F0 (1: a white conductor)
+    double ax, ay;                                                          // GGX alpha along x and along y
+    double f0;                                                              // Schlick's F0 (1: a white conductor)
     static constexpr double kOut = std::numeric_limits<double>::infinity(); // a height: the walk left
 
     // Heights: uniform on [-1, 1] (the paper's choice; the result does not depend on it).
@@ -54,7 +54,8 @@ struct Microsurface {
         const D3 t1 = l2 > 0 ? D3{-vh.y / std::sqrt(l2), vh.x / std::sqrt(l2), 0} : D3{1, 0, 0};
         const D3 t2 = cross(vh, t1);
         const double r = std::sqrt(u1), phi = 2 * M_PI * u2, s = 0.5 * (1 + vh.z);
-        const double p1 = r * std::cos(phi), p2 = (1 - s) * std::sqrt(std::max(0.0, 1 - p1 * p1)) + s * r * std::sin(phi);
+        const double p1 = r * std::cos(phi),
+                     p2 = (1 - s) * std::sqrt(std::max(0.0, 1 - p1 * p1)) + s * r * std::sin(phi);
         const D3 nh = t1 * p1 + t2 * p2 + vh * std::sqrt(std::max(0.0, 1 - p1 * p1 - p2 * p2));
         return normalized({ax * nh.x, ay * nh.y, std::max(1e-12, nh.z)});
     }
