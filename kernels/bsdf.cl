@@ -30,12 +30,13 @@
  *    sample's weight is (1 - F) G2 / G1 whichever way light goes and photons and eye paths share
  *    one function; eye paths thereby carry radiance times (eta_light / eta_eye)^2, which is 1
  *    whenever the camera and the lights are both outside every dielectric (docs/scenes.md).
- *  - LOBE_SHEEN, KHR_materials_sheen: sheen colour times the Charlie distribution (Estevez and
- *    Kulla 2017) with Neubelt and Pettineo's visibility, D V / max(1, E_s(wo), E_s(wi)), over the
- *    lobes above, which it scales by min(1 - max(sheen) E'(wo), 1 - max(sheen) E'(wi)), E_s the
- *    lobe's directional albedo (kernels/sheen_albedo.h) and E' = min(E_s, 1): the extension's
- *    albedo scaling, with the lobe kept from exceeding albedo 1 at grazing angles (where the
- *    smoothest Charlie lobes reach 3.7) so that there is no gain. Sampled by the cosine.
+ *  - LOBE_SHEEN, KHR_materials_sheen: sheen colour times the Charlie distribution and its
+ *    visibility (Estevez and Kulla 2017, the extension's pair), D V / max(1, E_s(wo), E_s(wi)),
+ *    over the lobes above, which it scales by min(1 - max(sheen) E'(wo), 1 - max(sheen) E'(wi)),
+ *    E_s the lobe's directional albedo (kernels/sheen_albedo.h) and E' = min(E_s, 1): the
+ *    extension's albedo scaling, with the lobe kept from exceeding albedo 1 at grazing angles
+ *    (where the fit of Lambda lets the smoothest lobes reach 2.2) so that there is no gain.
+ *    Sampled by the cosine.
  *  - KHR_materials_diffuse_transmission: LOBE_DIFFUSE covers both sides. A part dt of it is
  *    turned to the other side, diffuse_btdf = dt dt_colour / pi for wi below the surface, the rest
  *    (1 - dt) base / pi above (the extension's mix); both carry the layer's coupling at |cos_i|,

@@ -1,7 +1,8 @@
 // Writes kernels/sheen_albedo.h: the directional albedo E(mu, r) of KHR_materials_sheen's lobe
 // with sheen colour 1, the Charlie distribution (Estevez and Kulla 2017)
 //   D(h) = (2 + 1 / alpha) sin(theta_h)^(1 / alpha) / (2 pi),  alpha = r^2,
-// and the visibility of Neubelt and Pettineo 2013, V = 1 / (4 (cos_i + cos_o - cos_i cos_o)):
+// and their visibility, the extension's, V = 1 / ((1 + Lambda(cos_o) + Lambda(cos_i)) 4 cos_o cos_i)
+// with their fit of ln Lambda (kernels/bsdf_top_layers.cl sheen_lambda):
 //   E(mu) = int D V cos_i dwi,
 // tabulated over cos_o = (i + 0.5) / SHEEN_ALBEDO_MU and sheen roughness r = SHEEN_MIN_ROUGHNESS +
 // (1 - SHEEN_MIN_ROUGHNESS) j / (SHEEN_ALBEDO_R - 1); kernels/bsdf.cl scales the layers under the
@@ -10,6 +11,7 @@
 // Build and run (deterministic: rerunning writes the same bytes):
 //   g++ -O2 -std=c++17 scripts/make_sheen_albedo.cpp -o /tmp/make_sheen_albedo && /tmp/make_sheen_albedo > kernels/sheen_albedo.h
 // tests/bsdf_model_test.cpp checks entries against an independent quadrature.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <vector>
@@ -21,6 +23,16 @@ constexpr double kMinRoughness = 0.07; // alpha 0.0049: the narrowest Charlie lo
 
 const double kGlX[4] = {0.0694318442029737, 0.3300094782075719, 0.6699905217924281, 0.9305681557970263};
 const double kGlW[4] = {0.1739274225687269, 0.3260725774312731, 0.3260725774312731, 0.1739274225687269};
+
+double sheen_l(double x, double alpha) {
+    const double t = (1 - alpha) * (1 - alpha);
+    auto mix = [t](double a, double b) { return a + (b - a) * t; };
+    return mix(21.5473, 25.3245) / (1 + mix(3.82987, 3.32435) * std::pow(std::max(x, 0.0), mix(0.19823, 0.16801))) +
+           mix(-1.97760, -1.27393) * x + mix(-4.32054, -4.85967);
+}
+double sheen_lambda(double c, double alpha) {
+    return c < 0.5 ? std::exp(sheen_l(c, alpha)) : std::exp(2 * sheen_l(0.5, alpha) - sheen_l(1 - c, alpha));
+}
 
 double charlie_d(double cos_h, double alpha) {
     double sin2 = std::max(0.0, 1 - cos_h * cos_h);
@@ -35,7 +47,7 @@ double albedo(double mu, double alpha) {
     for (int a = 0; a < kC; ++a)
         for (int p = 0; p < 4; ++p) {
             double ci = (a + kGlX[p]) / kC, si = std::sqrt(1 - ci * ci), wc = kGlW[p] / kC;
-            double v = 1 / (4 * (ci + mu - ci * mu));
+            double v = 1 / ((1 + sheen_lambda(mu, alpha) + sheen_lambda(ci, alpha)) * 4 * mu * ci);
             for (int b = 0; b < kPhi; ++b)
                 for (int q = 0; q < 4; ++q) {
                     double phi = M_PI * (b + kGlX[q]) / kPhi, wp = kGlW[q] * M_PI / kPhi * 2;

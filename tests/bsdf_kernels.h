@@ -332,6 +332,17 @@ inline double ref_d(double c, double a) {
     return a * a / (M_PI * t * t);
 }
 inline double ref_lambda(double c, double a) { return 0.5 * (-1 + std::sqrt(1 + a * a * (1 - c * c) / (c * c))); }
+// KHR_materials_sheen's "Sheen visibility": Estevez and Kulla's (2017) fit of the Charlie
+// microfibres' Lambda, as the extension writes it (l, lambdaSheen).
+inline double ref_sheen_lambda(double cos_t, double alpha) {
+    auto l = [alpha](double x) {
+        const double t = (1 - alpha) * (1 - alpha);
+        auto mix = [t](double a, double b) { return a * (1 - t) + b * t; };
+        return mix(21.5473, 25.3245) / (1 + mix(3.82987, 3.32435) * std::pow(std::max(x, 0.0), mix(0.19823, 0.16801))) +
+               mix(-1.97760, -1.27393) * x + mix(-4.32054, -4.85967);
+    };
+    return std::fabs(cos_t) < 0.5 ? std::exp(l(cos_t)) : std::exp(2 * l(0.5) - l(1 - cos_t));
+}
 inline double ref_eval(D3 n, D3 wo, D3 wi, double f0, double a) {
     double co = dot(n, wo), ci = dot(n, wi);
     if (co <= 0 || ci <= 0) return 0;

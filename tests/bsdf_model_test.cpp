@@ -242,7 +242,7 @@ double ref_model(const Params& p, D3 n, D3 wo, D3 wi, unsigned mask, int c) {
             D3 h = normalized(wo + wi);
             const double ch = dot(n, h), a = p.sheen_r * p.sheen_r;
             const double d = (2 + 1 / a) * std::pow(std::max(0.0, 1 - ch * ch), 0.5 / a) / (2 * M_PI);
-            const double v = 1 / (4 * (ci + co - ci * co));
+            const double v = 1 / ((1 + ref_sheen_lambda(co, a) + ref_sheen_lambda(ci, a)) * 4 * co * ci);
             f += comp(p.sheen, c) * d * v / std::max({1.0, eo, ei});
         }
     }
@@ -674,7 +674,8 @@ TEST(BsdfModel, SheenAlbedoTableMatchesAnIndependentQuadrature) {
                     const double ci = std::cos(t), si = std::sin(t);
                     const D3 h = normalized(D3{si * std::cos(phi) + so, si * std::sin(phi), ci + mu});
                     const double d = (2 + 1 / a) * std::pow(std::max(0.0, 1 - h.z * h.z), 0.5 / a) / (2 * M_PI);
-                    e += d / (4 * (ci + mu - ci * mu)) * ci * si * (M_PI / 2 / nt) * (2 * M_PI / np);
+                    const double v = 1 / ((1 + ref_sheen_lambda(mu, a) + ref_sheen_lambda(ci, a)) * 4 * mu * ci);
+                    e += d * v * ci * si * (M_PI / 2 / nt) * (2 * M_PI / np);
                 }
             EXPECT_NEAR(sheen_albedo[j * SHEEN_ALBEDO_MU + i], e, 2e-3 * std::max(1.0, e))
                 << "roughness " << r << " mu " << mu;
