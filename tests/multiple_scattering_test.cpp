@@ -63,17 +63,17 @@ void walk_lobe(const Microsurface& s, D3 wi, size_t m, Lobe* all, Lobe* multiple
 
 // The kernels' white metal (roughness alpha across, alpha_t along the tangent) sampled from wo given
 // in the local frame (x along the tangent, z the normal): its lobe in the same frame.
-Lobe model_lobe(double alpha, double alpha_t, D3 wo_local, size_t m) {
+Lobe model_lobe(double alpha, double alpha_t, D3 wo_local, size_t m, D3 base = {1, 1, 1}, int channel = 0) {
     const D3 n = float_normal(), t = kernel_tangent(n), b = cross(n, t);
     Params p;
-    p.base = {1, 1, 1}, p.dielectric = 0, p.metal = 1, p.alpha = alpha, p.alpha_t = alpha_t;
+    p.base = base, p.dielectric = 0, p.metal = 1, p.alpha = alpha, p.alpha_t = alpha_t;
     const D3 wo = t * wo_local.x + b * wo_local.y + n * wo_local.z;
     const std::vector<float> s = model_sample(p, n, {float(wo.x), float(wo.y), float(wo.z)}, m, kMetal, 77);
     Lobe lobe;
     for (size_t i = 0; i < m; ++i) {
         if (!(int(s[8 * i + 7]) & 1)) continue;
         const D3 wi = d3(&s[8 * i]);
-        lobe.add({dot(wi, t), dot(wi, b), dot(wi, n)}, s[8 * i + 3] / double(m));
+        lobe.add({dot(wi, t), dot(wi, b), dot(wi, n)}, s[8 * i + 3 + size_t(channel)] / double(m));
     }
     return lobe;
 }
@@ -154,4 +154,33 @@ TEST(StretchedMetal, ALineLobeIsBlackOffItsLine) {
     for (size_t i = 0; i < local.size(); ++i) worst = std::max(worst, double(f[4 * i]) * local[i].z);
     EXPECT_LT(worst, 2e-3) << "f cos off the line";
     std::printf("largest f cos off the line: %.2e over %zu directions\n", worst, local.size());
+}
+
+// Round lobes, white and coloured: the isotropic metal's lobe (Kulla-Conty's term for its multiple
+// scattering) against the walk's, cell by cell, from roughness 0.1 to 1 and views from the normal
+// to grazing. A coloured metal is one walk per channel, Schlick's F0 that channel's base colour.
+TEST(IsotropicMetal, MultipleScatteringLeavesWhereTheWalkSendsIt) {
+    struct Case {
+        double alpha, theta, base;
+    };
+    const size_t m = 1000000;
+    for (const Case& c :
+         {Case{0.1, 45, 1}, Case{0.25, 30, 1}, Case{0.5, 60, 1}, Case{1.0, 20, 1}, Case{1.0, 75, 1}, Case{0.5, 45, 0.3},
+          Case{1.0, 45, 0.6}, Case{0.5, 45, 0.6}, Case{1.0, 45, 0.3}, Case{1.0, 45, 0.9}, Case{0.25, 60, 0.6}}) {
+        const Microsurface s{c.alpha, c.alpha, c.base};
+        const D3 wo = polar(c.theta, 0);
+        Lobe walk, walk_multiple;
+        walk_lobe(s, wo, m, &walk, &walk_multiple);
+        const Lobe model = model_lobe(c.alpha, -1, wo, m, {0.9, c.base, 0.2}, 1);
+        const double err = l1(model, walk) / walk.total();
+        std::printf("alpha %.2f view %g base %.1f: walk %.4f (multiple %.4f), model %.4f, L1 %.3f\n", c.alpha, c.theta,
+                    c.base, walk.total(), walk_multiple.total(), model.total(), err);
+        // Measured 0.019 to 0.077 (1,000,000 samples and walks each).
+        EXPECT_LT(err, 0.15);
+        // White: within 0.001. Coloured: Kulla and Conty's F_ms (each extra bounce at Fresnel's
+        // hemispherical average) keeps 80 to 85% of the walk's multiple scattering at roughness 1,
+        // where the walk's later bounces meet the facets at grazing angles: 0.031 under at F0 0.6
+        // and 0.9, 0.009 at 0.3; within 0.009 from roughness 0.5 down.
+        EXPECT_NEAR(model.total(), walk.total(), c.base == 1 ? 0.002 : c.alpha >= 1 ? 0.035 : 0.012);
+    }
 }
