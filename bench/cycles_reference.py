@@ -92,6 +92,16 @@ def main():
     for o in shapes:
         bpy.data.objects.remove(o)
     patch_unimported_extensions(a.scene)
+    # KHR_lights_punctual's lights are points and parallel light; Blender's importer gives a sun
+    # its default angle of 0.53 degrees, which puts a glint of the sun's disc on every mirror
+    # that the file's parallel light cannot (bench/RESULTS.md, issue 62, measures it). The
+    # file's light, as clppm renders it.
+    for o in scene.objects:
+        if o.type == "LIGHT":
+            if o.data.type == "SUN":
+                o.data.angle = 0.0
+            else:
+                o.data.shadow_soft_size = 0.0
     cams = [o for o in scene.objects if o.type == "CAMERA"]
     if cams:
         scene.camera = cams[0]

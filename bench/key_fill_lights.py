@@ -5,7 +5,11 @@
 its albedo). The model's buffers and images are copied beside the copy (clppm refuses URIs that
 leave a scene's folder).
 
-    python3 bench/key_fill_lights.py MODEL.gltf OUT.gltf
+    python3 bench/key_fill_lights.py MODEL.gltf OUT.gltf [--without EXTENSION ...]
+
+--without drops a material extension from every material (and from extensionsUsed and
+extensionsRequired), to measure how much of a difference between renderers one extension's model
+makes.
 """
 import json
 import math
@@ -28,8 +32,16 @@ def rotation_taking_minus_z_to(d):
 
 def main():
     src, out = sys.argv[1:3]
+    rest = sys.argv[3:]
+    without = [rest[i + 1] for i in range(len(rest) - 1) if rest[i] == "--without"]
     with open(src) as f:
         doc = json.load(f)
+    for ext in without:
+        for m in doc.get("materials", []):
+            m.get("extensions", {}).pop(ext, None)
+        for key in ("extensionsUsed", "extensionsRequired"):
+            if ext in doc.get(key, []):
+                doc[key].remove(ext)
     src_dir, out_dir = os.path.dirname(os.path.abspath(src)), os.path.dirname(os.path.abspath(out))
     for item in doc.get("buffers", []) + doc.get("images", []):
         uri = urllib.parse.unquote(item.get("uri", ""))

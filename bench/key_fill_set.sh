@@ -7,7 +7,8 @@
 # shows a lobe's albedo only; these lights show where each lobe sends light.
 #   bench/key_fill_set.sh REPO_DIR OUT_DIR [BUILD_DIR]
 #   (env: BPY_PYTHON, SECONDS_EACH=60, SPP=4096, SIZE=256, SHEET_HEIGHT=128, MODELS="...",
-#    KERNEL_DIR: other kernels for clppm, e.g. an older checkout's, through CLPPM_KERNEL_DIR)
+#    KERNEL_DIR: other kernels for clppm, e.g. an older checkout's, through CLPPM_KERNEL_DIR;
+#    WITHOUT="KHR_materials_sheen ...": the models with those extensions dropped, in both renderers)
 # REPO_DIR: a copy of the sample repository (DRx3D/glTF-Sample-Assets-OLD); none of it is committed.
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/bench_lib.sh"
@@ -35,7 +36,12 @@ for m in $models; do
   fi
   lit=$d/lit/$m.gltf
   mkdir -p "$d/lit"
-  python3 "$bench_root/bench/key_fill_lights.py" "$gltf" "$lit"
+  without=()
+  for e in ${WITHOUT:-}; do without+=(--without "$e"); done
+  if ! python3 "$bench_root/bench/key_fill_lights.py" "$gltf" "$lit" "${without[@]}" 2> "$out/$m.lights.log"; then
+    echo "| $m | files missing in the copy ($(tail -1 "$out/$m.lights.log" | cut -c1-80)) | | | | |"
+    continue
+  fi
   [ -f "$out/$m.cycles.exr" ] ||
     "$py" "$bench_root/bench/cycles_reference.py" "$lit" "$out/$m.cycles.exr" --size "$size" --spp "$spp" --world 0 \
       > "$out/$m.cycles.log" 2>&1
