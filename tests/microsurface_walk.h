@@ -1,8 +1,9 @@
-// The ground truth of a rough conductor's multiple scattering: the random walk on a Smith
+// The ground truth of a rough surface's multiple scattering: the random walk on a Smith
 // microsurface of Heitz, Hanika, d'Eon and Dachsbacher 2016 ("Multiple-Scattering Microfacet BSDFs
 // with the Smith Model"), for anisotropic GGX slopes (alpha_x along x, alpha_y along y), uniform
-// heights on [-1, 1] and Schlick's Fresnel from f0. Host side, double; the kernels' metal lobe is
-// checked against it (tests/multiple_scattering_test.cpp). Directions are in the local frame, z the
+// heights on [-1, 1], a conductor with Schlick's Fresnel from f0 or (DielectricMicrosurface) a
+// dielectric interface. Host side, double; the kernels' metal and rough glass lobes are checked
+// against it (tests/multiple_scattering_test.cpp). Directions are in the local frame, z the
 // normal; a walk starts going down along -wi.
 #pragma once
 #include <algorithm>
@@ -118,6 +119,56 @@ struct Microsurface {
             wr = wr - m * (2 * dot(wr, m));
         }
         *energy = 0; // a walk that never leaves (measure zero) carries nothing out
+        *out = wr;
+        return 256;
+    }
+};
+
+// The same walk on a rough dielectric interface of relative index eta (inside over outside), the
+// paper's Sec. 5.3: at each facet the light reflects with the exact Fresnel reflectance and
+// otherwise refracts to the other side, where the microsurface seen from below is the same one
+// mirrored (heights and directions negated, eta inverted). Lossless: every walk leaves, above
+// (reflected) or below (transmitted), carrying all its energy.
+struct DielectricMicrosurface : Microsurface {
+    double eta;
+    DielectricMicrosurface(double ax_, double ay_, double eta_) : Microsurface{ax_, ay_, 1}, eta(eta_) {}
+
+    // Fresnel's reflectance for unpolarised light from wi (pointing away) at the facet m.
+    static double fresnel_dielectric(D3 wi, D3 m, double eta) {
+        const double ci = dot(wi, m), ct2 = 1 - (1 - ci * ci) / (eta * eta);
+        if (ct2 <= 0) return 1;
+        const double ct = std::sqrt(ct2);
+        const double rs = (ci - eta * ct) / (ci + eta * ct), rp = (eta * ci - ct) / (eta * ci + ct);
+        return 0.5 * (rs * rs + rp * rp);
+    }
+    static D3 refract(D3 wi, D3 m, double eta) {
+        const double ci = dot(wi, m), ct2 = 1 - (1 - ci * ci) / (eta * eta);
+        return normalized(m * (ci / eta - std::sqrt(std::max(0.0, ct2))) - wi * (1 / eta));
+    }
+
+    template <class Rng>
+    int walk(D3 wi, Rng& rng, D3* out) const {
+        std::uniform_real_distribution<double> u(0, 1);
+        D3 wr = wi * -1.0;
+        double h = 1 + inv_c1(0.999);
+        bool outside = true;
+        for (int bounces = 0; bounces <= 256; ++bounces) {
+            h = outside ? next_height(wr, h, u(rng)) : -next_height(wr * -1.0, -h, u(rng));
+            if (std::isinf(h)) {
+                *out = wr;
+                return bounces;
+            }
+            const D3 w = wr * -1.0; // towards where the light came from
+            const double e = outside ? eta : 1 / eta;
+            const D3 m = outside ? sample_visible_normal(w, u(rng), u(rng))
+                                 : sample_visible_normal(w * -1.0, u(rng), u(rng)) * -1.0;
+            if (u(rng) < fresnel_dielectric(w, m, e)) {
+                wr = m * (2 * dot(w, m)) - w;
+            } else {
+                wr = refract(w, m, e);
+                outside = !outside;
+            }
+        }
         *out = wr;
         return 256;
     }

@@ -1,8 +1,9 @@
-// A rough metal's multiple scattering against the ground truth, Heitz et al. 2016's random walk on
-// the Smith microsurface (tests/microsurface_walk.h): the walk first checked against the closed
-// form of single scattering and the albedo tables, then the kernels' white metal, stretched by
-// KHR_materials_anisotropy, against the walk direction by direction (issue 62: a near-line lobe
-// must send what it scatters twice along its line, not glow over the whole hemisphere).
+// Rough surfaces against the ground truth, Heitz et al. 2016's random walk on the Smith
+// microsurface (tests/microsurface_walk.h): the walk first checked against the closed form of
+// single scattering, then the kernels' white metal, stretched by KHR_materials_anisotropy, against
+// the walk direction by direction (issue 62: a near-line lobe must send what it scatters twice
+// along its line, not glow over the whole hemisphere); round metals, white and coloured; rough
+// glass against the dielectric walk's first order, with what it leaves out measured.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -182,5 +183,63 @@ TEST(IsotropicMetal, MultipleScatteringLeavesWhereTheWalkSendsIt) {
         // where the walk's later bounces meet the facets at grazing angles: 0.031 under at F0 0.6
         // and 0.9, 0.009 at 0.3; within 0.009 from roughness 0.5 down.
         EXPECT_NEAR(model.total(), walk.total(), c.base == 1 ? 0.002 : c.alpha >= 1 ? 0.035 : 0.012);
+    }
+}
+
+// Rough glass against the dielectric walk, over the whole sphere of directions (transmission
+// below). The kernels' glass lobe is single scattering (Walter et al. 2007): it must be the walk's
+// first order, reflection and refraction alike, cell by cell; what it leaves out is the light
+// that meets the microsurface more than once, which the test measures and prints (no energy
+// compensation for rough glass yet: 0.2% of the light at alpha 0.1, 24% at alpha 1, a third
+// from inside at alpha 0.6, where total internal reflection keeps light bouncing).
+TEST(RoughGlass, IsTheDielectricWalksFirstOrder) {
+    struct Case {
+        double alpha, eta, theta;
+    };
+    const size_t m = 1000000;
+    for (const Case& c : {Case{0.1, 1.5, 30}, Case{0.3, 1.5, 45}, Case{0.6, 1.5, 30}, Case{1.0, 1.5, 45},
+                          Case{0.3, 1 / 1.5, 30}, Case{0.6, 1 / 1.5, 20}}) {
+        const DielectricMicrosurface s{c.alpha, c.alpha, c.eta};
+        const D3 wo = polar(c.theta, 0);
+        std::vector<double> walk(2 * Lobe::nu * Lobe::nphi), walk_single(walk.size()), model(walk.size());
+        auto cell = [](D3 w) {
+            double phi = std::atan2(w.y, w.x);
+            if (phi < 0) phi += 2 * M_PI;
+            const int a = std::clamp(int((w.z + 1) / 2 * 2 * Lobe::nu), 0, 2 * Lobe::nu - 1);
+            return size_t(a * Lobe::nphi + std::min(Lobe::nphi - 1, int(phi / (2 * M_PI) * Lobe::nphi)));
+        };
+        std::mt19937_64 rng(62);
+        for (size_t i = 0; i < m; ++i) {
+            D3 out;
+            const int bounces = s.walk(wo, rng, &out);
+            walk[cell(out)] += 1.0 / double(m);
+            if (bounces == 1) walk_single[cell(out)] += 1.0 / double(m);
+        }
+        const D3 n = float_normal(), t = kernel_tangent(n), b = cross(n, t);
+        Params p;
+        p.base = {1, 1, 1}, p.dielectric = 0, p.glass = 1, p.eta = c.eta, p.alpha = c.alpha;
+        const D3 w = t * wo.x + b * wo.y + n * wo.z;
+        const std::vector<float> smp = model_sample(p, n, {float(w.x), float(w.y), float(w.z)}, m, kGlass, 77);
+        for (size_t i = 0; i < m; ++i) {
+            if (!(int(smp[8 * i + 7]) & 1)) continue;
+            const D3 wi = d3(&smp[8 * i]);
+            model[cell({dot(wi, t), dot(wi, b), dot(wi, n)})] += smp[8 * i + 4] / double(m);
+        }
+        double total = 0, single = 0, err = 0, err_all = 0, below = 0, below_single = 0;
+        for (size_t k = 0; k < walk.size(); ++k) {
+            total += model[k], single += walk_single[k];
+            if (k < walk.size() / 2) below += model[k], below_single += walk_single[k];
+            err += std::fabs(model[k] - walk_single[k]), err_all += std::fabs(model[k] - walk[k]);
+        }
+        std::printf("glass alpha %.2f eta %.3f view %g: walk's first order %.4f (transmitted %.4f), model %.4f "
+                    "(%.4f), L1 against it %.4f (against the whole walk %.3f)\n",
+                    c.alpha, c.eta, c.theta, single, below_single, total, below, err, err_all);
+        // Measured L1 0.006 to 0.014, totals within 0.0015, up to alpha 0.6. At alpha 1 the lobe
+        // transmits 0.785 where the walk's first order transmits 0.744 (L1 0.045): the lobe's
+        // masking for refraction is reflection's height-correlated 1 / (1 + Lambda(o) + Lambda(i)),
+        // where heights seen from both sides give the smaller B(1 + Lambda(o), 1 + Lambda(i)) (Heitz
+        // 2014, Sec. 6); pbrt-v4 takes the same form as clppm.
+        EXPECT_LT(err, c.alpha < 1 ? 0.03 : 0.06);
+        EXPECT_NEAR(total, single, c.alpha < 1 ? 0.005 : 0.05);
     }
 }
