@@ -243,3 +243,36 @@ TEST(RoughGlass, IsTheDielectricWalksFirstOrder) {
         EXPECT_NEAR(total, single, c.alpha < 1 ? 0.005 : 0.05);
     }
 }
+
+// The value itself, not only where the energy goes: the white metal's f cos towards a light, at
+// chosen pairs of view and light in the plane of incidence and across it, against the walk's
+// estimate of the same (its next-event estimation at every vertex, single and multiple orders).
+// Measured 0.939 to 1.054 of the walk: Kulla-Conty's term has the right amount and a broad shape,
+// where the walk's multiple scattering leans to backscatter (view 20, light 10 at alpha 1: 6%
+// under) and to the mirror direction.
+TEST(IsotropicMetal, ValueTowardsALightMatchesTheWalk) {
+    struct Case {
+        double alpha, tv, pv, tl, pl; // view and light, (theta, phi) in degrees
+    };
+    const D3 n = float_normal(), t = kernel_tangent(n), b = cross(n, t);
+    for (const Case& c :
+         {Case{0.25, 30, 0, 40, 180}, Case{0.5, 30, 0, 45, 180}, Case{0.5, 30, 0, 45, 90}, Case{0.5, 60, 0, 20, 0},
+          Case{1.0, 30, 0, 45, 180}, Case{1.0, 45, 0, 70, 90}, Case{1.0, 20, 0, 10, 0}, Case{0.5, 70, 0, 70, 180}}) {
+        const Microsurface s{c.alpha, c.alpha, 1};
+        const D3 v = polar(c.tv, c.pv), l = polar(c.tl, c.pl);
+        std::mt19937_64 rng(9);
+        double single = 0, multiple = 0;
+        const int m = 400000;
+        for (int k = 0; k < m; ++k) s.eval(v, l, rng, &single, &multiple);
+        const double walk = (single + multiple) / m;
+        Params p;
+        p.base = {1, 1, 1}, p.dielectric = 0, p.metal = 1, p.alpha = c.alpha;
+        std::vector<float> wi;
+        push3(wi, t * l.x + b * l.y + n * l.z);
+        const D3 wo = t * v.x + b * v.y + n * v.z;
+        const double model = model_eval(p, n, {float(wo.x), float(wo.y), float(wo.z)}, wi, kMetal)[0] * l.z;
+        std::printf("alpha %.2f view (%g, %g) light (%g, %g): walk %.4f (multiple %.4f), model %.4f, ratio %.3f\n",
+                    c.alpha, c.tv, c.pv, c.tl, c.pl, walk, multiple / m, model, model / walk);
+        EXPECT_NEAR(model / walk, 1.0, 0.08);
+    }
+}
