@@ -15,8 +15,10 @@ filter, as clppm's uniform jitter; 16 bounces of every kind; no clamping. Writes
 import argparse
 import json
 import math
+import os
 import struct
 import sys
+import urllib.parse
 
 import bpy
 from mathutils import Vector
@@ -32,11 +34,33 @@ def gltf_json(path):
     return json.loads(data)
 
 
+def irid_texture_input(path, doc, nodes, links, info, channel):
+    """An output socket giving channel (R or G) of the glTF texture `info` (a textureInfo) at the
+    mesh's first UV map, or None without one. Textures of a .glb, on another UV set or with
+    KHR_texture_transform are not read (a warning, and None)."""
+    if not info:
+        return None
+    tex = doc["textures"][info["index"]]
+    image = doc["images"][tex["source"]]
+    if "uri" not in image or info.get("texCoord", 0) != 0 or "extensions" in info:
+        print("warning: iridescence texture not read (embedded, another UV set or transformed)")
+        return None
+    node = nodes.new("ShaderNodeTexImage")
+    node.image = bpy.data.images.load(os.path.join(os.path.dirname(os.path.abspath(path)),
+                                                   urllib.parse.unquote(image["uri"])), check_existing=True)
+    node.image.colorspace_settings.name = "Non-Color"
+    sep = nodes.new("ShaderNodeSeparateColor")
+    links.new(node.outputs["Color"], sep.inputs["Color"])
+    return sep.outputs["Red" if channel == "R" else "Green"]
+
+
 def patch_unimported_extensions(path):
     """Two material extensions Blender 5.0's importer does not read, set by hand on the material
     it made, as Cycles models them: KHR_materials_iridescence as the Principled BSDF's thin film
-    (thickness iridescenceThicknessMaximum, index iridescenceIor; only a factor of 1 without
-    textures is exact), and KHR_materials_diffuse_transmission as a Mix Shader of the Principled
+    (index iridescenceIor, thickness iridescenceThicknessMaximum or, with
+    iridescenceThicknessTexture, from the minimum to the maximum by its G; a factor other than 1
+    or iridescenceTexture as a Mix Shader of the material without the film and with it by factor
+    times the texture's R: irid_texture_input), and KHR_materials_diffuse_transmission as a Mix Shader of the Principled
     BSDF and a Translucent BSDF of the transmission colour by diffuseTransmissionFactor (exact for
     a material without a specular layer, specularFactor 0; otherwise the layer is mixed down too)."""
     doc = gltf_json(path)
@@ -53,10 +77,46 @@ def patch_unimported_extensions(path):
         nodes, links = mat.node_tree.nodes, mat.node_tree.links
         pbr = next(n for n in nodes if n.type == "BSDF_PRINCIPLED")
         if irid:
-            if irid.get("iridescenceFactor", 0.0) != 1.0 or "iridescenceTexture" in irid:
-                print("warning: iridescence factor other than 1 mapped as 1")
-            pbr.inputs["Thin Film Thickness"].default_value = irid.get("iridescenceThicknessMaximum", 400.0)
             pbr.inputs["Thin Film IOR"].default_value = irid.get("iridescenceIor", 1.3)
+            hi = irid.get("iridescenceThicknessMaximum", 400.0)
+            thick = irid_texture_input(path, doc, nodes, links, irid.get("iridescenceThicknessTexture"), "G")
+            if thick is None:
+                pbr.inputs["Thin Film Thickness"].default_value = hi
+            else:
+                lo = irid.get("iridescenceThicknessMinimum", 100.0)
+                ramp = nodes.new("ShaderNodeMath")
+                ramp.operation = "MULTIPLY_ADD"  # lo + (hi - lo) g
+                links.new(thick, ramp.inputs[0])
+                ramp.inputs[1].default_value, ramp.inputs[2].default_value = hi - lo, lo
+                links.new(ramp.outputs["Value"], pbr.inputs["Thin Film Thickness"])
+            factor = irid.get("iridescenceFactor", 0.0)
+            weight = irid_texture_input(path, doc, nodes, links, irid.get("iridescenceTexture"), "R")
+            if factor != 1.0 or weight is not None:
+                bare = nodes.new("ShaderNodeBsdfPrincipled")  # the same material without the film
+                for inp, copy in zip(pbr.inputs, bare.inputs):
+                    if inp.is_linked:
+                        links.new(inp.links[0].from_socket, copy)
+                    elif hasattr(inp, "default_value"):
+                        copy.default_value = inp.default_value
+                bare.inputs["Thin Film Thickness"].default_value = 0.0
+                if bare.inputs["Thin Film Thickness"].is_linked:
+                    links.remove(bare.inputs["Thin Film Thickness"].links[0])
+                for attr in ("distribution", "subsurface_method"):
+                    setattr(bare, attr, getattr(pbr, attr))
+                mix = nodes.new("ShaderNodeMixShader")
+                targets = [lk.to_socket for lk in pbr.outputs["BSDF"].links]
+                if weight is None:
+                    mix.inputs["Fac"].default_value = factor
+                else:
+                    scale = nodes.new("ShaderNodeMath")
+                    scale.operation = "MULTIPLY"
+                    links.new(weight, scale.inputs[0])
+                    scale.inputs[1].default_value = factor
+                    links.new(scale.outputs["Value"], mix.inputs["Fac"])
+                links.new(bare.outputs["BSDF"], mix.inputs[1])
+                links.new(pbr.outputs["BSDF"], mix.inputs[2])
+                for t in targets:
+                    links.new(mix.outputs["Shader"], t)
         if dt:
             if ext.get("KHR_materials_specular", {}).get("specularFactor", 1.0) != 0.0:
                 print("warning: diffuse transmission under a specular layer mixes the layer down too")
