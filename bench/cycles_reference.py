@@ -54,6 +54,36 @@ def irid_texture_input(path, doc, nodes, links, info, channel):
     return sep.outputs["Red" if channel == "R" else "Green"]
 
 
+def patch_anisotropy(aniso, pbr, nodes, links):
+    """KHR_materials_anisotropy on Cycles' Principled BSDF. Blender's importer sets Anisotropic to the
+    strength, keeps the roughness and leaves the tangent to Cycles' default; Cycles stretches by
+    aspect = sqrt(1 - 0.9 A), alpha_x = r^2 / aspect along the tangent, alpha_y = r^2 aspect. The
+    extension wants alpha_t = mix(r^2, 1, strength^2) along the direction (the UV tangent turned by
+    anisotropyRotation) and alpha_b = r^2 across (at least 0.001, as clppm keeps it): so r^2 =
+    sqrt(alpha_t alpha_b), A = (1 - alpha_b / alpha_t) / 0.9. Cycles reaches a stretch of 10 at
+    most; beyond it (roughness 0 at any strength) alpha_t is kept and the lobe is wider across
+    (a warning)."""
+    rough = pbr.inputs["Roughness"]
+    if rough.is_linked or "anisotropyTexture" in aniso:
+        print("warning: textured roughness or anisotropy left as Blender's importer set it")
+        return
+    r2 = rough.default_value ** 2
+    s = aniso.get("anisotropyStrength", 0.0)
+    alpha_b, alpha_t = max(r2, 1e-3), r2 + (1 - r2) * s * s
+    alpha_t = max(alpha_t, alpha_b)
+    ratio = alpha_b / alpha_t
+    if ratio < 0.1:
+        print("warning: a stretch of %.0f; Cycles reaches 10" % (1 / ratio))
+        ratio = 0.1
+    aspect = math.sqrt(ratio)
+    rough.default_value = math.sqrt(alpha_t * aspect)
+    pbr.inputs["Anisotropic"].default_value = (1 - ratio) / 0.9
+    pbr.inputs["Anisotropic Rotation"].default_value = aniso.get("anisotropyRotation", 0.0) / (2 * math.pi)
+    tangent = nodes.new("ShaderNodeTangent")
+    tangent.direction_type = "UV_MAP"
+    links.new(tangent.outputs["Tangent"], pbr.inputs["Tangent"])
+
+
 def patch_unimported_extensions(path):
     """Two material extensions Blender 5.0's importer does not read, set by hand on the material
     it made, as Cycles models them: KHR_materials_iridescence as the Principled BSDF's thin film
@@ -68,7 +98,8 @@ def patch_unimported_extensions(path):
         ext = m.get("extensions", {})
         irid = ext.get("KHR_materials_iridescence")
         dt = ext.get("KHR_materials_diffuse_transmission")
-        if not irid and not dt:
+        aniso = ext.get("KHR_materials_anisotropy")
+        if not irid and not dt and not aniso:
             continue
         mat = bpy.data.materials.get(m.get("name", "Material_%d" % i))
         if mat is None or not mat.use_nodes:
@@ -76,6 +107,8 @@ def patch_unimported_extensions(path):
             continue
         nodes, links = mat.node_tree.nodes, mat.node_tree.links
         pbr = next(n for n in nodes if n.type == "BSDF_PRINCIPLED")
+        if aniso:
+            patch_anisotropy(aniso, pbr, nodes, links)
         if irid:
             pbr.inputs["Thin Film IOR"].default_value = irid.get("iridescenceIor", 1.3)
             hi = irid.get("iridescenceThicknessMaximum", 400.0)
@@ -138,6 +171,9 @@ def main():
     ap.add_argument("--size", type=int, default=256)
     ap.add_argument("--spp", type=int, default=1024)
     ap.add_argument("--world", type=float, default=1.0)
+    # Single-scattering GGX in every Principled BSDF (Cycles' default is its multiscatter GGX):
+    # to measure how much of a difference multiple scattering on the microsurface makes.
+    ap.add_argument("--single-scatter", action="store_true")
     a = ap.parse_args(sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else sys.argv[1:])
 
     bpy.ops.wm.read_factory_settings(use_empty=True)
@@ -152,6 +188,11 @@ def main():
     for o in shapes:
         bpy.data.objects.remove(o)
     patch_unimported_extensions(a.scene)
+    if a.single_scatter:
+        for mat in bpy.data.materials:
+            for n in (mat.node_tree.nodes if mat.node_tree else []):
+                if n.type == "BSDF_PRINCIPLED":
+                    n.distribution = "GGX"
     # KHR_lights_punctual's lights are points and parallel light; Blender's importer gives a sun
     # its default angle of 0.53 degrees, which puts a glint of the sun's disc on every mirror
     # that the file's parallel light cannot (bench/RESULTS.md, issue 62, measures it). The
