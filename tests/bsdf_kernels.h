@@ -343,6 +343,33 @@ inline double ref_sheen_lambda(double cos_t, double alpha) {
     };
     return std::fabs(cos_t) < 0.5 ? std::exp(l(cos_t)) : std::exp(2 * l(0.5) - l(1 - cos_t));
 }
+// KHR_materials_sheen's lobe as the extension writes it, alphaG the roughness squared (as the
+// Khronos sample viewer takes it): its "Sheen distribution" and "Sheen visibility".
+inline double ref_sheen_d(double sheen_roughness, double n_dot_h) {
+    const double alpha_g = sheen_roughness * sheen_roughness, inv_r = 1 / alpha_g;
+    const double sin2h = std::max(0.0, 1 - n_dot_h * n_dot_h); // rounding can put n.h above 1
+    return (2 + inv_r) * std::pow(sin2h, inv_r * 0.5) / (2 * M_PI);
+}
+inline double ref_sheen_v(double n_dot_l, double n_dot_v, double sheen_roughness) {
+    const double alpha_g = sheen_roughness * sheen_roughness;
+    return 1 /
+           ((1 + ref_sheen_lambda(n_dot_v, alpha_g) + ref_sheen_lambda(n_dot_l, alpha_g)) * (4 * n_dot_v * n_dot_l));
+}
+// The lobe's directional albedo E(mu) = int D V cos_l dl, by the midpoint rule over (theta_l, phi)
+// in n x n cells (independent of scripts/make_sheen_albedo.cpp's Gauss-Legendre panels).
+inline double ref_sheen_albedo(double mu, double sheen_roughness, int n) {
+    const double so = std::sqrt(1 - mu * mu);
+    double e = 0;
+    for (int x = 0; x < n; ++x)
+        for (int y = 0; y < n; ++y) {
+            const double th = (x + 0.5) / n * M_PI / 2, phi = (y + 0.5) / n * 2 * M_PI;
+            const double cl = std::cos(th), sl = std::sin(th);
+            const D3 h = normalized(D3{sl * std::cos(phi) + so, sl * std::sin(phi), cl + mu});
+            e += ref_sheen_d(sheen_roughness, h.z) * ref_sheen_v(cl, mu, sheen_roughness) * cl * sl * (M_PI / 2 / n) *
+                 (2 * M_PI / n);
+        }
+    return e;
+}
 inline double ref_eval(D3 n, D3 wo, D3 wi, double f0, double a) {
     double co = dot(n, wo), ci = dot(n, wi);
     if (co <= 0 || ci <= 0) return 0;

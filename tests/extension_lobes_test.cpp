@@ -2,7 +2,8 @@
 // against its specification's formula, written out here from the extension's text rather than
 // from the kernels, at normal, middle and grazing angles, within 1% in value:
 //  - KHR_materials_sheen: sheenColor D_Charlie V_Sheen (its "Sheen distribution" and "Sheen
-//    visibility", alphaG the roughness squared as the Khronos sample viewer takes it), and the
+//    visibility", alphaG the roughness squared as the Khronos sample viewer takes it; written out
+//    in tests/bsdf_kernels.h, ref_sheen_d and ref_sheen_v), and the
 //    layers under it scaled by min(1 - max3(sheenColor) E(VdotN), 1 - max3(sheenColor) E(LdotN)),
 //    E the lobe's directional albedo by a quadrature of the formula here (not the kernels' table).
 //  - KHR_materials_clearcoat: clearcoat fr(NdotV) times the specular BRDF V D of the coat's
@@ -53,31 +54,6 @@ D3 device_f(const Params& p, const Frame& fr, D3 wo, D3 wi, unsigned mask) {
 
 // ---- the extensions' formulas ----
 
-double spec_d_charlie(double sheen_roughness, double n_dot_h) {
-    const double alpha_g = sheen_roughness * sheen_roughness, inv_r = 1 / alpha_g;
-    const double sin2h = std::max(0.0, 1 - n_dot_h * n_dot_h); // rounding can put n.h above 1
-    return (2 + inv_r) * std::pow(sin2h, inv_r * 0.5) / (2 * M_PI);
-}
-double spec_v_sheen(double n_dot_l, double n_dot_v, double sheen_roughness) {
-    const double alpha_g = sheen_roughness * sheen_roughness;
-    return 1 /
-           ((1 + ref_sheen_lambda(n_dot_v, alpha_g) + ref_sheen_lambda(n_dot_l, alpha_g)) * (4 * n_dot_v * n_dot_l));
-}
-// E(mu) = int D V cos_l dl, midpoint over (theta_l, phi).
-double spec_sheen_albedo(double mu, double sheen_roughness) {
-    const int nt = 500, np = 500;
-    const double so = std::sqrt(1 - mu * mu);
-    double e = 0;
-    for (int x = 0; x < nt; ++x)
-        for (int y = 0; y < np; ++y) {
-            const double th = (x + 0.5) / nt * M_PI / 2, phi = (y + 0.5) / np * 2 * M_PI;
-            const double cl = std::cos(th), sl = std::sin(th);
-            const D3 h = normalized(D3{sl * std::cos(phi) + so, sl * std::sin(phi), cl + mu});
-            e += spec_d_charlie(sheen_roughness, h.z) * spec_v_sheen(cl, mu, sheen_roughness) * cl * sl *
-                 (M_PI / 2 / nt) * (2 * M_PI / np);
-        }
-    return e;
-}
 // glTF 2.0 Appendix B's specular_brdf without its Fresnel: V_GGX D_GGX.
 double spec_vd(double n_dot_l, double n_dot_v, double n_dot_h, double alpha) {
     const double a2 = alpha * alpha;
@@ -111,7 +87,7 @@ TEST(ExtensionLobes, SheenIsTheCharlieLobeWithItsVisibility) {
                     const D3 wo = fr.dir(co, 0), wi = fr.dir(ci, phi);
                     const D3 f = device_f(p, fr, wo, wi, kSheen);
                     const double nv = dot(fr.n, wo), nl = dot(fr.n, wi), nh = dot(fr.n, normalized(wo + wi));
-                    const double s = spec_d_charlie(r, nh) * spec_v_sheen(nl, nv, r);
+                    const double s = ref_sheen_d(r, nh) * ref_sheen_v(nl, nv, r);
                     SCOPED_TRACE("roughness " + std::to_string(r) + " cos_o " + std::to_string(co) + " cos_i " +
                                  std::to_string(ci) + " phi " + std::to_string(phi));
                     for (int c = 0; c < 3; ++c) { // 1e-3 absolute: where h is the normal, float's h is not quite
@@ -133,9 +109,9 @@ TEST(ExtensionLobes, SheenScalesTheLayersUnderItByItsAlbedo) {
         Params p = bare;
         p.sheen = color, p.sheen_r = r;
         for (double co : kCosines) {
-            const double eo = spec_sheen_albedo(co, r);
+            const double eo = ref_sheen_albedo(co, r, 500);
             for (double ci : kCosines) {
-                const double ei = spec_sheen_albedo(ci, r);
+                const double ei = ref_sheen_albedo(ci, r, 500);
                 const D3 wo = fr.dir(co, 0), wi = fr.dir(ci, 2.0);
                 const double want = std::min(1 - 0.5 * eo, 1 - 0.5 * ei);
                 const double got = device_f(p, fr, wo, wi, kDiffuse).y / device_f(bare, fr, wo, wi, kDiffuse).y;
