@@ -499,7 +499,7 @@ TEST(BsdfModel, WhiteFurnaceWithoutGain) {
                 const double mean = sampled_albedo(s, m, &se);
                 EXPECT_LE(mean, 1 + 4 * se + 2e-3);
                 // The least measured: 0.969, a white Lambertian under a smooth coat seen head-on;
-                // under a white sheen 0.863 (roughness 1, head-on): the extension's scaling takes
+                // under a white sheen 0.865 (roughness 1, head-on): the extension's scaling takes
                 // the sheen's albedo at the worse of the two directions.
                 // Under a film 0.91 (white Lambertian, rough layer, head-on): its albedo is
                 // estimated 3% over (kernels/bsdf_dielectric.cl film_layer_albedo).
