@@ -85,8 +85,10 @@ Bsdf test_bsdf(__global const float* p, float3 n) {
     b.ta = t;
     return b;
 }
-/* bsdf_eval (rgb) and bsdf_pdf at (wo, wi[i]) over the lobes in mask. */
-__kernel void model_eval_pdf(__global const float* p, float nx, float ny, float nz, float ox, float oy, float oz,
+/* bsdf_eval (rgb) and bsdf_pdf at (wo, wi[i]) over the lobes in mask. Both wrappers are kept
+ * unpacked on Intel's runtime, as the renderer's kernels are (kernels/portability.h): packed, its
+ * code for bsdf_sample drew wrong, run-dependent samples (most rejected, pdfs off by 4x). */
+__kernel SCALAR_WORK_ITEMS void model_eval_pdf(__global const float* p, float nx, float ny, float nz, float ox, float oy, float oz,
                              uint mask, __global const float* wi, __global float* out) {
     uint i = get_global_id(0);
     float3 n = (float3)(nx, ny, nz), wo = (float3)(ox, oy, oz);
@@ -98,7 +100,7 @@ __kernel void model_eval_pdf(__global const float* p, float nx, float ny, float 
 }
 /* bsdf_sample from wo with u[3 i .. 3 i + 2]: wi, weight, pdf, and flags (1 sampled, 2 delta,
  * 4 below), for a path carrying importance (radiance 0) or radiance. */
-__kernel void model_sample(__global const float* p, float nx, float ny, float nz, float ox, float oy, float oz,
+__kernel SCALAR_WORK_ITEMS void model_sample(__global const float* p, float nx, float ny, float nz, float ox, float oy, float oz,
                            uint mask, __global const float* u, uint radiance, __global float* out) {
     uint i = get_global_id(0);
     float3 n = (float3)(nx, ny, nz), wo = (float3)(ox, oy, oz);
@@ -132,7 +134,9 @@ __kernel void lambert(__global const HitPoint* hp, float nx, float ny, float nz,
 
 struct Device : KernelHarness {
     // Include guards make the second file add only what the first lacked (hitpoint.cl).
-    Device() : KernelHarness(assemble_kernel_source("bsdf.cl") + assemble_kernel_source("hitpoint.cl") + kWrappers) {}
+    Device()
+        : KernelHarness(assemble_kernel_source("portability.h") + assemble_kernel_source("bsdf.cl") +
+                        assemble_kernel_source("hitpoint.cl") + kWrappers) {}
 
     // irid_fresnel per 6 floats (eta2, d, cos_1, f0 rgb): 3 floats each.
     std::vector<float> irid(const std::vector<float>& in) const {
