@@ -34,7 +34,8 @@
     X(HAS_IRIDESCENCE, iridescence, "iridescence")                                                                     \
     X(HAS_ANISOTROPY, anisotropy, "anisotropy")                                                                        \
     X(HAS_DIFFUSE_TRANSMISSION, diffuse_transmission, "diffuse transmission")                                          \
-    X(HAS_DISPERSION, dispersion, "dispersion")
+    X(HAS_DISPERSION, dispersion, "dispersion")                                                                        \
+    X(HAS_MEDIUM, medium, "world medium")
 
 #ifdef __OPENCL_VERSION__
 
@@ -85,6 +86,9 @@
 #endif
 #ifndef HAS_DISPERSION
 #define HAS_DISPERSION 1
+#endif
+#ifndef HAS_MEDIUM
+#define HAS_MEDIUM 1
 #endif
 #ifndef HAS_DIFFUSE_TRANSMISSION
 #define HAS_DIFFUSE_TRANSMISSION 1

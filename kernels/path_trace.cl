@@ -17,6 +17,7 @@
 #include "pt_error.cl"
 #include "mean_film.cl"
 #include "dispersion.cl"
+#include "medium.cl"
 
 /* The path's numbers: a pixel's Sobol' points over the passes, or (built with
  * -DPATH_SAMPLER_INDEPENDENT) an independent stream. */
@@ -44,6 +45,45 @@ float share_pick(float u_pick, float share) {
 
 #define PATH_RR_DEPTH 5
 #define PATH_RR_MAX_SURVIVAL 0.95f
+
+/* One light sample from x for next-event estimation, with the path's numbers; a uniform world left
+ * to the BSDF (world_by_bsdf) is not picked, the others' probabilities divided by pick_share. */
+bool path_light_sample(SCENE_PARAMS, PathSampler* ps, float3 x, bool world_by_bsdf, float pick_share, LightSample* ls) {
+    bool ok;
+#if PATH_QMC
+    /* The light and its point from one 2-D point (pick_light_reuse): 3.7% less error at equal
+     * passes in the diffuse box, whose light is two triangles (bench/RESULTS.md). */
+    float u_spare = path_1d(ps);
+    ok = sample_light_reuse(SCENE_ARGS, x, pick_share, path_2d(ps), u_spare, ls);
+#else
+    if (world_by_bsdf) {
+        float u_pick = rng_float(ps);
+        float2 u_point = path_2d(ps);
+        ok = sample_light_u(SCENE_ARGS, x, share_pick(u_pick, pick_share), u_point, ls);
+    } else {
+        ok = sample_light_full(SCENE_ARGS, x, ps, ls); /* a point only where it takes one */
+    }
+#endif
+    if (world_by_bsdf && ok) {
+        ls->contrib *= pick_share;
+        ls->pdf_w /= pick_share;
+    }
+    return ok;
+}
+
+/* Light scattered at the medium point p towards -d (d: the direction the path arrived in) from the
+ * light sample s: the phase function, the shadow ray and the medium's transmittance along it,
+ * weighted by the power heuristic against sampling the phase function. */
+float3 medium_next_event(SCENE_PARAMS, float3 p, float3 d, bool ok, const LightSample* s) {
+    if (!ok) return (float3)(0.0f);
+    float3 wi, contrib;
+    float dist, light_pdf;
+    light_sample_out(s, &wi, &dist, &contrib, &light_pdf);
+    float ph = hg_phase(dot(d, wi), info->medium_albedo[3]);
+    if (!(ph > 0.0f) || trace_occluded(SCENE_ARGS, p, wi, dist)) return (float3)(0.0f);
+    float mis = light_pdf > 0.0f ? power_heuristic(light_pdf, ph) : 1.0f;
+    return contrib * medium_transmittance(load3c(info->medium_sigma_t), dist) * (ph * mis);
+}
 
 /* Pixel `pixel`'s sample of pass `pass` (counted from 1). */
 float3 path_sample(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong pass, uint pixel, uint screen_log2) {
@@ -78,15 +118,47 @@ float3 path_sample(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong pass,
                                info->env_light + 1u == info->num_lights && lights[info->env_light].prim == ENV_UNIFORM;
     const float pick_share = world_by_bsdf ? light_cdf[info->env_light] : 1.0f;
     bool dispersed = false; /* the path has met a dispersive surface and carries W (dispersion.cl) */
+    const bool medium = world_has_medium(info);
     for (uint depth = 0; depth < info->max_bounces; ++depth) {
         Hit hit;
-        if (!trace_closest(SCENE_ARGS, org, dir, INFINITY, &hit)) {
+        const bool found = trace_closest(SCENE_ARGS, org, dir, INFINITY, &hit);
+        Surface sf;
+        if (found) sf = make_surface(SCENE_ARGS, dir, &hit);
+        if (HAS_MEDIUM && medium && (!found || segment_in_world_medium(SCENE_ARGS, &sf))) {
+            /* The world's medium (kernels/medium.cl): a free flight, and a scattering there with a
+             * light sample and a direction from the phase function, or the segment's transmittance. */
+            float3 d = normalize(dir);
+            float t;
+            if (medium_sample_distance(info, found ? sf.t * length(dir) : INFINITY, path_2d(&ps), &beta, &t)) {
+                float3 p = org + d * t;
+                if (pick_share > 0.0f) {
+                    LightSample ls;
+                    bool ok = path_light_sample(SCENE_ARGS, &ps, p, world_by_bsdf, pick_share, &ls);
+                    L += beta * medium_next_event(SCENE_ARGS, p, d, ok, &ls);
+                }
+                float pdf;
+                float3 wi = hg_sample(d, info->medium_albedo[3], path_2d(&ps), &pdf);
+                /* f / pdf = 1: the throughput changes only by the roulette */
+                if (depth >= PATH_RR_DEPTH) {
+                    float q = fmin(max3(beta), PATH_RR_MAX_SURVIVAL);
+                    if (!(path_1d(&ps) < q)) break;
+                    beta /= q;
+                }
+                prev_delta = chain = false;
+                prev_pdf = pdf;
+                org = p;
+                dir = wi;
+                if (!(max3(beta) > 0.0f)) break;
+                continue;
+            }
+            if (!(max3(beta) > 0.0f)) break;
+        }
+        if (!found) {
             if (HAS_ENV_LIGHT)
                 L += beta *
                      escaped_radiance(SCENE_ARGS, normalize(dir), depth == 0, prev_delta || world_by_bsdf, prev_pdf);
             break;
         }
-        Surface sf = make_surface(SCENE_ARGS, dir, &hit);
         if (HAS_VOLUME) beta *= volume_transmittance(SCENE_ARGS, &sf, sf.t * length(dir));
         float3 le = surface_emission(SCENE_ARGS, &sf, dir);
         if (max3(le) > 0.0f) {
@@ -98,26 +170,12 @@ float3 path_sample(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong pass,
         float3 wo = -dir;
         if (pick_share > 0.0f) {
             LightSample ls;
-            bool ok;
-#if PATH_QMC
-            /* The light and its point from one 2-D point (pick_light_reuse): 3.7% less error at equal
-             * passes in the diffuse box, whose light is two triangles (bench/RESULTS.md). */
-            float u_spare = path_1d(&ps);
-            ok = sample_light_reuse(SCENE_ARGS, sf.p, pick_share, path_2d(&ps), u_spare, &ls);
-#else
-            if (world_by_bsdf) {
-                float u_pick = rng_float(&ps);
-                float2 u_point = path_2d(&ps);
-                ok = sample_light_u(SCENE_ARGS, sf.p, share_pick(u_pick, pick_share), u_point, &ls);
-            } else {
-                ok = sample_light_full(SCENE_ARGS, sf.p, &ps, &ls); /* a point only where it takes one */
-            }
-#endif
-            if (world_by_bsdf && ok) {
-                ls.contrib *= pick_share;
-                ls.pdf_w /= pick_share;
-            }
-            L += beta * next_event_from(SCENE_ARGS, &b, sf.p, wo, LOBE_ALL, ok, &ls);
+            bool ok = path_light_sample(SCENE_ARGS, &ps, sf.p, world_by_bsdf, pick_share, &ls);
+            float3 ne = next_event_from(SCENE_ARGS, &b, sf.p, wo, LOBE_ALL, ok, &ls);
+            /* the shadow ray's way through the world's medium */
+            if (HAS_MEDIUM && medium && ok && leaving_in_world_medium(SCENE_ARGS, &sf, ls.wi))
+                ne *= medium_transmittance(load3c(info->medium_sigma_t), ls.dist);
+            L += beta * ne;
         }
         BsdfSample s;
         float u_lobe = path_1d(&ps);

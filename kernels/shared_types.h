@@ -78,6 +78,9 @@ typedef struct {
 #define MATERIAL_FLAG_THIN_WALLED 2u
 /* KHR_materials_unlit: the base colour shown as it is; the surface scatters nothing (scene.cl) */
 #define MATERIAL_FLAG_UNLIT 4u
+/* KHR_materials_volume with thicknessFactor > 0 on a transmitting material: the closed mesh holds a
+ * volume of its own, so the world's medium (kernels/medium.cl) stops at its surface */
+#define MATERIAL_FLAG_ENCLOSES_VOLUME 8u
 
 /* glTF alphaMode */
 #define ALPHA_OPAQUE 0u
@@ -211,7 +214,12 @@ typedef struct {
     u32 texcoord1;     /* 1: the uv1 buffer holds TEXCOORD_1 for every triangle; 0: it is empty */
     u32 env_light;     /* index of the LIGHT_ENVIRONMENT light; ENV_UNIFORM (~0) when there is none */
     u32 pad2, pad3;
-} SceneInfo; /* 64 bytes */
+    /* The world's homogeneous medium (kernels/medium.cl), filling space outside the closed volumes:
+     * extinction sigma_t per scene unit (RGB), [3] 1 when there is a medium, 0 when there is none;
+     * single-scattering albedo sigma_s / sigma_t (RGB), [3] the Henyey-Greenstein g. */
+    float medium_sigma_t[4];
+    float medium_albedo[4];
+} SceneInfo; /* 96 bytes */
 
 /* ---- progressive photon mapping -------------------------------------------------------------- */
 

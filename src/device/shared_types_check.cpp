@@ -62,7 +62,9 @@ CLPPM_CHECK_SIZE(Camera, 80);
 CLPPM_CHECK_OFFSET(Camera, width, 64);
 CLPPM_CHECK_OFFSET(Camera, focus_distance, 76);
 
-CLPPM_CHECK_SIZE(SceneInfo, 64);
+CLPPM_CHECK_SIZE(SceneInfo, 96);
+CLPPM_CHECK_OFFSET(SceneInfo, medium_sigma_t, 64);
+CLPPM_CHECK_OFFSET(SceneInfo, medium_albedo, 80);
 CLPPM_CHECK_OFFSET(SceneInfo, radius, 16);
 CLPPM_CHECK_OFFSET(SceneInfo, num_lights, 28);
 CLPPM_CHECK_OFFSET(SceneInfo, max_bounces, 40);

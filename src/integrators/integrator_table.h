@@ -44,6 +44,7 @@ struct IntegratorRow {
     std::vector<std::string> (*warnings)(const Scene& scene, const SceneFeatures& features);
     bool visual_importance; // takes --visual-importance: photon paths that Markov chains guide
     uint32_t mode;          // which variant of its class: kProbabilisticRadii (PPPM), VCM_MODE_* (VCM, BPT), or 0
+    bool media;             // renders the world's participating medium (kernels/medium.cl)
 };
 
 // IntegratorRow::mode of the photon mappers: SPPM's shrinking radii, PPPM's independent passes.
@@ -62,7 +63,14 @@ const IntegratorRow& integrator_row(const std::string& name);
 // "ppm, sppm, pppm, pt, vcm or bpt".
 std::string integrator_names();
 
-// The integrator of settings.integrator for a scene on the device.
+// "pt": the integrators that render participating media.
+std::string media_integrators();
+
+// Throws Error, naming --integrator, when the scene has a medium that row does not render.
+void require_media_support(const IntegratorRow& row, bool scene_has_medium);
+
+// The integrator of settings.integrator for a scene on the device. Throws Error for a scene with a
+// medium that it does not render.
 std::unique_ptr<IntegratorBase> make_integrator(const DeviceContext& dc, const DeviceScene& scene,
                                                 const RenderSettings& settings, const cl::Program& program,
                                                 const SecondaryDevices& secondaries = {});

@@ -264,6 +264,43 @@ const std::vector<RenderOptionSpec>& render_option_table() {
          "none)",
          nullptr, nullptr, [](RenderOptions& o, const OptionArg&) { o.env.default_light = false; }, OptionRole::Image,
          [](const RenderOptions& o) -> Json { return !o.env.default_light; }},
+        {"Medium", "--medium-density", nullptr, "D",
+         "Fill the world outside closed volumes with a homogeneous medium of extinction D per scene unit (the camera "
+         "in it), or set the density of the file's (extras.clppm_medium)",
+         "a number >= 0, or R,G,B", "the file's, else none",
+         [](RenderOptions& o, const OptionArg& a) {
+             o.medium.density = parse_rgb_or_number(a);
+             o.medium.has_density = true;
+         },
+         OptionRole::Image,
+         [](const RenderOptions& o) -> Json { return o.medium.has_density ? Json(o.medium.density) : Json(); }},
+        {"Medium", "--medium-albedo", nullptr, "A",
+         "The medium's single-scattering albedo: the part of what it stops that it scatters (the rest it absorbs)",
+         "a number from 0 to 1, or R,G,B", "the file's, else 1",
+         [](RenderOptions& o, const OptionArg& a) {
+             o.medium.albedo = parse_rgb_or_number(a);
+             for (float x : o.medium.albedo)
+                 if (x > 1.f) bad_value(a);
+             o.medium.has_albedo = true;
+         },
+         OptionRole::Image,
+         [](const RenderOptions& o) -> Json { return o.medium.has_albedo ? Json(o.medium.albedo) : Json(); }},
+        {"Medium", "--medium-anisotropy", nullptr, "G",
+         "The medium's Henyey-Greenstein g: > 0 scatters forwards, < 0 backwards, 0 alike in every direction",
+         "a number above -1 and below 1", "the file's, else 0",
+         [](RenderOptions& o, const OptionArg& a) {
+             o.medium.anisotropy = float(parse_real(a, [](double g) { return g > -1 && g < 1; }));
+             o.medium.has_anisotropy = true;
+         },
+         OptionRole::Image,
+         [](const RenderOptions& o) -> Json { return o.medium.has_anisotropy ? Json(o.medium.anisotropy) : Json(); }},
+        {"Medium", "--medium-scale", nullptr, "S", "Scale the medium's density (the file's or --medium-density)",
+         "a finite number >= 0", "1",
+         [](RenderOptions& o, const OptionArg& a) { o.medium.scale = parse_real(a, [](double x) { return x >= 0; }); },
+         OptionRole::Image, [](const RenderOptions& o) -> Json { return o.medium.scale; }},
+        {"Medium", "--no-medium", nullptr, nullptr, "Render without the file's medium (extras.clppm_medium)", nullptr,
+         nullptr, [](RenderOptions& o, const OptionArg&) { o.medium.none = true; }, OptionRole::Image,
+         [](const RenderOptions& o) -> Json { return o.medium.none; }},
         {"Checkpoints", "--checkpoint", nullptr, "FILE",
          "Save the complete progressive state to FILE (atomically) periodically, on Ctrl-C and at the end",
          "a file name", "none", [](RenderOptions& o, const OptionArg& a) { o.checkpoint = non_empty(a); },

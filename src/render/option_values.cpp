@@ -63,6 +63,12 @@ std::array<float, 3> parse_rgb(const OptionArg& a) {
     return c;
 }
 
+std::array<float, 3> parse_rgb_or_number(const OptionArg& a) {
+    if (a.value.find(',') != std::string::npos) return parse_rgb(a);
+    const float x = float(parse_real(a, [](double v) { return v >= 0 && std::isfinite(float(v)); }));
+    return {x, x, x};
+}
+
 const std::string& non_empty(const OptionArg& a) {
     if (a.value.empty()) bad_value(a);
     return a.value;

@@ -29,6 +29,8 @@ uint64_t parse_u64(const OptionArg& a);
 double parse_real(const OptionArg& a, bool (*ok)(double));
 // "R,G,B": three finite numbers >= 0.
 std::array<float, 3> parse_rgb(const OptionArg& a);
+// One number for all three channels, or R,G,B, each finite and >= 0.
+std::array<float, 3> parse_rgb_or_number(const OptionArg& a);
 // The value, refused when empty.
 const std::string& non_empty(const OptionArg& a);
 

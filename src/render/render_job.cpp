@@ -15,6 +15,7 @@
 #include "render/rank_agreement.h"
 #include "scene/environment.h"
 #include "scene/gltf/gltf_load.h"
+#include "scene/medium.h"
 #include "scene/scene_features.h"
 #include "scene/scene_fingerprint.h"
 #include "util/error.h"
@@ -78,6 +79,7 @@ void RenderJob::load_scene() {
         log_.note(scene_.source + ": computed normals for " + std::to_string(scene_.meshes_without_normals) +
                   " primitive(s) without normals");
     apply_environment(scene_, options_.env, &world_note_); // said once the render is set up
+    apply_medium(scene_, options_.medium, &medium_note_);
     scene_hash_ = scene_fingerprint(scene_);
     char hash[17];
     std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(scene_hash_));
@@ -95,6 +97,7 @@ void RenderJob::choose_integrator(size_t devices) {
     }
     row_ = &integrator_row(s.integrator);
     s.integrator = row_->name;
+    require_media_support(*row_, scene_.medium.present);
     if (s.filter == PixelFilter::Tent && !row_->tent_filter)
         throw Error(std::string("--integrator ") + row_->name +
                     ": light tracing splats with the box filter only; drop --filter tent");
@@ -147,6 +150,7 @@ void RenderJob::build_kernels(const std::vector<DeviceInfo>& chosen) {
               (build_.from_cache ? "cached" : "built") + " in " + number("%.3f", build_.seconds) + " s" +
               (build_.driver_cache ? " (the driver's cache)" : ""));
     if (!world_note_.empty()) log_.note(world_note_);
+    if (!medium_note_.empty()) log_.note(medium_note_);
     if (!variant_note_.empty()) log_.note(variant_note_);
     if (!integrator_note_.empty()) log_.note(integrator_note_);
     const char* unit = row_->unit == WorkUnit::Photons ? "photons" : "pixels";

@@ -111,6 +111,7 @@ private:
     uint64_t scene_hash_ = 0;
     std::string integrator_note_;
     std::string world_note_;   // which world the render uses, and where it came from
+    std::string medium_note_;  // its medium, and where that came from ("" for none)
     std::string variant_note_; // the file's material variants and the one rendered
     std::unique_ptr<DeviceContext> dc_;
     std::unique_ptr<DeviceScene> ds_;

@@ -12,6 +12,7 @@
 #include "io/stats_json.h"
 #include "io/tone_map.h"
 #include "scene/environment.h"
+#include "scene/medium.h"
 
 namespace clppm {
 
@@ -29,6 +30,7 @@ struct RenderOptions {
     std::optional<double> confidence; // of the error bounds, in (0, 1); none: 0.95
 
     EnvironmentSettings env;
+    MediumSettings medium;
     std::vector<std::string> devices; // --device specs, in order; none: the first GPU, else device 0
     bool generic_kernels = false;     // no scene specialisation
     std::string kernel_dir;           // kernels from here instead of the embedded copies

@@ -284,6 +284,15 @@ DeviceScene upload_scene(const DeviceContext& dc, Scene& scene, const SceneSetti
     ds.info.max_bounces = settings.max_bounces;
     ds.info.vertex_colors = scene.colors.empty() ? 0u : 1u;
     ds.info.texcoord1 = scene.uv1.empty() ? 0u : 1u;
+    if (scene.medium.present) { // kernels/medium.cl
+        const MediumDesc& m = scene.medium.medium;
+        for (int k = 0; k < 3; ++k) {
+            ds.info.medium_sigma_t[k] = m.density[size_t(k)];
+            ds.info.medium_albedo[k] = m.albedo[size_t(k)];
+        }
+        ds.info.medium_sigma_t[3] = 1.f;
+        ds.info.medium_albedo[3] = m.anisotropy;
+    }
 
     std::vector<std::string> dropped;
     ds.lights = collect_lights(scene, ds.info, &dropped);

@@ -32,12 +32,6 @@ Image read_map(const std::string& path, const std::string& label) {
 
 constexpr const char* kStudio = "studio"; // --env studio: the built-in studio, not a file
 
-std::string number_text(double x) {
-    char text[32];
-    std::snprintf(text, sizeof text, "%g", x);
-    return text;
-}
-
 } // namespace
 
 bool scene_has_lights(const Scene& scene) {

@@ -48,6 +48,21 @@ struct FileWorld {
     double rotation_degrees = 0.0; // about +Y, as --env-rotate
 };
 
+// A homogeneous participating medium (kernels/medium.cl; docs/scenes.md, "Media").
+struct MediumDesc {
+    std::array<float, 3> density{};             // extinction sigma_t per scene unit, RGB
+    std::array<float, 3> albedo{1.f, 1.f, 1.f}; // single-scattering albedo sigma_s / sigma_t, RGB
+    float anisotropy = 0.f;                     // the Henyey-Greenstein g, in (-1, 1)
+};
+
+// The world's medium, filling space outside the closed volumes, the camera inside it: the
+// command line's, else the file's own (src/scene/medium.h). present false: none.
+struct WorldMedium {
+    bool present = false;
+    MediumDesc medium;
+    std::string source; // "extras.clppm_medium" or the options that set it
+};
+
 struct Scene {
     // Triangles: three world-space positions each (p[3*i+k]), and shading attributes.
     std::vector<Vec3> positions;          // 3 per triangle
@@ -72,6 +87,9 @@ struct Scene {
     std::vector<CameraDesc> cameras; // empty: no camera in the file
     Environment environment;
     FileWorld file_world;
+    bool has_file_medium = false; // extras.clppm_medium (gltf_medium.h)
+    MediumDesc file_medium;
+    WorldMedium medium;                // set by apply_medium
     std::vector<std::string> variants; // KHR_materials_variants' names, in the file's order
     std::string variant;               // the one rendered; empty: the file's default materials
     // Diagnostics from loading, reported by the CLI.

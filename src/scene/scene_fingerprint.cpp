@@ -23,6 +23,13 @@ uint64_t scene_fingerprint(const Scene& s) {
         v.insert(v.end(), {float(e.texture), e.rotation, e.hidden ? 1.f : 0.f});
         h = fnv1a64(v, h);
     }
+    if (s.medium.present) { // likewise
+        const MediumDesc& m = s.medium.medium;
+        std::vector<float> v(m.density.begin(), m.density.end());
+        v.insert(v.end(), m.albedo.begin(), m.albedo.end());
+        v.push_back(m.anisotropy);
+        h = fnv1a64(v, h);
+    }
     for (const CameraDesc& c : s.cameras) {
         std::vector<float> v(c.position, c.position + 3);
         v.insert(v.end(), c.forward, c.forward + 3);

@@ -11,6 +11,7 @@
 #include "scene/gltf/gltf_context.h"
 #include "scene/gltf/gltf_draco.h"
 #include "scene/gltf/gltf_files.h"
+#include "scene/gltf/gltf_medium.h"
 #include "scene/gltf/gltf_parse.h"
 #include "scene/gltf/gltf_scene_builder.h"
 #include "scene/gltf/gltf_spec_gloss.h"
@@ -42,6 +43,7 @@ Scene load_bytes(const std::vector<unsigned char>& bytes, const std::string& bas
                  "glossiness (docs/scenes.md, \"Scenes and conventions\")");
     SceneBuilder(model, ctx, scene).build();
     read_file_world(model, base, ctx, scene);
+    read_file_medium(model, ctx, scene);
     return scene;
 }
 

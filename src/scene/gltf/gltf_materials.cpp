@@ -98,6 +98,8 @@ dev::Material MaterialConverter::convert_material(int index) {
     convert_iridescence(g, label, m);
     convert_anisotropy(g, label, m);
     convert_diffuse_transmission(g, label, m);
+    // Only light that passes the surface meets the volume: an opaque mesh keeps the world's medium outside.
+    if (!(m.transmission > 0.f) && !(m.diffuse_transmission > 0.f)) m.flags &= ~MATERIAL_FLAG_ENCLOSES_VOLUME;
     convert_dispersion(g, label, m);
     if (g.doubleSided) m.flags |= MATERIAL_FLAG_DOUBLE_SIDED;
     if (g.extensions.count("KHR_materials_unlit")) convert_unlit(m);
@@ -314,6 +316,7 @@ void MaterialConverter::convert_volume(const tinygltf::Material& g, const std::s
         has_volume ? extension_number(g.extensions, "KHR_materials_volume", "thicknessFactor", 0.0) : 0.0;
     if (m.transmission > 0.f && !(thickness > 0.0)) m.flags |= MATERIAL_FLAG_THIN_WALLED;
     if (!has_volume) return;
+    if (thickness > 0.0) m.flags |= MATERIAL_FLAG_ENCLOSES_VOLUME;
     const tinygltf::Value& v = it->second;
     double distance = extension_number(g.extensions, "KHR_materials_volume", "attenuationDistance", INFINITY);
     if (!(distance > 0.0)) ctx_.fail(label + " KHR_materials_volume attenuationDistance must be positive");

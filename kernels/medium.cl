@@ -1,0 +1,93 @@
+/* medium.cl: the world's homogeneous participating medium (SceneInfo.medium_*), filling space
+ * outside the closed volumes with the camera inside it: extinction sigma_t, single-scattering
+ * albedo sigma_s / sigma_t per RGB channel, and the Henyey-Greenstein phase function.
+ *
+ * Which medium a segment runs in is told by the surface it ends on (the paths need no stack): a
+ * segment that reaches the back face of a mesh whose material encloses a volume
+ * (MATERIAL_FLAG_ENCLOSES_VOLUME: transmission with KHR_materials_volume) ran inside that mesh;
+ * every other segment, and one that leaves the scene, ran in the world's medium. A light sample
+ * or a connection from a surface runs inside the mesh when it leaves through the face towards
+ * the inside (as bsdf_segment_transmittance takes it). So a glass sphere in fog, and an absorbing
+ * mesh in fog, hold their own volumes; meshes are taken as closed and not nested in each other.
+ *
+ * Distances are sampled in proportion to sigma_t T with one channel picked in proportion to the
+ * path's throughput, and weighted by the one-sample balance heuristic over the three channels
+ * (the spectral MIS of Mitsuba 3's volpath and of pbrt-v4, in RGB): unbiased for chromatic media,
+ * with weights bounded by 1 / (the picked channel's probability) where the channels differ. */
+#ifndef CLPPM_MEDIUM_CL
+#define CLPPM_MEDIUM_CL
+
+#include "scene.cl"
+
+/* Whether the scene has a world medium (a program built for scenes without one says no at once). */
+bool world_has_medium(__constant SceneInfo* info) { return HAS_MEDIUM && info->medium_sigma_t[3] != 0.0f; }
+
+/* exp(-sigma t) per channel, 1 in channels without extinction (t may be INFINITY). */
+float3 medium_transmittance(float3 sigma, float t) {
+    return (float3)(sigma.x > 0.0f ? exp(-sigma.x * t) : 1.0f, sigma.y > 0.0f ? exp(-sigma.y * t) : 1.0f,
+                    sigma.z > 0.0f ? exp(-sigma.z * t) : 1.0f);
+}
+
+/* Whether the traced segment that ended on sf ran in the world's medium (see the header). */
+bool segment_in_world_medium(SCENE_PARAMS, const Surface* sf) {
+    return sf->front || !(materials[sf->material].flags & MATERIAL_FLAG_ENCLOSES_VOLUME);
+}
+
+/* Whether a straight segment that leaves the surface sf along w runs in the world's medium. */
+bool leaving_in_world_medium(SCENE_PARAMS, const Surface* sf, float3 w) {
+    if (!(materials[sf->material].flags & MATERIAL_FLAG_ENCLOSES_VOLUME)) return true;
+    return sf->front ? dot(w, sf->ng) >= 0.0f : dot(w, sf->ng) <= 0.0f;
+}
+
+/* The Henyey-Greenstein phase function (Henyey and Greenstein 1941; pbrt-v4 Sec. 11.3.1) at the
+ * cosine between the direction light travelled in and the one it leaves in:
+ * p = (1 - g^2) / (4 pi (1 + g^2 - 2 g cos)^(3/2)), g > 0 forwards. */
+float hg_phase(float cos_theta, float g) {
+    float denom = 1.0f + g * g - 2.0f * g * cos_theta;
+    return (1.0f - g * g) / (4.0f * M_PI_F * denom * sqrt(fmax(denom, 0.0f)));
+}
+
+/* A direction from the phase function about d (the direction light travelled in), by inverting
+ * its distribution of cos theta; *pdf its density, the phase function itself. */
+float3 hg_sample(float3 d, float g, float2 u, float* pdf) {
+    float cos_t;
+    if (fabs(g) < 1e-3f) {
+        cos_t = 1.0f - 2.0f * u.x;
+    } else {
+        float s = (1.0f - g * g) / (1.0f - g + 2.0f * g * u.x);
+        cos_t = (1.0f + g * g - s * s) / (2.0f * g);
+    }
+    cos_t = clamp(cos_t, -1.0f, 1.0f);
+    float sin_t = sqrt(fmax(0.0f, 1.0f - cos_t * cos_t));
+    float2 c = unit_circle(u.y);
+    float3 t, b;
+    make_frame(d, &t, &b);
+    *pdf = hg_phase(cos_t, g);
+    return normalize(t * (sin_t * c.x) + b * (sin_t * c.y) + d * cos_t);
+}
+
+/* One free-flight distance along a segment of length t_max (INFINITY: to the end of the world)
+ * in the world's medium, from the uniforms u (x: the channel, y: the distance). Returns true with
+ * the scattering point's distance in *t and *beta times sigma_s T / pdf, or false with *beta times
+ * T(t_max) / P(no event before t_max). */
+bool medium_sample_distance(__constant SceneInfo* info, float t_max, float2 u, float3* beta, float* t) {
+    float3 sigma = load3c(info->medium_sigma_t);
+    float3 b = fabs(*beta);
+    float sum = b.x + b.y + b.z;
+    float3 pc = sum > 0.0f ? b / sum : (float3)(1.0f / 3.0f);
+    float s = u.x < pc.x || pc.y + pc.z == 0.0f ? sigma.x : u.x < pc.x + pc.y || pc.z == 0.0f ? sigma.y : sigma.z;
+    float ts = s > 0.0f ? -log1p(-u.y) / s : INFINITY;
+    if (ts < t_max) {
+        float3 T = medium_transmittance(sigma, ts);
+        float pdf = dot(pc, sigma * T);
+        *beta = pdf > 0.0f ? *beta * (load3c(info->medium_albedo) * sigma * T) / pdf : (float3)(0.0f);
+        *t = ts;
+        return true;
+    }
+    float3 T = medium_transmittance(sigma, t_max);
+    float p = dot(pc, T);
+    *beta = p > 0.0f ? *beta * T / p : (float3)(0.0f);
+    return false;
+}
+
+#endif
