@@ -27,7 +27,7 @@ export CLPPM_TEST_DEVICE="Intel(R) OpenCL"
 filter='-Sobol.PathTracerKeepsTheMeanAndLowersTheError' # renders: 6 minutes there, covered above
 for t in rng_test sobol_test sampling_test bvh_test ggx_test bsdf_test bsdf_model_test extension_lobes_test \
   multiple_scattering_test light_emission_test vcm_mis_test gather_test ppm_update_test shared_types_test \
-  disc_coverage_test; do
+  disc_coverage_test medium_test; do
   echo "== $t on Intel's CPU runtime"
   "$build/tests/$t" --gtest_brief=1 --gtest_filter="$filter" || status=1
 done

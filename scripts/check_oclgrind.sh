@@ -3,8 +3,8 @@
 # accesses, reads of uninitialised values (--uninitialized) and data races between work items
 # (--data-races). Small renders by every integrator (PPM, SPPM, PPPM, the path tracer, VCM, BPT),
 # error estimation, visual importance (photon chains), an environment map, dispersion, the sun and
-# sky, and the generic kernels (every feature compiled in) on glass. The check passes when
-# oclgrind says nothing at all: any line of its output fails it.
+# sky, the world's medium, and the generic kernels (every feature compiled in) on glass and in
+# fog. The check passes when oclgrind says nothing at all: any line of its output fails it.
 #
 # Three things make oclgrind 21.10 usable here, none of which changes an image:
 #   - -cl-opt-disable: its optimiser turns the kernels' bit tricks into llvm.bitreverse and
@@ -43,6 +43,8 @@ cases=(
   "skylight|$here/scenes/skylight.gltf --integrator pt"
   "generic-pt|$here/scenes/caustic.gltf --integrator pt --generic-kernels"
   "generic-vcm|$here/scenes/caustic.gltf --integrator vcm --generic-kernels"
+  "fog-pt|$here/tests/data/fog_room.gltf --integrator pt"
+  "fog-generic|$here/tests/data/fog_room.gltf --integrator pt --generic-kernels"
 )
 status=0
 for c in "${cases[@]}"; do

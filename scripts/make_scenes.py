@@ -180,6 +180,15 @@ class GltfBuilder:
         world = {k: list(v) if isinstance(v, tuple) else v for k, v in world.items()}
         scenes[self.doc.get("scene", 0)].setdefault("extras", {})["clppm_environment"] = world
 
+    def medium(self, **medium):
+        """The default scene's world medium (extras.clppm_medium): density, albedo, anisotropy
+        (docs/scenes.md, "The world's medium")."""
+        scenes = self._list("scenes")
+        if not scenes:
+            self.scene([])
+        medium = {k: list(v) if isinstance(v, tuple) else v for k, v in medium.items()}
+        scenes[self.doc.get("scene", 0)].setdefault("extras", {})["clppm_medium"] = medium
+
     def has_lights(self):
         """Emissive materials or punctual lights: a scene lit by lights of its own."""
         return any(max(m.get("emissiveFactor", [0.0])) > 0 for m in self.doc.get("materials", [])) or bool(

@@ -1335,13 +1335,40 @@ def dispersion():
     b.write_embedded(out("dispersion_negative.gltf"))
 
 
+def media():
+    """fog_room.gltf: the world's medium (extras.clppm_medium: chromatic density 0.3, 0.4, 0.6,
+    albedo 0.9, 0.8, 0.7, g 0.4) in a closed white room [-2, 2]^3 whose walls face outwards (the
+    camera at (0, 0, 1.5) sees their back faces, which leave the fog where it is), lit by a square
+    ceiling light and a point light, with a glass cube (ior 1.5, a volume that absorbs) that holds
+    its own volume in the fog."""
+    b = GltfBuilder("clppm tests/data/make_test_gltf.py")
+    white = b.material("white", (0.7, 0.7, 0.7), specular=0.0)
+    glass = b.material("glass", (1.0, 1.0, 1.0), roughness=0.0, transmission=1.0, ior=1.5, thickness=1.0,
+                       extensions={"KHR_materials_volume": {"thicknessFactor": 1.0, "attenuationDistance": 1.0,
+                                                            "attenuationColor": [0.9, 0.6, 0.3]}})
+    lamp = b.material("lamp", (0.0, 0.0, 0.0), emissive=(1.0, 1.0, 1.0), emissive_strength=8.0, specular=0.0)
+    room = box_primitive(b, (-2.0, -2.0, -2.0), (2.0, 2.0, 2.0), white)
+    cube = box_primitive(b, (-0.5, -2.0, -1.0), (0.5, -1.0, 0.0), glass)
+    lpos, lnrm, lidx = quad((0.0, 1.99, -0.5), (0.5, 0.0, 0.0), (0.0, 0.0, 0.5))
+    assert lnrm[0] == (0.0, -1.0, 0.0)
+    light = b.primitive(lpos, lidx, lnrm, material=lamp)
+    point = b.light({"name": "point", "type": "point", "color": [1.0, 0.9, 0.8], "intensity": 3.0})
+    cam = b.camera(1.2, 1.0)
+    b.scene([b.node(name="room", mesh=b.mesh([room, cube, light])),
+             b.node(name="point", light=point, translation=[1.0, 0.5, -1.0]),
+             b.node(name="camera", camera=cam, translation=[0.0, 0.0, 1.5])])
+    b.world(color=(0.0, 0.0, 0.0))
+    b.medium(density=(0.3, 0.4, 0.6), albedo=(0.9, 0.8, 0.7), anisotropy=0.4)
+    b.write_embedded(out("fog_room.gltf"))
+
+
 def main():
     for make in (hierarchy, index_types, byte_stride, containers, no_normals, degenerate, mirror, metallic_roughness,
                  materials, texture, lights, cameras, quantized, sparse, strips_fans, gpu_instancing, emissive_texture,
                  normal_maps, vertex_colors, alpha_modes,
                  texture_transform, uv1_plates, volumes, skinned, animated,
                  specular_textures, unlit, clearcoat, sheen, iridescence, anisotropy, diffuse_transmission, dispersion,
-                 camera_clipping, reference_scenes, environment_scenes, spread_light, errors):
+                 camera_clipping, reference_scenes, environment_scenes, spread_light, media, errors):
         make()
 
 
