@@ -192,6 +192,7 @@ typedef struct {
     float3 wi, contrib;
     float dist, pdf_w, emission_pdf_w, cos_light;
     bool delta;
+    uint light; /* the light's index (set by sample_chosen_light) */
 } LightSample;
 
 /* Whether sampling light l takes a point (two uniforms) besides its pick. */
@@ -207,6 +208,7 @@ bool sample_chosen_light(SCENE_PARAMS, float3 x, uint l, float2 u, LightSample* 
     s->pdf_w = s->emission_pdf_w = 0.0f;
     s->cos_light = 1.0f;
     s->delta = true;
+    s->light = l;
     __global const Light* L = &lights[l];
     float pick = light_pick_pdf(SCENE_ARGS, l);
     float3 rad = load3g(L->radiance);

@@ -66,15 +66,60 @@ float3 hg_sample(float3 d, float g, float2 u, float* pdf) {
     return normalize(t * (sin_t * c.x) + b * (sin_t * c.y) + d * cos_t);
 }
 
+/* The probabilities of the channel that picks a free flight's distance: in proportion to the
+ * path's throughput beta (uniform when it is black). */
+float3 medium_channel_pick(float3 beta) {
+    float3 b = fabs(beta);
+    float sum = b.x + b.y + b.z;
+    return sum > 0.0f ? b / sum : (float3)(1.0f / 3.0f);
+}
+
+/* The density of a free flight from a path of throughput beta scattering at distance t:
+ * sum over the channels of their pick times sigma_t T(t). */
+float medium_distance_pdf(__constant SceneInfo* info, float3 beta, float t) {
+    float3 sigma = load3c(info->medium_sigma_t);
+    return dot(medium_channel_pick(beta), sigma * medium_transmittance(sigma, t));
+}
+
+/* Equiangular sampling (Kulla and Fajardo 2012, "Importance Sampling Techniques for Path Tracing
+ * in Participating Media", Sec. 4): a distance along the ray o + t d, t in [0, t_max), in
+ * proportion to 1 / r^2 towards the point c, by the angle theta the point subtends:
+ * t = delta + D tan(theta), theta uniform in [theta_a, theta_b], pdf = D / ((theta_b - theta_a)(D^2
+ * + (t - delta)^2)), with delta the foot of c on the ray and D its distance from it. Returns false
+ * where c lies on the ray's line (no angle to sample). */
+bool equiangular_sample(float3 o, float3 d, float t_max, float3 c, float u, float* t, float* pdf) {
+    float3 oc = c - o;
+    float delta = dot(oc, d);
+    float D = length(oc - delta * d);
+    if (!(D > 1e-6f * (fabs(delta) + length(oc)))) return false;
+    float th_a = atan2(-delta, D), th_b = atan2(t_max - delta, D); /* atan2(inf, D) = pi / 2 */
+    if (!(th_b > th_a)) return false;
+    float th = th_a + u * (th_b - th_a);
+    *t = fmax(delta + D * tan(th), 0.0f);
+    float x = *t - delta;
+    *pdf = D / ((th_b - th_a) * (D * D + x * x));
+    return *t < t_max;
+}
+
+/* equiangular_sample's density at t. */
+float equiangular_pdf(float3 o, float3 d, float t_max, float3 c, float t) {
+    float3 oc = c - o;
+    float delta = dot(oc, d);
+    float D = length(oc - delta * d);
+    if (!(D > 1e-6f * (fabs(delta) + length(oc)))) return 0.0f;
+    float th_a = atan2(-delta, D), th_b = atan2(t_max - delta, D);
+    if (!(th_b > th_a)) return 0.0f;
+    float x = t - delta;
+    return D / ((th_b - th_a) * (D * D + x * x));
+}
+
 /* One free-flight distance along a segment of length t_max (INFINITY: to the end of the world)
  * in the world's medium, from the uniforms u (x: the channel, y: the distance). Returns true with
  * the scattering point's distance in *t and *beta times sigma_s T / pdf, or false with *beta times
  * T(t_max) / P(no event before t_max). */
 bool medium_sample_distance(__constant SceneInfo* info, float t_max, float2 u, float3* beta, float* t) {
     float3 sigma = load3c(info->medium_sigma_t);
-    float3 b = fabs(*beta);
-    float sum = b.x + b.y + b.z;
-    float3 pc = sum > 0.0f ? b / sum : (float3)(1.0f / 3.0f);
+    float3 pc = medium_channel_pick(*beta);
     float s = u.x < pc.x || pc.y + pc.z == 0.0f ? sigma.x : u.x < pc.x + pc.y || pc.z == 0.0f ? sigma.y : sigma.z;
     float ts = s > 0.0f ? -log1p(-u.y) / s : INFINITY;
     if (ts < t_max) {

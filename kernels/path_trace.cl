@@ -71,6 +71,29 @@ bool path_light_sample(SCENE_PARAMS, PathSampler* ps, float3 x, bool world_by_bs
     return ok;
 }
 
+/* The point and spot lights' share of the light a segment of the world's medium scatters, by
+ * equiangular sampling towards a light picked as light samples pick (Kulla and Fajardo 2012): the
+ * segment o + t d, t in [0, t_max), of a path of throughput beta (not included) at its start. Weighed
+ * against the free flight's own light sample by the balance heuristic over the two distance densities:
+ * near a light in thin fog, where free flights rarely stop, this finds the glow around it. */
+float3 equiangular_next_event(SCENE_PARAMS, float3 o, float3 d, float t_max, float3 beta, float share, float2 u) {
+    uint l = pick_light(SCENE_ARGS, share_pick(u.x, share));
+    uint type = lights[l].type;
+    if (!(HAS_POINT_LIGHTS && type == LIGHT_POINT) && !(HAS_SPOT_LIGHTS && type == LIGHT_SPOT)) return (float3)(0.0f);
+    float t, pdf_e;
+    if (!equiangular_sample(o, d, t_max, load3g(lights[l].position), u.y, &t, &pdf_e)) return (float3)(0.0f);
+    float3 x = o + d * t;
+    LightSample ls;
+    if (!sample_chosen_light(SCENE_ARGS, x, l, (float2)(0.0f), &ls)) return (float3)(0.0f);
+    float ph = hg_phase(dot(d, ls.wi), info->medium_albedo[3]);
+    if (!(ph > 0.0f) || trace_occluded(SCENE_ARGS, x, ls.wi, ls.dist)) return (float3)(0.0f);
+    float3 sigma = load3c(info->medium_sigma_t);
+    float3 sigma_s = load3c(info->medium_albedo) * sigma;
+    float p_d = medium_distance_pdf(info, beta, t);
+    return sigma_s * medium_transmittance(sigma, t) * ls.contrib * medium_transmittance(sigma, ls.dist) *
+           (share * ph / (pdf_e + p_d));
+}
+
 /* Light scattered at the medium point p towards -d (d: the direction the path arrived in) from the
  * light sample s: the phase function, the shadow ray and the medium's transmittance along it,
  * weighted by the power heuristic against sampling the phase function. */
@@ -127,14 +150,30 @@ float3 path_sample(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong pass,
         if (HAS_MEDIUM && medium && (!found || segment_in_world_medium(SCENE_ARGS, &sf))) {
             /* The world's medium (kernels/medium.cl): a free flight, and a scattering there with a
              * light sample and a direction from the phase function, or the segment's transmittance. */
-            float3 d = normalize(dir);
+            const float3 d = normalize(dir), beta_seg = beta;
+            const float t_max = found ? sf.t * length(dir) : INFINITY;
+            const float2 u_flight = path_2d(&ps);
+#if HAS_POINT_LIGHTS || HAS_SPOT_LIGHTS
+            const float2 u_eq = path_2d(&ps);
+            if (pick_share > 0.0f)
+                L += beta_seg * equiangular_next_event(SCENE_ARGS, org, d, t_max, beta_seg, pick_share, u_eq);
+#endif
             float t;
-            if (medium_sample_distance(info, found ? sf.t * length(dir) : INFINITY, path_2d(&ps), &beta, &t)) {
+            if (medium_sample_distance(info, t_max, u_flight, &beta, &t)) {
                 float3 p = org + d * t;
                 if (pick_share > 0.0f) {
                     LightSample ls;
                     bool ok = path_light_sample(SCENE_ARGS, &ps, p, world_by_bsdf, pick_share, &ls);
-                    L += beta * medium_next_event(SCENE_ARGS, p, d, ok, &ls);
+                    float3 ne = medium_next_event(SCENE_ARGS, p, d, ok, &ls);
+#if HAS_POINT_LIGHTS || HAS_SPOT_LIGHTS
+                    /* a point or spot light: the balance heuristic against equiangular sampling */
+                    uint type = lights[ls.light].type;
+                    if (ok && ((HAS_POINT_LIGHTS && type == LIGHT_POINT) || (HAS_SPOT_LIGHTS && type == LIGHT_SPOT))) {
+                        float p_d = medium_distance_pdf(info, beta_seg, t);
+                        ne *= p_d / (p_d + equiangular_pdf(org, d, t_max, load3g(lights[ls.light].position), t));
+                    }
+#endif
+                    L += beta * ne;
                 }
                 float pdf;
                 float3 wi = hg_sample(d, info->medium_albedo[3], path_2d(&ps), &pdf);

@@ -110,7 +110,21 @@ def mitsuba_scene(name, tmp, size=SIZE, max_depth=-1, vertex_normals=False):
     assert "color" in world, "only a uniform world is mapped"
     if max(world["color"]) > 0:
         scene["world"] = {"type": "constant", "radiance": {"type": "rgb", "value": list(world["color"])}}
-    has_medium = False
+    # The world's medium (docs/scenes.md, "The world's medium"): Mitsuba's homogeneous medium with
+    # the same extinction, albedo and Henyey-Greenstein g, where the camera is and outside every
+    # transmitting shape; unbounded in both.
+    world_medium = None
+    fog = doc["scenes"][doc.get("scene", 0)].get("extras", {}).get("clppm_medium")
+    if fog is not None:
+        rgb = lambda v: list(v) if isinstance(v, list) else [v] * 3  # noqa: E731
+        density, albedo = rgb(fog["density"]), rgb(fog.get("albedo", 1.0))
+        top = max(density)  # Mitsuba's RGB values are at most 1: scaled
+        world_medium = {"type": "homogeneous", "scale": top,
+                        "sigma_t": {"type": "rgb", "value": [x / top for x in density]},
+                        "albedo": {"type": "rgb", "value": albedo},
+                        "phase": {"type": "hg", "g": fog.get("anisotropy", 0.0)}}
+        scene["world_medium"] = world_medium
+    has_medium = world_medium is not None
     mesh_nodes = 0
     for node in (doc["nodes"][i] for i in doc["scenes"][doc.get("scene", 0)]["nodes"]):
         t = node.get("translation", [0, 0, 0])
@@ -124,6 +138,8 @@ def mitsuba_scene(name, tmp, size=SIZE, max_depth=-1, vertex_normals=False):
                 "film": {"type": "hdrfilm", "width": size, "height": size, "rfilter": {"type": "box"},
                          "pixel_format": "rgb"},
                 "sampler": {"type": "independent"}}
+            if world_medium is not None:
+                scene["sensor"]["medium"] = {"type": "ref", "id": "world_medium"}
             continue
         light = node.get("extensions", {}).get("KHR_lights_punctual", {}).get("light")
         if light is not None:
@@ -182,6 +198,8 @@ def mitsuba_scene(name, tmp, size=SIZE, max_depth=-1, vertex_normals=False):
                                      "sample_visible": True, "int_ior": ior, "ext_ior": 1.0}
                 else:
                     shape["bsdf"] = {"type": "dielectric", "int_ior": ior, "ext_ior": 1.0}
+                if world_medium is not None:
+                    shape["exterior"] = {"type": "ref", "id": "world_medium"}
                 vol = ext.get("KHR_materials_volume", {})
                 if "attenuationDistance" in vol:
                     sigma = [-math.log(c) / vol["attenuationDistance"] for c in vol["attenuationColor"]]
