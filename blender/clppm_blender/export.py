@@ -14,7 +14,7 @@ import os
 import bpy
 
 from . import area_lights, main_thread
-from .world import environment_options
+from .world import environment_options, medium_options
 
 
 def _camera_index(gltf, camera_object):
@@ -156,4 +156,5 @@ def export(depsgraph, directory, warn, cancelled=lambda: False):
     }
     options.update(_depth_of_field(scene, scene.camera))
     options.update(environment_options(scene.world, warn))
+    options.update(medium_options(scene.world, warn))
     return path, options

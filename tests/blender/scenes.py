@@ -105,6 +105,33 @@ def diffuse_room():
     return scene
 
 
+def fog_room():
+    """The diffuse room's objects under a point light and an area light, against black, in a world
+    volume: a Volume Scatter (density 0.12, colour 0.9, 0.8, 0.7, anisotropy 0.3) plus a Volume
+    Absorption (density 0.03, colour 0.5): clppm's world medium against Cycles' world volume."""
+    scene = clear()
+    room_objects()
+    bpy.ops.object.light_add(type="POINT", location=(1.5, -1.0, 2.0))
+    bpy.context.object.data.energy = 400.0
+    bpy.context.object.data.shadow_soft_size = 0.0
+    area_light((-1.0, -1.0, 3.0), (0.0, 0.0, 0.0), 200.0)
+    camera((0.0, -6.0, 3.0), (0.0, 0.0, 0.4))
+    w = world((0.0, 0.0, 0.0))
+    nodes, links = w.node_tree.nodes, w.node_tree.links
+    scatter = nodes.new("ShaderNodeVolumeScatter")
+    scatter.inputs["Color"].default_value = (0.9, 0.8, 0.7, 1.0)
+    scatter.inputs["Density"].default_value = 0.12
+    scatter.inputs["Anisotropy"].default_value = 0.3
+    absorb = nodes.new("ShaderNodeVolumeAbsorption")
+    absorb.inputs["Color"].default_value = (0.5, 0.5, 0.5, 1.0)
+    absorb.inputs["Density"].default_value = 0.03
+    add_shader = nodes.new("ShaderNodeAddShader")
+    links.new(scatter.outputs[0], add_shader.inputs[0])
+    links.new(absorb.outputs[0], add_shader.inputs[1])
+    links.new(add_shader.outputs[0], nodes["World Output"].inputs["Volume"])
+    return scene
+
+
 def punctual_lights():
     """The diffuse room's objects under a point light, a spot light with a soft edge and a sun,
     against black: the exporter's light units and clppm's spot falloff against Cycles'."""
@@ -155,6 +182,7 @@ def render(engine, path, samples=1024, **settings):
         scene.cycles.max_bounces = 16
         scene.cycles.diffuse_bounces = scene.cycles.glossy_bounces = 16
         scene.cycles.transmission_bounces = scene.cycles.transparent_max_bounces = 16
+        scene.cycles.volume_bounces = 16
         scene.cycles.caustics_reflective = scene.cycles.caustics_refractive = True
         scene.cycles.blur_glossy = 0.0
         scene.cycles.sample_clamp_direct = scene.cycles.sample_clamp_indirect = 0.0

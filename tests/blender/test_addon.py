@@ -40,6 +40,21 @@ def test_point_spot_and_sun_lights_match_cycles(tmp_path):
     assert box < 0.01
 
 
+def test_a_world_volume_matches_cycles(tmp_path):
+    """The world's Volume Scatter and Volume Absorption as clppm's world medium (world.py), lit by a
+    point and an area light: the mean within 3% of Cycles' (issue 57's Blender target)."""
+    scenes.fog_room()
+    warnings = []
+    options = export.medium_options(bpy.context.scene.world, warnings.append)
+    assert warnings == []
+    assert options["medium_density"] == pytest.approx((0.123, 0.111, 0.099))
+    assert options["medium_albedo"] == pytest.approx((0.108 / 0.123, 0.096 / 0.111, 0.084 / 0.099))
+    assert options["medium_anisotropy"] == pytest.approx(0.3)
+    _, _, ratio, box = compare("fog_room", tmp_path, clppm_seconds=8.0, samples=512)
+    assert abs(ratio - 1) < 0.03
+    assert box < 0.02
+
+
 def test_a_spots_soft_edge_keeps_its_power():
     # Cycles' smoothstep over w = (1 - c0) blend in cos has the integral w/2; glTF's squared ramp
     # from c0 to c1 has (c1 - c0)/3: equal for c1 = c0 + 3w/4.
