@@ -76,10 +76,22 @@ bool path_light_sample(SCENE_PARAMS, PathSampler* ps, float3 x, bool world_by_bs
  * segment o + t d, t in [0, t_max), of a path of throughput beta (not included) at its start. Weighed
  * against the free flight's own light sample by the balance heuristic over the two distance densities:
  * near a light in thin fog, where free flights rarely stop, this finds the glow around it. */
+#if HAS_POINT_LIGHTS || HAS_SPOT_LIGHTS
+/* Whether light l shines from a point: a point or a spot light. */
+bool light_at_a_point(SCENE_PARAMS, uint l) {
+    uint type = lights[l].type;
+#if HAS_POINT_LIGHTS && HAS_SPOT_LIGHTS
+    return type == LIGHT_POINT || type == LIGHT_SPOT;
+#elif HAS_POINT_LIGHTS
+    return type == LIGHT_POINT;
+#else
+    return type == LIGHT_SPOT;
+#endif
+}
+
 float3 equiangular_next_event(SCENE_PARAMS, float3 o, float3 d, float t_max, float3 beta, float share, float2 u) {
     uint l = pick_light(SCENE_ARGS, share_pick(u.x, share));
-    uint type = lights[l].type;
-    if (!(HAS_POINT_LIGHTS && type == LIGHT_POINT) && !(HAS_SPOT_LIGHTS && type == LIGHT_SPOT)) return (float3)(0.0f);
+    if (!light_at_a_point(SCENE_ARGS, l)) return (float3)(0.0f);
     float t, pdf_e;
     if (!equiangular_sample(o, d, t_max, load3g(lights[l].position), u.y, &t, &pdf_e)) return (float3)(0.0f);
     float3 x = o + d * t;
@@ -93,6 +105,7 @@ float3 equiangular_next_event(SCENE_PARAMS, float3 o, float3 d, float t_max, flo
     return sigma_s * medium_transmittance(sigma, t) * ls.contrib * medium_transmittance(sigma, ls.dist) *
            (share * ph / (pdf_e + p_d));
 }
+#endif
 
 /* Light scattered at the medium point p towards -d (d: the direction the path arrived in) from the
  * light sample s: the phase function, the shadow ray and the medium's transmittance along it,
@@ -150,10 +163,11 @@ float3 path_sample(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong pass,
         if (HAS_MEDIUM && medium && (!found || segment_in_world_medium(SCENE_ARGS, &sf))) {
             /* The world's medium (kernels/medium.cl): a free flight, and a scattering there with a
              * light sample and a direction from the phase function, or the segment's transmittance. */
-            const float3 d = normalize(dir), beta_seg = beta;
+            const float3 d = normalize(dir);
             const float t_max = found ? sf.t * length(dir) : INFINITY;
             const float2 u_flight = path_2d(&ps);
 #if HAS_POINT_LIGHTS || HAS_SPOT_LIGHTS
+            const float3 beta_seg = beta;
             const float2 u_eq = path_2d(&ps);
             if (pick_share > 0.0f)
                 L += beta_seg * equiangular_next_event(SCENE_ARGS, org, d, t_max, beta_seg, pick_share, u_eq);
@@ -167,8 +181,7 @@ float3 path_sample(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong pass,
                     float3 ne = medium_next_event(SCENE_ARGS, p, d, ok, &ls);
 #if HAS_POINT_LIGHTS || HAS_SPOT_LIGHTS
                     /* a point or spot light: the balance heuristic against equiangular sampling */
-                    uint type = lights[ls.light].type;
-                    if (ok && ((HAS_POINT_LIGHTS && type == LIGHT_POINT) || (HAS_SPOT_LIGHTS && type == LIGHT_SPOT))) {
+                    if (ok && light_at_a_point(SCENE_ARGS, ls.light)) {
                         float p_d = medium_distance_pdf(info, beta_seg, t);
                         ne *= p_d / (p_d + equiangular_pdf(org, d, t_max, load3g(lights[ls.light].position), t));
                     }
