@@ -28,9 +28,11 @@ float3 medium_transmittance(float3 sigma, float t) {
                     sigma.z > 0.0f ? exp(-sigma.z * t) : 1.0f);
 }
 
-/* Whether the traced segment that ended on sf ran in the world's medium (see the header). */
-bool segment_in_world_medium(SCENE_PARAMS, const Surface* sf) {
-    return sf->front || !(materials[sf->material].flags & MATERIAL_FLAG_ENCLOSES_VOLUME);
+/* Whether the segment traced along dir that ended at the hit h ran in the world's medium (see the
+ * header): from the hit alone, so that a path that scatters before the surface never builds it. */
+bool segment_in_world_medium(SCENE_PARAMS, float3 dir, const Hit* h) {
+    if (!(materials[shading[h->prim].material].flags & MATERIAL_FLAG_ENCLOSES_VOLUME)) return true;
+    return dot(cross(tris[3 * h->prim + 1].xyz, tris[3 * h->prim + 2].xyz), dir) < 0.0f; /* its front face */
 }
 
 /* Whether a straight segment that leaves the surface sf along w runs in the world's medium. */

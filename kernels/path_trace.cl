@@ -158,13 +158,11 @@ float3 path_sample(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong pass,
     for (uint depth = 0; depth < info->max_bounces; ++depth) {
         Hit hit;
         const bool found = trace_closest(SCENE_ARGS, org, dir, INFINITY, &hit);
-        Surface sf;
-        if (found) sf = make_surface(SCENE_ARGS, dir, &hit);
-        if (HAS_MEDIUM && medium && (!found || segment_in_world_medium(SCENE_ARGS, &sf))) {
+        if (HAS_MEDIUM && medium && (!found || segment_in_world_medium(SCENE_ARGS, dir, &hit))) {
             /* The world's medium (kernels/medium.cl): a free flight, and a scattering there with a
              * light sample and a direction from the phase function, or the segment's transmittance. */
             const float3 d = normalize(dir);
-            const float t_max = found ? sf.t * length(dir) : INFINITY;
+            const float t_max = found ? hit.t * length(dir) : INFINITY;
             const float2 u_flight = path_2d(&ps);
 #if HAS_POINT_LIGHTS || HAS_SPOT_LIGHTS
             const float3 beta_seg = beta;
@@ -211,6 +209,7 @@ float3 path_sample(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong pass,
                      escaped_radiance(SCENE_ARGS, normalize(dir), depth == 0, prev_delta || world_by_bsdf, prev_pdf);
             break;
         }
+        Surface sf = make_surface(SCENE_ARGS, dir, &hit);
         if (HAS_VOLUME) beta *= volume_transmittance(SCENE_ARGS, &sf, sf.t * length(dir));
         float3 le = surface_emission(SCENE_ARGS, &sf, dir);
         if (max3(le) > 0.0f) {
