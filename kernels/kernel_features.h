@@ -35,7 +35,7 @@
     X(HAS_ANISOTROPY, anisotropy, "anisotropy")                                                                        \
     X(HAS_DIFFUSE_TRANSMISSION, diffuse_transmission, "diffuse transmission")                                          \
     X(HAS_DISPERSION, dispersion, "dispersion")                                                                        \
-    X(HAS_MEDIUM, medium, "world medium")
+    X(HAS_MEDIUM, medium, "participating media")
 
 #ifdef __OPENCL_VERSION__
 

@@ -1,11 +1,14 @@
-/* medium.cl: the world's homogeneous participating medium (SceneInfo.medium_*), filling space
- * outside the closed volumes with the camera inside it: extinction sigma_t, single-scattering
- * albedo sigma_s / sigma_t per RGB channel, and the Henyey-Greenstein phase function.
+/* medium.cl: homogeneous participating media: the world's (SceneInfo.medium_*), filling space
+ * outside the closed volumes with the camera inside it, and a closed mesh's own where its material
+ * scatters (Material.scatter): extinction sigma_t, single-scattering albedo sigma_s / sigma_t per
+ * RGB channel, and the Henyey-Greenstein phase function.
  *
  * Which medium a segment runs in is told by the surface it ends on (the paths need no stack): a
  * segment that reaches the back face of a mesh whose material encloses a volume
- * (MATERIAL_FLAG_ENCLOSES_VOLUME: transmission with KHR_materials_volume) ran inside that mesh;
- * every other segment, and one that leaves the scene, ran in the world's medium. A light sample
+ * (MATERIAL_FLAG_ENCLOSES_VOLUME: transmission with KHR_materials_volume) ran inside that mesh, in
+ * the mesh's own medium where KHR_materials_volume_scatter makes it scatter (material_medium) and
+ * through its absorption alone elsewhere (scene.cl volume_transmittance); every other segment, and
+ * one that leaves the scene, ran in the world's medium. A light sample
  * or a connection from a surface runs inside the mesh when it leaves through the face towards
  * the inside (as bsdf_segment_transmittance takes it). So a glass sphere in fog, and an absorbing
  * mesh in fog, hold their own volumes; meshes are taken as closed and not nested in each other.
@@ -19,8 +22,38 @@
 
 #include "scene.cl"
 
+/* A homogeneous medium: extinction, single-scattering albedo, Henyey-Greenstein g. */
+typedef struct {
+    float3 sigma_t, albedo;
+    float g;
+} Medium;
+
 /* Whether the scene has a world medium (a program built for scenes without one says no at once). */
 bool world_has_medium(__constant SceneInfo* info) { return HAS_MEDIUM && info->medium_sigma_t[3] != 0.0f; }
+
+float3 world_sigma_t(__constant SceneInfo* info) { return load3c(info->medium_sigma_t); }
+
+Medium world_medium(__constant SceneInfo* info) {
+    Medium m;
+    m.sigma_t = load3c(info->medium_sigma_t);
+    m.albedo = load3c(info->medium_albedo);
+    m.g = info->medium_albedo[3];
+    return m;
+}
+
+/* Whether material m's volume scatters (KHR_materials_volume_scatter; shared_types.h Material.scatter). */
+bool material_scatters(__global const Material* m) {
+    return HAS_MEDIUM && (m->scatter[0] > 0.0f || m->scatter[1] > 0.0f || m->scatter[2] > 0.0f);
+}
+
+/* The medium inside a mesh of material m: its attenuation is the extinction. */
+Medium material_medium(__global const Material* m) {
+    Medium r;
+    r.sigma_t = load3g(m->attenuation);
+    r.albedo = load3g(m->scatter);
+    r.g = m->scatter[3];
+    return r;
+}
 
 /* exp(-sigma t) per channel, 1 in channels without extinction (t may be INFINITY). */
 float3 medium_transmittance(float3 sigma, float t) {
@@ -78,9 +111,8 @@ float3 medium_channel_pick(float3 beta) {
 
 /* The density of a free flight from a path of throughput beta scattering at distance t:
  * sum over the channels of their pick times sigma_t T(t). */
-float medium_distance_pdf(__constant SceneInfo* info, float3 beta, float t) {
-    float3 sigma = load3c(info->medium_sigma_t);
-    return dot(medium_channel_pick(beta), sigma * medium_transmittance(sigma, t));
+float medium_distance_pdf(const Medium* m, float3 beta, float t) {
+    return dot(medium_channel_pick(beta), m->sigma_t * medium_transmittance(m->sigma_t, t));
 }
 
 /* Equiangular sampling (Kulla and Fajardo 2012, "Importance Sampling Techniques for Path Tracing
@@ -116,18 +148,18 @@ float equiangular_pdf(float3 o, float3 d, float t_max, float3 c, float t) {
 }
 
 /* One free-flight distance along a segment of length t_max (INFINITY: to the end of the world)
- * in the world's medium, from the uniforms u (x: the channel, y: the distance). Returns true with
- * the scattering point's distance in *t and *beta times sigma_s T / pdf, or false with *beta times
+ * in the medium m, from the uniforms u (x: the channel, y: the distance). Returns true with the
+ * scattering point's distance in *t and *beta times sigma_s T / pdf, or false with *beta times
  * T(t_max) / P(no event before t_max). */
-bool medium_sample_distance(__constant SceneInfo* info, float t_max, float2 u, float3* beta, float* t) {
-    float3 sigma = load3c(info->medium_sigma_t);
+bool medium_sample_distance(const Medium* m, float t_max, float2 u, float3* beta, float* t) {
+    float3 sigma = m->sigma_t;
     float3 pc = medium_channel_pick(*beta);
     float s = u.x < pc.x || pc.y + pc.z == 0.0f ? sigma.x : u.x < pc.x + pc.y || pc.z == 0.0f ? sigma.y : sigma.z;
     float ts = s > 0.0f ? -log1p(-u.y) / s : INFINITY;
     if (ts < t_max) {
         float3 T = medium_transmittance(sigma, ts);
         float pdf = dot(pc, sigma * T);
-        *beta = pdf > 0.0f ? *beta * (load3c(info->medium_albedo) * sigma * T) / pdf : (float3)(0.0f);
+        *beta = pdf > 0.0f ? *beta * (m->albedo * sigma * T) / pdf : (float3)(0.0f);
         *t = ts;
         return true;
     }

@@ -89,7 +89,8 @@ bool light_at_a_point(SCENE_PARAMS, uint l) {
 #endif
 }
 
-float3 equiangular_next_event(SCENE_PARAMS, float3 o, float3 d, float t_max, float3 beta, float share, float2 u) {
+float3 equiangular_next_event(SCENE_PARAMS, const Medium* m, float3 o, float3 d, float t_max, float3 beta, float share,
+                              float2 u) {
     uint l = pick_light(SCENE_ARGS, share_pick(u.x, share));
     if (!light_at_a_point(SCENE_ARGS, l)) return (float3)(0.0f);
     float t, pdf_e;
@@ -97,28 +98,26 @@ float3 equiangular_next_event(SCENE_PARAMS, float3 o, float3 d, float t_max, flo
     float3 x = o + d * t;
     LightSample ls;
     if (!sample_chosen_light(SCENE_ARGS, x, l, (float2)(0.0f), &ls)) return (float3)(0.0f);
-    float ph = hg_phase(dot(d, ls.wi), info->medium_albedo[3]);
+    float ph = hg_phase(dot(d, ls.wi), m->g);
     if (!(ph > 0.0f) || trace_occluded(SCENE_ARGS, x, ls.wi, ls.dist)) return (float3)(0.0f);
-    float3 sigma = load3c(info->medium_sigma_t);
-    float3 sigma_s = load3c(info->medium_albedo) * sigma;
-    float p_d = medium_distance_pdf(info, beta, t);
-    return sigma_s * medium_transmittance(sigma, t) * ls.contrib * medium_transmittance(sigma, ls.dist) *
-           (share * ph / (pdf_e + p_d));
+    float p_d = medium_distance_pdf(m, beta, t);
+    return m->albedo * m->sigma_t * medium_transmittance(m->sigma_t, t) * ls.contrib *
+           medium_transmittance(m->sigma_t, ls.dist) * (share * ph / (pdf_e + p_d));
 }
 #endif
 
 /* Light scattered at the medium point p towards -d (d: the direction the path arrived in) from the
  * light sample s: the phase function, the shadow ray and the medium's transmittance along it,
  * weighted by the power heuristic against sampling the phase function. */
-float3 medium_next_event(SCENE_PARAMS, float3 p, float3 d, bool ok, const LightSample* s) {
+float3 medium_next_event(SCENE_PARAMS, const Medium* m, float3 p, float3 d, bool ok, const LightSample* s) {
     if (!ok) return (float3)(0.0f);
     float3 wi, contrib;
     float dist, light_pdf;
     light_sample_out(s, &wi, &dist, &contrib, &light_pdf);
-    float ph = hg_phase(dot(d, wi), info->medium_albedo[3]);
+    float ph = hg_phase(dot(d, wi), m->g);
     if (!(ph > 0.0f) || trace_occluded(SCENE_ARGS, p, wi, dist)) return (float3)(0.0f);
     float mis = light_pdf > 0.0f ? power_heuristic(light_pdf, ph) : 1.0f;
-    return contrib * medium_transmittance(load3c(info->medium_sigma_t), dist) * (ph * mis);
+    return contrib * medium_transmittance(m->sigma_t, dist) * (ph * mis);
 }
 
 /* Pixel `pixel`'s sample of pass `pass` (counted from 1). */
@@ -158,43 +157,60 @@ float3 path_sample(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong pass,
     for (uint depth = 0; depth < info->max_bounces; ++depth) {
         Hit hit;
         const bool found = trace_closest(SCENE_ARGS, org, dir, INFINITY, &hit);
-        if (HAS_MEDIUM && medium && (!found || segment_in_world_medium(SCENE_ARGS, dir, &hit))) {
-            /* The world's medium (kernels/medium.cl): a free flight, and a scattering there with a
-             * light sample and a direction from the phase function, or the segment's transmittance. */
+        /* The medium the segment ran in (kernels/medium.cl): the world's, or a closed mesh's own
+         * that scatters (inside); a mesh that only absorbs takes its toll at the surface below. */
+        Medium med;
+        bool in_medium = false, inside = false;
+        if (HAS_MEDIUM) {
+            if (!found || segment_in_world_medium(SCENE_ARGS, dir, &hit)) {
+                in_medium = medium;
+                if (medium) med = world_medium(info);
+            } else if (material_scatters(&materials[shading[hit.prim].material])) {
+                med = material_medium(&materials[shading[hit.prim].material]);
+                in_medium = inside = true;
+            }
+        }
+        if (HAS_MEDIUM && in_medium) {
+            /* A free flight, and a scattering there with a light sample and a direction from the
+             * phase function, or the segment's transmittance. Inside a closed mesh no shadow ray
+             * leaves (its surface stops them): light arrives through the surface's own vertices,
+             * and what a scattered ray finds counts in full. */
             const float3 d = normalize(dir);
             const float t_max = found ? hit.t * length(dir) : INFINITY;
             const float2 u_flight = path_2d(&ps);
+            const bool light_samples = pick_share > 0.0f && !inside;
 #if HAS_POINT_LIGHTS || HAS_SPOT_LIGHTS
             const float3 beta_seg = beta;
             const float2 u_eq = path_2d(&ps);
-            if (pick_share > 0.0f)
-                L += beta_seg * equiangular_next_event(SCENE_ARGS, org, d, t_max, beta_seg, pick_share, u_eq);
+            if (light_samples)
+                L += beta_seg * equiangular_next_event(SCENE_ARGS, &med, org, d, t_max, beta_seg, pick_share, u_eq);
 #endif
             float t;
-            if (medium_sample_distance(info, t_max, u_flight, &beta, &t)) {
+            if (medium_sample_distance(&med, t_max, u_flight, &beta, &t)) {
                 float3 p = org + d * t;
-                if (pick_share > 0.0f) {
+                if (light_samples) {
                     LightSample ls;
                     bool ok = path_light_sample(SCENE_ARGS, &ps, p, world_by_bsdf, pick_share, &ls);
-                    float3 ne = medium_next_event(SCENE_ARGS, p, d, ok, &ls);
+                    float3 ne = medium_next_event(SCENE_ARGS, &med, p, d, ok, &ls);
 #if HAS_POINT_LIGHTS || HAS_SPOT_LIGHTS
                     /* a point or spot light: the balance heuristic against equiangular sampling */
                     if (ok && light_at_a_point(SCENE_ARGS, ls.light)) {
-                        float p_d = medium_distance_pdf(info, beta_seg, t);
+                        float p_d = medium_distance_pdf(&med, beta_seg, t);
                         ne *= p_d / (p_d + equiangular_pdf(org, d, t_max, load3g(lights[ls.light].position), t));
                     }
 #endif
                     L += beta * ne;
                 }
                 float pdf;
-                float3 wi = hg_sample(d, info->medium_albedo[3], path_2d(&ps), &pdf);
+                float3 wi = hg_sample(d, med.g, path_2d(&ps), &pdf);
                 /* f / pdf = 1: the throughput changes only by the roulette */
                 if (depth >= PATH_RR_DEPTH) {
                     float q = fmin(max3(beta), PATH_RR_MAX_SURVIVAL);
                     if (!(path_1d(&ps) < q)) break;
                     beta /= q;
                 }
-                prev_delta = chain = false;
+                prev_delta = inside; /* no light sample inside: what the ray finds counts in full */
+                chain = false;
                 prev_pdf = pdf;
                 org = p;
                 dir = wi;
@@ -210,7 +226,7 @@ float3 path_sample(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong pass,
             break;
         }
         Surface sf = make_surface(SCENE_ARGS, dir, &hit);
-        if (HAS_VOLUME) beta *= volume_transmittance(SCENE_ARGS, &sf, sf.t * length(dir));
+        if (HAS_VOLUME && !inside) beta *= volume_transmittance(SCENE_ARGS, &sf, sf.t * length(dir));
         float3 le = surface_emission(SCENE_ARGS, &sf, dir);
         if (max3(le) > 0.0f) {
             L += beta * le * (prev_delta ? 1.0f : emission_mis_share(SCENE_ARGS, &sf, dir, prev_pdf, pick_share));
@@ -225,7 +241,7 @@ float3 path_sample(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong pass,
             float3 ne = next_event_from(SCENE_ARGS, &b, sf.p, wo, LOBE_ALL, ok, &ls);
             /* the shadow ray's way through the world's medium */
             if (HAS_MEDIUM && medium && ok && leaving_in_world_medium(SCENE_ARGS, &sf, ls.wi))
-                ne *= medium_transmittance(load3c(info->medium_sigma_t), ls.dist);
+                ne *= medium_transmittance(world_sigma_t(info), ls.dist);
             L += beta * ne;
         }
         BsdfSample s;

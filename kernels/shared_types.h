@@ -136,7 +136,12 @@ typedef struct {
     float diffuse_transmission_color[3]; /* diffuseTransmissionColorFactor (linear RGB) */
     /* KHR_materials_dispersion (kernels/dispersion.cl): 20 / Abbe number; 0: none */
     float dispersion;
-} Material; /* 240 bytes */
+    /* KHR_materials_volume_scatter (kernels/medium.cl): inside a mesh that encloses a volume, the
+     * attenuation above is the extinction sigma_t of a medium that scatters this single-scattering
+     * albedo of it (RGB, from multiscatterColor); [3] the Henyey-Greenstein g (scatterAnisotropy).
+     * All 0: the volume only absorbs. */
+    float scatter[4];
+} Material; /* 256 bytes */
 
 /* Sampler bits of a texture. Wrap per axis (glTF sampler wrapS, wrapT): clamp s, clamp t, mirror
  * s, mirror t; none set is REPEAT. TEXTURE_NEAREST: magFilter NEAREST, the texel the coordinate

@@ -3,7 +3,7 @@
 # accesses, reads of uninitialised values (--uninitialized) and data races between work items
 # (--data-races). Small renders by every integrator (PPM, SPPM, PPPM, the path tracer, VCM, BPT),
 # error estimation, visual importance (photon chains), an environment map, dispersion, the sun and
-# sky, the world's medium, and the generic kernels (every feature compiled in) on glass and in
+# sky, the world's medium and a scattering mesh, and the generic kernels (every feature compiled in) on glass and in
 # fog. The check passes when oclgrind says nothing at all: any line of its output fails it.
 #
 # Three things make oclgrind 21.10 usable here, none of which changes an image:
@@ -45,6 +45,7 @@ cases=(
   "generic-vcm|$here/scenes/caustic.gltf --integrator vcm --generic-kernels"
   "fog-pt|$here/tests/data/fog_room.gltf --integrator pt"
   "fog-generic|$here/tests/data/fog_room.gltf --integrator pt --generic-kernels"
+  "wax-pt|$here/tests/data/wax_block.gltf --integrator pt"
 )
 status=0
 for c in "${cases[@]}"; do

@@ -240,6 +240,73 @@ TEST(Medium, LightSamplesCrossTheMedium) {
     expect_region(img, cam, 4, 20, 1, 0.01, ref, "the plane");
 }
 
+// ---- a mesh's own medium (KHR_materials_volume_scatter) -------------------------------------
+
+namespace {
+
+// glowing_box's room with, just inside its walls, an index-matched glass cube (ior 1: no
+// refraction, no reflection) whose volume scatters: the camera is inside the cube.
+Scene scattering_cube(float rho, std::array<float, 3> sigma, std::array<float, 3> albedo, float g) {
+    Scene scene = glowing_box(rho, 1.f);
+    const uint32_t m = add_material(scene, 1, 1, 1, 0, false, MAT_GLASS, 1.f, 0.f);
+    dev::Material& glass = scene.materials[m];
+    glass.flags |= MATERIAL_FLAG_ENCLOSES_VOLUME;
+    for (int k = 0; k < 3; ++k) glass.attenuation[k] = sigma[size_t(k)], glass.scatter[k] = albedo[size_t(k)];
+    glass.scatter[3] = g;
+    add_box(scene, {0, 0, 0}, 0.999f, m, false);
+    return scene;
+}
+
+} // namespace
+
+// The furnace again with the medium inside a closed mesh: no light samples leave it, so the walls'
+// light reaches the medium through rays the phase function sends out of the cube alone.
+TEST(Medium, ScatteringMeshKeepsTheFurnacesRadiance) {
+    const Image img =
+        render_passes(scattering_cube(0.5f, {0.5f, 1.f, 2.f}, {1.f, 1.f, 1.f}, 0.4f), pt_settings(16, 1024), 512);
+    expect_clean(img);
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(region_mean(img, 0, 0, 16, 16, c), 2.0, 0.03) << "channel " << c;
+}
+
+// The same medium as the world's and as the cube's (which leaves a gap of 0.001 by the walls)
+// renders alike: two ways to the same light, one with light samples and one without.
+TEST(Medium, AMeshsMediumIsTheWorldsMediumInside) {
+    const std::array<float, 3> sigma{0.6f, 1.f, 1.5f}, albedo{0.9f, 0.7f, 0.5f};
+    Scene world = glowing_box(0.5f, 1.f);
+    set_medium(world, sigma, albedo, 0.5f);
+    const Image a = render_passes(world, pt_settings(16, 1024), 256);
+    const Image b = render_passes(scattering_cube(0.5f, sigma, albedo, 0.5f), pt_settings(16, 1024), 1024);
+    expect_clean(b);
+    for (int c = 0; c < 3; ++c) {
+        const double wa = region_mean(a, 0, 0, 16, 16, c), wb = region_mean(b, 0, 0, 16, 16, c);
+        EXPECT_NEAR(wb / wa, 1.0, 0.03) << "channel " << c << ": mesh " << wb << ", world " << wa;
+    }
+}
+
+TEST(Medium, VolumeScatterExtensionIsRead) {
+    const std::string dir = make_temp_dir("medium_scatter");
+    nlohmann::json g = nlohmann::json::parse(slurp(std::string(CLPPM_TEST_DATA) + "/volume_slab.gltf"));
+    g["materials"][0]["extensions"]["KHR_materials_volume_scatter"] = {{"multiscatterColor", {0.5, 0.0, 1.0}},
+                                                                       {"scatterAnisotropy", 0.3}};
+    const std::string path = dir + "/scatter.gltf";
+    std::ofstream(path) << g.dump();
+    const Scene s = load_gltf(path);
+    const dev::Material& m = s.materials[0];
+    // s = 4.09712 + 4.20863 rho - sqrt(9.59217 + 41.6808 rho + 17.7126 rho^2), rho_ss = 1 - s^2
+    EXPECT_NEAR(m.scatter[0], 0.911713, 1e-5);
+    EXPECT_NEAR(m.scatter[1], 0.0, 1e-5) << "a multiscatter albedo of 0 is a single-scattering albedo of 0";
+    EXPECT_NEAR(m.scatter[2], 1.0, 1e-5);
+    EXPECT_FLOAT_EQ(m.scatter[3], 0.3f);
+    EXPECT_TRUE(scene_has_media(s));
+    // Without an attenuation there is nothing to scatter: said, and ignored.
+    g["materials"][0]["extensions"]["KHR_materials_volume"].erase("attenuationDistance");
+    std::ofstream(path) << g.dump();
+    const Scene t = load_gltf(path);
+    EXPECT_EQ(t.materials[0].scatter[0], 0.f);
+    ASSERT_FALSE(t.warnings.empty());
+    EXPECT_NE(t.warnings[0].find("KHR_materials_volume_scatter has no effect"), std::string::npos) << t.warnings[0];
+}
+
 // ---- the file's medium and the options -------------------------------------------------------
 
 namespace {
@@ -336,8 +403,8 @@ TEST(Medium, CommandLineRendersWithThePathTracerAndRefusesTheOthers) {
         EXPECT_NE(
             run_clppm(scene + " --width 16 --height 16 --passes 1 --integrator " + integrator + " -o " + out, &log), 0);
         EXPECT_NE(log.find(std::string("--integrator ") + integrator +
-                           ": the scene has a participating medium (extras.clppm_medium or --medium-density), "
-                           "which only pt renders so far"),
+                           ": the scene has a participating medium (extras.clppm_medium, --medium-density or "
+                           "KHR_materials_volume_scatter), which only pt renders so far"),
                   std::string::npos)
             << log;
     }

@@ -21,7 +21,8 @@ CLPPM_CHECK_SIZE(BvhTriBlock, 40 * BVH_TRI_BLOCK);
 CLPPM_CHECK_OFFSET(BvhTriBlock, prim, 36 * BVH_TRI_BLOCK);
 static_assert(BVH_WIDTH == 4 || BVH_WIDTH == 8, "bvh_traverse.cl has float4 and float8 node tests");
 
-CLPPM_CHECK_SIZE(Material, 240);
+CLPPM_CHECK_SIZE(Material, 256);
+CLPPM_CHECK_OFFSET(Material, scatter, 240);
 CLPPM_CHECK_OFFSET(Material, diffuse_transmission, 212);
 CLPPM_CHECK_OFFSET(Material, diffuse_transmission_color, 224);
 CLPPM_CHECK_OFFSET(Material, dispersion, 236);

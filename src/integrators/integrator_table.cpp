@@ -98,15 +98,16 @@ std::string media_integrators() {
 void require_media_support(const IntegratorRow& row, bool scene_has_medium) {
     if (scene_has_medium && !row.media)
         throw Error(std::string("--integrator ") + row.name +
-                    ": the scene has a participating medium (extras.clppm_medium or --medium-density), which only " +
-                    media_integrators() + " renders so far; pick it, or --no-medium");
+                    ": the scene has a participating medium (extras.clppm_medium, --medium-density or "
+                    "KHR_materials_volume_scatter), which only " +
+                    media_integrators() + " renders so far; pick it, or --no-medium for the world's");
 }
 
 std::unique_ptr<IntegratorBase> make_integrator(const DeviceContext& dc, const DeviceScene& scene,
                                                 const RenderSettings& settings, const cl::Program& program,
                                                 const SecondaryDevices& secondaries) {
     const IntegratorRow& row = integrator_row(settings.integrator);
-    require_media_support(row, scene.info.medium_sigma_t[3] != 0.f);
+    require_media_support(row, scene.media);
     RenderSettings canonical = settings; // the integrators compare names as the table spells them
     canonical.integrator = row.name;
     return row.make(dc, scene, canonical, program, secondaries);

@@ -97,7 +97,7 @@ void RenderJob::choose_integrator(size_t devices) {
     }
     row_ = &integrator_row(s.integrator);
     s.integrator = row_->name;
-    require_media_support(*row_, scene_.medium.present);
+    require_media_support(*row_, scene_has_media(scene_));
     if (s.filter == PixelFilter::Tent && !row_->tent_filter)
         throw Error(std::string("--integrator ") + row_->name +
                     ": light tracing splats with the box filter only; drop --filter tent");

@@ -10,6 +10,7 @@
 #include "scene/bvh_build.h"
 #include "scene/environment.h"
 #include "scene/light_power.h"
+#include "scene/medium.h"
 #include "util/error.h"
 #include "util/narrow_to_float.h"
 
@@ -284,6 +285,7 @@ DeviceScene upload_scene(const DeviceContext& dc, Scene& scene, const SceneSetti
     ds.info.max_bounces = settings.max_bounces;
     ds.info.vertex_colors = scene.colors.empty() ? 0u : 1u;
     ds.info.texcoord1 = scene.uv1.empty() ? 0u : 1u;
+    ds.media = scene_has_media(scene);
     if (scene.medium.present) { // kernels/medium.cl
         const MediumDesc& m = scene.medium.medium;
         for (int k = 0; k < 3; ++k) {

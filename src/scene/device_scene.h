@@ -22,6 +22,7 @@ struct DeviceScene {
     size_t bvh_nodes = 0;
     size_t num_triangles = 0;
     size_t device_bytes = 0;
+    bool media = false;                // a participating medium: the world's or a scattering mesh's (medium.h)
     std::vector<std::string> notes;    // things the user should be told (default camera, ...)
     std::vector<std::string> warnings; // things the user must be told, --quiet or not (dropped lights)
 

@@ -1,6 +1,7 @@
 #include "scene/medium.h"
 
 #include <cmath>
+#include <vector>
 
 #include "util/error.h"
 #include "util/text.h"
@@ -52,6 +53,18 @@ void apply_medium(Scene& scene, const MediumSettings& s, std::string* note) {
     if (note)
         *note = "medium: " + source + ": density " + rgb_text(m.density) + " per scene unit, albedo " +
                 rgb_text(m.albedo) + ", anisotropy " + number_text(m.anisotropy);
+}
+
+bool scene_has_media(const Scene& scene) {
+    if (scene.medium.present) return true;
+    std::vector<bool> used(scene.materials.size(), false);
+    for (const dev::TriShading& t : scene.shading)
+        if (t.material < used.size()) used[t.material] = true;
+    for (size_t i = 0; i < scene.materials.size(); ++i) {
+        const dev::Material& m = scene.materials[i];
+        if (used[i] && (m.scatter[0] > 0.f || m.scatter[1] > 0.f || m.scatter[2] > 0.f)) return true;
+    }
+    return false;
 }
 
 } // namespace clppm

@@ -26,4 +26,8 @@ struct MediumSettings {
 // options that shape a medium the scene does not have, or --no-medium with them.
 void apply_medium(Scene& scene, const MediumSettings& settings, std::string* note);
 
+// Whether the scene has a participating medium: the world's (after apply_medium), or a mesh whose
+// material's volume scatters (KHR_materials_volume_scatter) that some triangle uses.
+bool scene_has_media(const Scene& scene);
+
 } // namespace clppm

@@ -62,7 +62,7 @@ SceneFeatures scene_features(const Scene& scene, const DeviceScene& ds) {
         if (l.type == LIGHT_DIRECTIONAL) f.directional_lights = true;
         if (l.type == LIGHT_ENVIRONMENT) f.env_light = true;
     }
-    f.medium = ds.info.medium_sigma_t[3] != 0.f;
+    f.medium = ds.media;
     f.thin_lens = ds.camera.lens_radius > 0.f;
     f.orthographic = ds.camera.forward[3] != 0.f;
     return f;

@@ -1336,7 +1336,7 @@ def dispersion():
 
 
 def media():
-    """fog_room.gltf: the world's medium (extras.clppm_medium: chromatic density 0.3, 0.4, 0.6,
+    """Media. fog_room.gltf: the world's medium (extras.clppm_medium: chromatic density 0.3, 0.4, 0.6,
     albedo 0.9, 0.8, 0.7, g 0.4) in a closed white room [-2, 2]^3 whose walls face outwards (the
     camera at (0, 0, 1.5) sees their back faces, which leave the fog where it is), lit by a square
     ceiling light and a point light, with a glass cube (ior 1.5, a volume that absorbs) that holds
@@ -1360,6 +1360,36 @@ def media():
     b.world(color=(0.0, 0.0, 0.0))
     b.medium(density=(0.3, 0.4, 0.6), albedo=(0.9, 0.8, 0.7), anisotropy=0.4)
     b.write_embedded(out("fog_room.gltf"))
+    # wax_block.gltf: a translucent solid (KHR_materials_volume_scatter): a block 1 x 1 x 1 on a
+    # white floor whose surface transmits diffusely (diffuseTransmissionFactor 1, colour white)
+    # into a volume of attenuationColor (0.5, 0.3, 0.2) at attenuationDistance 0.2 that scatters
+    # (multiscatterColor 0.9, 0.7, 0.5; scatterAnisotropy 0.2), lit by a point light above and
+    # behind it and a small area light in front, in a black world.
+    b = GltfBuilder("clppm tests/data/make_test_gltf.py")
+    floor = b.material("floor", (0.7, 0.7, 0.7), specular=0.0)
+    wax = b.material("wax", (1.0, 0.95, 0.9), roughness=0.4,
+                     extensions={"KHR_materials_diffuse_transmission": {"diffuseTransmissionFactor": 1.0},
+                                 "KHR_materials_volume": {"thicknessFactor": 1.0, "attenuationDistance": 0.2,
+                                                          "attenuationColor": [0.5, 0.3, 0.2]},
+                                 "KHR_materials_volume_scatter": {"multiscatterColor": [0.9, 0.7, 0.5],
+                                                                  "scatterAnisotropy": 0.2}})
+    lamp = b.material("lamp", (0.0, 0.0, 0.0), emissive=(1.0, 1.0, 1.0), emissive_strength=20.0, specular=0.0)
+    fpos, fnrm, fidx = quad((0.0, 0.0, 0.0), (0.0, 0.0, 3.0), (3.0, 0.0, 0.0))
+    assert fnrm[0] == (0.0, 1.0, 0.0)
+    lpos, lnrm, lidx = quad((0.0, 1.0, 2.0), (0.2, 0.0, 0.0), (0.0, 0.2, 0.0))
+    assert lnrm[0] == (0.0, 0.0, 1.0)
+    lpos, lnrm = [lpos[0], lpos[3], lpos[2], lpos[1]], [(0.0, 0.0, -1.0)] * 4  # facing the block
+    check_front_faces(lpos, lnrm, lidx)
+    block = box_primitive(b, (-0.5, 0.0, -0.5), (0.5, 1.0, 0.5), wax)
+    point = b.light({"name": "point", "type": "point", "color": [1.0, 1.0, 1.0], "intensity": 20.0})
+    cam = b.camera(0.7, 1.0)
+    b.scene([b.node(name="scene", mesh=b.mesh([b.primitive(fpos, fidx, fnrm, material=floor), block,
+                                               b.primitive(lpos, lidx, lnrm, material=lamp)])),
+             b.node(name="point", light=point, translation=[0.5, 2.5, -1.5]),
+             b.node(name="camera", camera=cam, translation=[1.2, 1.4, 3.2],
+                    rotation=look_rotation(sub((0.0, 0.5, 0.0), (1.2, 1.4, 3.2))))])
+    b.world(color=(0.0, 0.0, 0.0))
+    b.write_embedded(out("wax_block.gltf"))
 
 
 def main():

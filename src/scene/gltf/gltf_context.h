@@ -50,7 +50,8 @@ inline const std::set<std::string> kSupportedExtensions = {"KHR_lights_punctual"
                                                            "KHR_materials_iridescence",
                                                            "KHR_materials_anisotropy",
                                                            "KHR_materials_pbrSpecularGlossiness",
-                                                           "KHR_materials_diffuse_transmission"};
+                                                           "KHR_materials_diffuse_transmission",
+                                                           "KHR_materials_volume_scatter"};
 
 // Error messages are one line: tinygltf and nlohmann texts are joined with "; ".
 std::string one_line(const std::string& text);

@@ -41,6 +41,7 @@ private:
     void convert_anisotropy(const tinygltf::Material& g, const std::string& label, dev::Material& m);
     void convert_diffuse_transmission(const tinygltf::Material& g, const std::string& label, dev::Material& m);
     void convert_dispersion(const tinygltf::Material& g, const std::string& label, dev::Material& m);
+    void convert_volume_scatter(const tinygltf::Material& g, const std::string& label, dev::Material& m);
     int32_t extension_texture(const tinygltf::Material& g, const char* extension, const char* key,
                               const std::string& label, bool srgb);
 
