@@ -106,6 +106,16 @@ float3 equiangular_next_event(SCENE_PARAMS, const Medium* m, float3 o, float3 d,
 }
 #endif
 
+/* How far a light sample's light is through the world's medium: a directional light and the
+ * environment lie at infinity, where an unbounded medium lets nothing through (as rays that leave the
+ * scene find); the others at the sample's distance. */
+float medium_light_distance(SCENE_PARAMS, const LightSample* s) {
+    uint type = lights[s->light].type;
+    if (HAS_DIRECTIONAL_LIGHTS && type == LIGHT_DIRECTIONAL) return INFINITY;
+    if (HAS_ENV_LIGHT && type == LIGHT_ENVIRONMENT) return INFINITY;
+    return s->dist;
+}
+
 /* Light scattered at the medium point p towards -d (d: the direction the path arrived in) from the
  * light sample s: the phase function, the shadow ray and the medium's transmittance along it,
  * weighted by the power heuristic against sampling the phase function. */
@@ -117,7 +127,7 @@ float3 medium_next_event(SCENE_PARAMS, const Medium* m, float3 p, float3 d, bool
     float ph = hg_phase(dot(d, wi), m->g);
     if (!(ph > 0.0f) || trace_occluded(SCENE_ARGS, p, wi, dist)) return (float3)(0.0f);
     float mis = light_pdf > 0.0f ? power_heuristic(light_pdf, ph) : 1.0f;
-    return contrib * medium_transmittance(m->sigma_t, dist) * (ph * mis);
+    return contrib * medium_transmittance(m->sigma_t, medium_light_distance(SCENE_ARGS, s)) * (ph * mis);
 }
 
 /* Pixel `pixel`'s sample of pass `pass` (counted from 1). */
@@ -241,7 +251,7 @@ float3 path_sample(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong pass,
             float3 ne = next_event_from(SCENE_ARGS, &b, sf.p, wo, LOBE_ALL, ok, &ls);
             /* the shadow ray's way through the world's medium */
             if (HAS_MEDIUM && medium && ok && leaving_in_world_medium(SCENE_ARGS, &sf, ls.wi))
-                ne *= medium_transmittance(world_sigma_t(info), ls.dist);
+                ne *= medium_transmittance(world_sigma_t(info), medium_light_distance(SCENE_ARGS, &ls));
             L += beta * ne;
         }
         BsdfSample s;

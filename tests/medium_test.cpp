@@ -240,6 +240,28 @@ TEST(Medium, LightSamplesCrossTheMedium) {
     expect_region(img, cam, 4, 20, 1, 0.01, ref, "the plane");
 }
 
+// The sun and the environment lie at infinity: through an unbounded medium nothing of them arrives
+// in a channel with extinction (as rays that leave the scene find, and as Cycles' world volume
+// has it), and all of it in a clear channel.
+TEST(Medium, DistantLightsReachOnlyThroughClearChannels) {
+    const float rho = 0.5f, E = 3.f;
+    Scene scene = plane_under_point_light(rho, 0.f, 1.f);
+    scene.punctual_lights.clear();
+    add_directional_light(scene, {0, -1, 0}, E);
+    Environment env;
+    env.present = true;
+    env.radiance = {0.5f, 0.5f, 0.5f};
+    scene.environment = env;
+    set_medium(scene, {0.f, 0.3f, 0.3f}, {0.5f, 0.5f, 0.5f}, 0.f);
+    const Image img = render_passes(scene, pt_settings(16, 4), 64);
+    expect_clean(img);
+    // The clear channel: the sun's rho E / pi and the world's rho L over the plane's upper side
+    // (the plane, 8 x 8 seen from 3 above, hides little of the sky from its own centre).
+    EXPECT_NEAR(region_mean(img, 6, 6, 10, 10, 0), rho * E / M_PI + rho * 0.5, 0.02);
+    EXPECT_EQ(region_mean(img, 0, 0, 16, 16, 1), 0.0);
+    EXPECT_EQ(region_mean(img, 0, 0, 16, 16, 2), 0.0);
+}
+
 // ---- a mesh's own medium (KHR_materials_volume_scatter) -------------------------------------
 
 namespace {
