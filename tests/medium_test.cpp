@@ -119,24 +119,33 @@ void expect_clean(const Image& img) {
     for (float v : img.rgb) ASSERT_GE(v, 0.f);
 }
 
+// glowing_box's scene rendered by the path tracer at 24 x 24 for 256 passes, checked clean, with its camera.
+struct Rendered {
+    Image img;
+    dev::Camera cam;
+};
+Rendered render_box(const Scene& scene) {
+    const RenderSettings s = pt_settings(24);
+    Rendered r{render_passes(scene, s, 256), camera_of(scene, s)};
+    expect_clean(r.img);
+    return r;
+}
+
 } // namespace
 
 TEST(Medium, AbsorberIsBeerLambert) {
     const std::array<float, 3> sigma{0.3f, 1.f, 2.5f};
     Scene scene = glowing_box(0.f, 1.f);
     set_medium(scene, sigma, {0.f, 0.f, 0.f}, 0.f);
-    const RenderSettings s = pt_settings(24);
-    const Image img = render_passes(scene, s, 256);
-    expect_clean(img);
-    const dev::Camera cam = camera_of(scene, s);
+    const Rendered r = render_box(scene);
     for (int c = 0; c < 3; ++c) {
         auto ref = [&](D3 d) {
             double t_in, t_out;
             slab({0, 0, 0}, d, {0, 0, 0}, 1.0, &t_in, &t_out);
             return std::exp(-sigma[size_t(c)] * t_out);
         };
-        expect_region(img, cam, 0, 24, c, 0.01, ref, "the whole image");
-        expect_region(img, cam, 8, 16, c, 0.015, ref, "the centre");
+        expect_region(r.img, r.cam, 0, 24, c, 0.01, ref, "the whole image");
+        expect_region(r.img, r.cam, 8, 16, c, 0.015, ref, "the centre");
     }
 }
 
@@ -150,10 +159,8 @@ TEST(Medium, AClosedVolumeKeepsTheFogOut) {
     const D3 centre{0, 0, -0.6};
     add_box(scene, {0, 0, -0.6f}, 0.3f, glass, false);
     set_medium(scene, sigma, {0.f, 0.f, 0.f}, 0.f);
-    const RenderSettings s = pt_settings(24);
-    const Image img = render_passes(scene, s, 256);
-    expect_clean(img);
-    const dev::Camera cam = camera_of(scene, s);
+    const Rendered r = render_box(scene);
+    const Image& img = r.img;
     for (int c = 0; c < 3; ++c) {
         auto ref = [&](D3 d) {
             double t_in, t_out, c_in, c_out;
@@ -162,12 +169,12 @@ TEST(Medium, AClosedVolumeKeepsTheFogOut) {
             const double inside = c_out > c_in && c_in > 0 ? c_out - c_in : 0.0;
             return std::exp(-sigma[size_t(c)] * (t_out - inside));
         };
-        expect_region(img, cam, 0, 24, c, 0.01, ref, "the whole image");
-        expect_region(img, cam, 9, 15, c, 0.015, ref, "through the cube");
+        expect_region(img, r.cam, 0, 24, c, 0.01, ref, "the whole image");
+        expect_region(img, r.cam, 9, 15, c, 0.015, ref, "through the cube");
     }
     // The cube is there to be seen: without its volume the centre is darker.
     scene.materials[glass].flags &= ~MATERIAL_FLAG_ENCLOSES_VOLUME;
-    const Image fogged = render_passes(scene, s, 64);
+    const Image fogged = render_passes(scene, pt_settings(24), 64);
     EXPECT_LT(region_mean(fogged, 9, 9, 15, 15, 2), 0.8 * region_mean(img, 9, 9, 15, 15, 2));
 }
 

@@ -6,6 +6,7 @@
 #include "integrators/light_reach.h"
 #include "scene/environment.h"
 #include "scene/medium.h"
+#include "scene/used_materials.h"
 
 namespace clppm {
 
@@ -18,9 +19,7 @@ constexpr float kCausticRoughness = 0.2f;
 
 // The name (or index) of a material some triangle uses that casts caustics; "" when none does.
 std::string caustic_material(const Scene& scene) {
-    std::vector<bool> used(scene.materials.size(), false);
-    for (const dev::TriShading& t : scene.shading)
-        if (t.material < used.size()) used[t.material] = true;
+    const std::vector<bool> used = used_materials(scene);
     for (size_t i = 0; i < scene.materials.size(); ++i) {
         const dev::Material& m = scene.materials[i];
         if (used[i] && (m.transmission > 0.f || (m.metallic > 0.f && m.roughness < kCausticRoughness)))

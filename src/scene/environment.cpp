@@ -8,6 +8,7 @@
 #include "io/radiance_hdr.h"
 #include "io/regular_file.h"
 #include "scene/studio_environment.h"
+#include "scene/used_materials.h"
 #include "util/error.h"
 #include "util/text.h"
 
@@ -35,9 +36,7 @@ constexpr const char* kStudio = "studio"; // --env studio: the built-in studio, 
 } // namespace
 
 bool scene_has_lights(const Scene& scene) {
-    std::vector<bool> used(scene.materials.size(), false);
-    for (const dev::TriShading& t : scene.shading)
-        if (t.material < used.size()) used[t.material] = true;
+    const std::vector<bool> used = used_materials(scene);
     for (size_t i = 0; i < scene.materials.size(); ++i) {
         const dev::Material& m = scene.materials[i];
         if (used[i] && (m.emission[0] > 0.f || m.emission[1] > 0.f || m.emission[2] > 0.f)) return true;

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <vector>
 
+#include "scene/used_materials.h"
 #include "util/error.h"
 #include "util/text.h"
 
@@ -57,9 +58,7 @@ void apply_medium(Scene& scene, const MediumSettings& s, std::string* note) {
 
 bool scene_has_media(const Scene& scene) {
     if (scene.medium.present) return true;
-    std::vector<bool> used(scene.materials.size(), false);
-    for (const dev::TriShading& t : scene.shading)
-        if (t.material < used.size()) used[t.material] = true;
+    const std::vector<bool> used = used_materials(scene);
     for (size_t i = 0; i < scene.materials.size(); ++i) {
         const dev::Material& m = scene.materials[i];
         if (used[i] && (m.scatter[0] > 0.f || m.scatter[1] > 0.f || m.scatter[2] > 0.f)) return true;

@@ -1,13 +1,13 @@
 #include "scene/scene_features.h"
 
+#include "scene/used_materials.h"
+
 namespace clppm {
 
 SceneFeatures scene_features(const Scene& scene, const DeviceScene& ds) {
     SceneFeatures f;
     // Only materials some triangle uses count.
-    std::vector<bool> used(scene.materials.size(), false);
-    for (const dev::TriShading& t : scene.shading)
-        if (t.material < used.size()) used[t.material] = true;
+    const std::vector<bool> used = used_materials(scene);
     for (size_t i = 0; i < scene.materials.size(); ++i) {
         if (!used[i]) continue;
         const dev::Material& m = scene.materials[i];

@@ -5,6 +5,15 @@
 
 namespace clppm::gltf {
 
+const tinygltf::Value* scene_extra(const tinygltf::Model& model, const char* key) {
+    if (model.scenes.empty()) return nullptr;
+    const size_t index = model.defaultScene >= 0 ? size_t(model.defaultScene) : 0;
+    if (index >= model.scenes.size()) return nullptr; // the scene builder has said so
+    const tinygltf::Value& extras = model.scenes[index].extras;
+    if (!extras.IsObject() || !extras.Has(key)) return nullptr;
+    return &extras.Get(key);
+}
+
 std::string one_line(const std::string& text) {
     std::string out;
     bool pending_break = false;

@@ -9,6 +9,8 @@
 #include <utility>
 #include <vector>
 
+#include <tiny_gltf.h>
+
 #include "scene/scene.h"
 #include "util/error.h"
 #include "util/narrow_to_float.h"
@@ -52,6 +54,9 @@ inline const std::set<std::string> kSupportedExtensions = {"KHR_lights_punctual"
                                                            "KHR_materials_pbrSpecularGlossiness",
                                                            "KHR_materials_diffuse_transmission",
                                                            "KHR_materials_volume_scatter"};
+
+// The default scene's (else the first scene's) extras entry `key`; nullptr where there is none.
+const tinygltf::Value* scene_extra(const tinygltf::Model& model, const char* key);
 
 // Error messages are one line: tinygltf and nlohmann texts are joined with "; ".
 std::string one_line(const std::string& text);

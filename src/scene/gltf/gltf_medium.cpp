@@ -34,12 +34,9 @@ std::array<float, 3> rgb_or_number(const tinygltf::Value& v, const std::string& 
 } // namespace
 
 void read_file_medium(const tinygltf::Model& model, LoadContext& ctx, Scene& scene) {
-    if (model.scenes.empty()) return;
-    const size_t index = model.defaultScene >= 0 ? size_t(model.defaultScene) : 0;
-    if (index >= model.scenes.size()) return; // the scene builder has said so
-    const tinygltf::Value& extras = model.scenes[index].extras;
-    if (!extras.IsObject() || !extras.Has("clppm_medium")) return;
-    const tinygltf::Value& e = extras.Get("clppm_medium");
+    const tinygltf::Value* entry = scene_extra(model, "clppm_medium");
+    if (!entry) return;
+    const tinygltf::Value& e = *entry;
     if (!e.IsObject())
         ctx.fail(std::string(kKey) + " must be an object: {\"density\": D, \"albedo\": [r, g, b], \"anisotropy\": g}");
     for (const std::string& key : e.Keys())

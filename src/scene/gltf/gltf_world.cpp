@@ -22,12 +22,9 @@ double number(const tinygltf::Value& v, const std::string& what, LoadContext& ct
 } // namespace
 
 void read_file_world(const tinygltf::Model& model, const std::string& base, LoadContext& ctx, Scene& scene) {
-    if (model.scenes.empty()) return;
-    const size_t index = model.defaultScene >= 0 ? size_t(model.defaultScene) : 0;
-    if (index >= model.scenes.size()) return; // the scene builder has said so
-    const tinygltf::Value& extras = model.scenes[index].extras;
-    if (!extras.IsObject() || !extras.Has("clppm_environment")) return;
-    const tinygltf::Value& e = extras.Get("clppm_environment");
+    const tinygltf::Value* entry = scene_extra(model, "clppm_environment");
+    if (!entry) return;
+    const tinygltf::Value& e = *entry;
     if (!e.IsObject()) ctx.fail(std::string(kKey) + " must be an object: {\"color\": [r, g, b]} or {\"image\": URI}");
     for (const std::string& key : e.Keys())
         if (key != "color" && key != "image" && key != "strength" && key != "rotation")
