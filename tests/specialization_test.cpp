@@ -49,6 +49,20 @@ TEST(Specialization, SameImageAsGenericKernelsOnTheFeatureScenes) {
     }
 }
 
+// The media scenes (the world's fog, a scattering mesh), which the path tracer alone renders.
+TEST(Specialization, SameImageAsGenericKernelsInMedia) {
+    for (const char* file : {"fog_room.gltf", "wax_block.gltf"}) {
+        std::string d = make_temp_dir("spec_media"), out;
+        const std::string args = std::string(CLPPM_TEST_DATA) + "/" + file +
+                                 " --width 32 --height 24 --passes 3 --quiet --no-png --integrator pt";
+        ASSERT_EQ(run_clppm(args + " -o " + d + "/s.exr", &out), 0) << out;
+        ASSERT_EQ(run_clppm(args + " -o " + d + "/g.exr --generic-kernels", &out), 0) << out;
+        const Image s = read_exr(d + "/s.exr");
+        EXPECT_EQ(s.rgb, read_exr(d + "/g.exr").rgb) << file;
+        EXPECT_GT(mean_radiance(s), 0.0) << file;
+    }
+}
+
 TEST(Specialization, BuildOptionsRemoveWhatTheSceneDoesNotUse) {
     Scene box = load_default_scene();
     Scene furnace = load_gltf(std::string(CLPPM_SCENES_DIR) + "/furnace.gltf");
@@ -68,6 +82,6 @@ TEST(Specialization, BuildOptionsRemoveWhatTheSceneDoesNotUse) {
         "-DHAS_VERTEX_COLORS=0 -DHAS_ALPHA=0 -DHAS_VOLUME=0 -DHAS_POINT_LIGHTS=0 -DHAS_SPOT_LIGHTS=0 "
         "-DHAS_DIRECTIONAL_LIGHTS=0 -DHAS_ENV_LIGHT=0 -DHAS_THIN_LENS=0 -DHAS_EMISSION_SPREAD=0 -DHAS_UNLIT=0 "
         "-DHAS_CLEARCOAT=0 -DHAS_SHEEN=0 -DHAS_ORTHOGRAPHIC=0 -DHAS_IRIDESCENCE=0 -DHAS_ANISOTROPY=0 "
-        "-DHAS_DIFFUSE_TRANSMISSION=0 -DHAS_DISPERSION=0");
+        "-DHAS_DIFFUSE_TRANSMISSION=0 -DHAS_DISPERSION=0 -DHAS_MEDIUM=0");
     EXPECT_EQ(feature_build_options(SceneFeatures::all()), "");
 }
