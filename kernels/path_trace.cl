@@ -71,11 +71,6 @@ bool path_light_sample(SCENE_PARAMS, PathSampler* ps, float3 x, bool world_by_bs
     return ok;
 }
 
-/* The point and spot lights' share of the light a segment of the world's medium scatters, by
- * equiangular sampling towards a light picked as light samples pick (Kulla and Fajardo 2012): the
- * segment o + t d, t in [0, t_max), of a path of throughput beta (not included) at its start. Weighed
- * against the free flight's own light sample by the balance heuristic over the two distance densities:
- * near a light in thin fog, where free flights rarely stop, this finds the glow around it. */
 #if HAS_POINT_LIGHTS || HAS_SPOT_LIGHTS
 /* Whether light l shines from a point: a point or a spot light. */
 bool light_at_a_point(SCENE_PARAMS, uint l) {
@@ -89,6 +84,11 @@ bool light_at_a_point(SCENE_PARAMS, uint l) {
 #endif
 }
 
+/* The point and spot lights' share of the light a segment of the world's medium scatters, by
+ * equiangular sampling towards a light picked as light samples pick (Kulla and Fajardo 2012): the
+ * segment o + t d, t in [0, t_max), of a path of throughput beta (not included) at its start. Weighed
+ * against the free flight's own light sample by the balance heuristic over the two distance densities:
+ * near a light in thin fog, where free flights rarely stop, this finds the glow around it. */
 float3 equiangular_next_event(SCENE_PARAMS, const Medium* m, float3 o, float3 d, float t_max, float3 beta, float share,
                               float2 u) {
     uint l = pick_light(SCENE_ARGS, share_pick(u.x, share));
