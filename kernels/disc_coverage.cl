@@ -44,21 +44,26 @@ float3 disc_hit_normal(SCENE_PARAMS, uint prim, float3 dir) {
 }
 
 /* Whether a surface hit by a probe bounds the disc: light passes through a transmissive one (glass
- * standing on the floor leaves the floor under it lit), so it does not. */
-bool disc_opaque(SCENE_PARAMS, uint prim) {
+ * standing on the floor leaves the floor under it lit), so it does not. A chord, which looks for
+ * the surface that holds the photons, stops at a diffusely transmitting one too (translucent):
+ * photons are stored on it (passed, a translucent block's faces all took their discs for ended,
+ * and their gathers were divided by DISC_MIN_COVERAGE: eight times too bright). */
+bool disc_opaque(SCENE_PARAMS, uint prim, bool translucent) {
     __global const Material* m = &materials[shading[prim].material];
+    if (translucent && m->diffuse_transmission > 0.0f) return true;
     return !(m->transmission > 0.0f || m->diffuse_transmission > 0.0f);
 }
 
-/* The first opaque surface along the ray within tmax: transmissive ones are passed (at most
- * DISC_PASS_THROUGH of them, each left a ten-thousandth of tmax behind). hit->t is from org. */
+/* The first opaque surface along the ray within tmax (with translucent: or diffusely transmitting,
+ * disc_opaque): transmissive ones are passed (at most DISC_PASS_THROUGH of them, each left a
+ * ten-thousandth of tmax behind). hit->t is from org. */
 #define DISC_PASS_THROUGH 4
-bool disc_trace_opaque(SCENE_PARAMS, float3 org, float3 dir, float tmax, Hit* hit) {
+bool disc_trace_opaque(SCENE_PARAMS, float3 org, float3 dir, float tmax, bool translucent, Hit* hit) {
     float start = 0.0f;
     for (int k = 0; k <= DISC_PASS_THROUGH; ++k) {
         if (!trace_closest(SCENE_ARGS, org + dir * start, dir, tmax - start, hit)) return false;
         hit->t += start;
-        if (disc_opaque(SCENE_ARGS, hit->prim)) return true;
+        if (disc_opaque(SCENE_ARGS, hit->prim, translucent)) return true;
         start = hit->t + 1e-4f * tmax;
         if (!(start < tmax)) return false;
     }
@@ -70,7 +75,7 @@ bool disc_trace_opaque(SCENE_PARAMS, float3 org, float3 dir, float tmax, Hit* hi
 bool disc_surface_at(SCENE_PARAMS, float3 p, float3 dir, float e, float3 n, float r) {
     const float h = sqrt(fmax(r * r - e * e, 0.0f));
     Hit hit;
-    if (!disc_trace_opaque(SCENE_ARGS, p + dir * e + n * h, -n, 2.0f * h, &hit)) return false;
+    if (!disc_trace_opaque(SCENE_ARGS, p + dir * e + n * h, -n, 2.0f * h, true, &hit)) return false;
     return dot(disc_hit_normal(SCENE_ARGS, hit.prim, -n), n) > GATHER_MIN_NORMAL_COS;
 }
 
@@ -91,7 +96,7 @@ float2 disc_coverage_at(SCENE_PARAMS, float3 p, float3 n, float r, float u) {
         float e = r;
         Hit hit;
         /* a wall, or an occluder standing on the surface: photons there face another way */
-        if (disc_trace_opaque(SCENE_ARGS, above, dir, r, &hit) &&
+        if (disc_trace_opaque(SCENE_ARGS, above, dir, r, false, &hit) &&
             dot(disc_hit_normal(SCENE_ARGS, hit.prim, dir), n) <= GATHER_MIN_NORMAL_COS)
             e = hit.t;
         /* the surface ends before DISC_REACH e: bisect between p (on it) and there */
@@ -230,7 +235,7 @@ bool disc_is_whole(SCENE_PARAMS, __global const uchar* open_edges, float3 p, flo
                                  cc = (float3)(vf[6], vf[7], vf[8]);
                     if (!(disc_triangle_dist2(p, a, bb, cc) <= rb2)) continue;
                     const uint prim = tri_blocks[b].prim[i];
-                    if (!disc_opaque(SCENE_ARGS, prim)) return false;
+                    if (!disc_opaque(SCENE_ARGS, prim, false)) return false;
                     if (HAS_ALPHA && materials[shading[prim].material].alpha_mode != ALPHA_OPAQUE) return false;
                     const uint edges = open_edges[prim];
                     const bool near0 = (edges & 9u) && disc_segment_dist2(p, a, bb) <= rb2;
