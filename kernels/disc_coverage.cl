@@ -269,7 +269,8 @@ bool disc_is_whole(SCENE_PARAMS, __global const uchar* open_edges, float3 p, flo
 }
 
 /* coverage[i] for every hit point, with this pass's radius: each hit point's own R (PPM, SPPM) or
- * PPPM's global one (global_r2 > 0). 1 where a pixel has no hit point. */
+ * PPPM's global one (global_r2 > 0). 1 where a pixel has no hit point, and for volume hit points
+ * (their spheres are gathered whole). */
 __kernel SCALAR_WORK_ITEMS void disc_coverage(SCENE_PARAMS, __global const uchar* open_edges,
                                               __global const HitPoint* hitpoints, __global const HitStats* stats,
                                               uint num_hitpoints, float global_r2, ulong seed, ulong pass,
@@ -278,7 +279,7 @@ __kernel SCALAR_WORK_ITEMS void disc_coverage(SCENE_PARAMS, __global const uchar
     if (i >= num_hitpoints) return;
     __global const HitPoint* hp = &hitpoints[i];
     float r2 = global_r2 > 0.0f ? global_r2 : (float)stats[i].r2;
-    if (hp->pixel == HITPOINT_NONE || !(r2 > 0.0f)) {
+    if (hp->pixel == HITPOINT_NONE || hitpoint_in_volume(hp) || !(r2 > 0.0f)) {
         coverage[i] = (float2)(1.0f, 1.0f);
         return;
     }

@@ -27,7 +27,9 @@ __kernel SCALAR_WORK_ITEMS void error_gather(GATHER_KERNEL_PARAMS(long)) {
     if (i >= num_hitpoints) return;
     __global const HitPoint* hp = &hitpoints[i];
     long acc = accumulate ? out[i] : 0;
-    if (hp->pixel != HITPOINT_NONE) {
+    /* A volume hit point's light joins its pixel's direct sum (sppm.cl volume_accumulate), whose
+     * passes' spread error_update takes; no Laplacian is estimated for it. */
+    if (hp->pixel != HITPOINT_NONE && !hitpoint_in_volume(hp)) {
         const GatherQuery q = gather_query(hp, stats, i, global_r2, seed, pass, coverage);
         /* The path throughput folded into the luminance weights: one scalar sum per hit point. */
         float3 wy = (float3)(hp->weight[0] * (float)ERROR_LUMINANCE_R, hp->weight[1] * (float)ERROR_LUMINANCE_G,
@@ -87,7 +89,7 @@ __kernel void error_update(__global const PassFlux* pass, __global const long* l
     for (uint k = range.x; k < range.y; ++k) {
         __global const HitPoint* hp = &hitpoints[k];
         const double r2 = global_r2 > 0.0 ? global_r2 : stats[k].r2;
-        if (hp->pixel == HITPOINT_NONE || !(r2 > 0.0)) continue;
+        if (hp->pixel == HITPOINT_NONE || hitpoint_in_volume(hp) || !(r2 > 0.0)) continue;
         __global const PassFlux* pf = &pass[k];
         double tau_y = error_luminance(hp->weight[0] * ((double)pf->flux[0] / FLUX_FIXED_SCALE),
                                        hp->weight[1] * ((double)pf->flux[1] / FLUX_FIXED_SCALE),

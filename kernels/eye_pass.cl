@@ -10,6 +10,8 @@
  * sample's radiance; on the smooth lobes it samples through (not mirrors), the eye path also
  * samples the lights (kernels/next_event.cl), and emission its rays find there is weighted by
  * MIS against that, so no hit point is needed for their direct light.
+ * In a participating medium (kernels/medium.cl) each segment takes a free flight first; where it
+ * collides, the path ends in a volume hit point there (hitpoint.cl store_volume_hitpoint).
  * Stochastic PPM and PPPM build this with EYE_SLOTS 1 and run it every pass with a new `pass`:
  * one visible point per pixel, every choice sampled, new jitter and lens position each pass. */
 #include "portability.h"
@@ -19,6 +21,7 @@
 #include "next_event.cl"
 #include "hitpoint.cl"
 #include "dispersion.cl"
+#include "medium_light.cl"
 
 #ifndef EYE_SLOTS
 #define EYE_SLOTS PPM_EYE_SLOTS /* the host passes -DEYE_SLOTS=PPM_EYE_SLOTS or SPPM_EYE_SLOTS */
@@ -165,13 +168,31 @@ __kernel SCALAR_WORK_ITEMS void eye_pass(SCENE_PARAMS, __constant Camera* cam, u
     while (top > 0) {
         EyeRay r = stack[--top];
         Hit hit;
-        if (!trace_closest(SCENE_ARGS, r.org, r.dir, INFINITY, &hit)) {
+        const bool found = trace_closest(SCENE_ARGS, r.org, r.dir, INFINITY, &hit);
+        bool inside = false;
+        Medium med;
+        if (HAS_MEDIUM && segment_medium(SCENE_ARGS, found, r.dir, &hit, &med, &inside)) {
+            /* A free flight in the medium: a collision makes a volume hit point there (its slot is
+             * this ray's), which gathers the photons stored in media; otherwise the segment's
+             * transmittance over its probability, on to the surface. */
+            const float3 d = normalize(r.dir);
+            const float u0 = rng_float(&rng), u1 = rng_float(&rng);
+            float t;
+            if (medium_sample_distance(&med, found ? hit.t * length(r.dir) : INFINITY, (float2)(u0, u1), &r.weight,
+                                       &t)) {
+                store_volume_hitpoint(&out[stored++], pixel, r.org + d * t, -d, r.weight * med.albedo, med.sigma_t,
+                                      med.g, with_dispersed(camera_footprint(cam, r.path_length + t), r.dispersed));
+                continue;
+            }
+            if (!(max3(r.weight) > 0.0f)) continue;
+        }
+        if (!found) {
             if (HAS_ENV_LIGHT)
                 emitted += r.weight * escaped_radiance(SCENE_ARGS, normalize(r.dir), r.depth == 0, r.delta, r.pdf);
             continue;
         }
         Surface sf = make_surface(SCENE_ARGS, r.dir, &hit);
-        if (HAS_VOLUME) r.weight *= volume_transmittance(SCENE_ARGS, &sf, sf.t * length(r.dir));
+        if (HAS_VOLUME && !inside) r.weight *= volume_transmittance(SCENE_ARGS, &sf, sf.t * length(r.dir));
         float3 le = surface_emission(SCENE_ARGS, &sf, r.dir);
         if (max3(le) > 0.0f) emitted += r.weight * le * (r.delta ? 1.0f : emission_mis(SCENE_ARGS, &sf, r.dir, r.pdf));
         if (HAS_UNLIT && r.chain) emitted += r.weight * surface_unlit(SCENE_ARGS, &sf);
@@ -184,8 +205,13 @@ __kernel SCALAR_WORK_ITEMS void eye_pass(SCENE_PARAMS, __constant Camera* cam, u
          * point gathers their direct light, and a sampled ray never finds a punctual light. */
         if (!bsdf_plain_lambert(&bsdf) && (!bsdf_is_mirror(&bsdf) || (has_coat(&bsdf) && !coat_is_mirror(&bsdf)))) {
             uint followed = eye_followed_lobes(&bsdf);
-            if (lobe_weights(&bsdf, -r.dir, followed).total > 0.0f)
-                emitted += r.weight * next_event(SCENE_ARGS, &bsdf, sf.p, -r.dir, followed, &rng);
+            if (lobe_weights(&bsdf, -r.dir, followed).total > 0.0f) {
+                LightSample ls;
+                const bool ok = sample_light_full(SCENE_ARGS, sf.p, &rng, &ls);
+                float3 ne = next_event_from(SCENE_ARGS, &bsdf, sf.p, -r.dir, followed, ok, &ls);
+                if (HAS_MEDIUM && ok) ne *= surface_light_transmittance(SCENE_ARGS, &sf, &ls);
+                emitted += r.weight * ne;
+            }
         }
         Branch br[MAX_BRANCHES];
         uint nb = surface_branches(&bsdf, -r.dir, r.weight, &rng, br);

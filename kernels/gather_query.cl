@@ -7,15 +7,18 @@
 
 #include "gather_common.cl"
 #include "dispersion.cl"
+#include "medium.cl"
 
 /* The parameters of both gather kernels (gather.cl, error_estimate.cl's error_gather) in the order
  * PhotonMap::enqueue_gather sets them, one call for either: the grid, the photons sorted by cell and
- * each cell's first, the hit points and their statistics, PPPM's radius (global_r2 > 0), whether
+ * each cell's first, the hit points and their statistics, PPPM's radius (global_r2 > 0), the
+ * volume hit points' radius (volume_r2, the same for all of a pass: SppmIntegrator), whether
  * to add to `out` (a pass in several photon batches), the pass's wavelength and disc coverage. */
 #define GATHER_KERNEL_PARAMS(out_type)                                                                                 \
     __constant GridInfo *g, __global const Photon *sorted, __global const uint *starts,                                \
         __global const HitPoint *hitpoints, __global const HitStats *stats, uint num_hitpoints, float global_r2,       \
-        uint accumulate, __global out_type *out, ulong seed, ulong pass, __global const float2 *coverage
+        float volume_r2, uint accumulate, __global out_type *out, ulong seed, ulong pass,                              \
+        __global const float2 *coverage
 
 typedef struct {
     float3 x, n;       /* position and normal */
@@ -48,8 +51,53 @@ float3 gather_photon(const GatherQuery* q, __global const Photon* ph, float3 wi)
     return f * phi;
 }
 
-/* The grid loop of a gather for query q: `...` runs per accepted photon with ph, d2 and wi in scope. */
+/* Whether ph was stored in a medium (shared_types.h PHOTON_VOLUME_FLAG). */
+bool photon_in_volume(__global const Photon* ph) {
+    return HAS_MEDIUM && (as_uint(ph->flux[1]) & PHOTON_VOLUME_FLAG) != 0u;
+}
+
+/* The grid loop of a gather for query q: `...` runs per accepted photon with ph, d2 and wi in scope.
+ * Surfaces take no photon stored in a medium. */
 #define GATHER_QUERY_FOR_EACH_PHOTON(g_, sorted_, starts_, q_, ...)                                                    \
-    GATHER_FOR_EACH_PHOTON(g_, sorted_, starts_, (q_).x, (q_).n, (q_).brdf.both_sides, (q_).r2, __VA_ARGS__)
+    GATHER_FOR_EACH_PHOTON(g_, sorted_, starts_, (q_).x, (q_).n, (q_).brdf.both_sides, (q_).r2, {                      \
+        if (photon_in_volume(ph)) continue;                                                                            \
+        __VA_ARGS__                                                                                                    \
+    })
+
+/* A volume hit point as the gather sees it: the in-scattered radiance at x towards wo is
+ * estimated from the photons stored in media within the sphere of squared radius r2,
+ *   L_s(x, wo) ~ sum_p p(-wi_p . wo) Phi_p / (sigma_t V),  V = 4/3 pi r^3
+ * (Jensen and Christensen 1998, Eq. 10, with the photons' flux times sigma_t T / pdf of their
+ * free flights: Photon); the hit point's weight brings sigma_s T / pdf of the eye path's. The
+ * gather sums p Phi_p / sigma_t; the volume is SppmIntegrator's to divide by. */
+typedef struct {
+    float3 x, wo, inv_sigma_t;
+    float g, r2;
+    PassWavelength pw;
+    bool dispersed;
+} VolumeQuery;
+
+VolumeQuery volume_query(__global const HitPoint* hp, float volume_r2, ulong seed, ulong pass) {
+    VolumeQuery q;
+    q.x = load3g(hp->pos);
+    q.wo = oct_decode(hp->wo_oct);
+    const float3 s = load3g(hp->color);
+    q.inv_sigma_t =
+        (float3)(s.x > 0.0f ? 1.0f / s.x : 0.0f, s.y > 0.0f ? 1.0f / s.y : 0.0f, s.z > 0.0f ? 1.0f / s.z : 0.0f);
+    q.g = hp->f90;
+    q.r2 = volume_r2;
+    q.pw = pass_wavelength(seed, pass);
+    q.dispersed = hitpoint_dispersed(hp);
+    return q;
+}
+
+/* p(-wi . wo) Phi_p / sigma_t of the volume photon ph. */
+float3 gather_volume_photon(const VolumeQuery* q, __global const Photon* ph) {
+    const float3 wi = oct_decode(ph->wi_oct);
+    float3 phi =
+        (float3)(without_dispersed(ph->flux[0]), as_float(as_uint(ph->flux[1]) & ~PHOTON_VOLUME_FLAG), ph->flux[2]);
+    if (HAS_DISPERSION) phi *= merge_dispersion(q->dispersed, is_dispersed(ph->flux[0]), &q->pw);
+    return phi * q->inv_sigma_t * hg_phase(-dot(wi, q->wo), q->g);
+}
 
 #endif

@@ -49,6 +49,40 @@ void store_hitpoint(__global HitPoint* hp, uint pixel, float3 p, float3 wo, floa
     hp->pixel = pixel;
 }
 
+/* Whether hp is a volume hit point (shared_types.h): never in a program for scenes without media. */
+bool hitpoint_in_volume(__global const HitPoint* hp) { return HAS_MEDIUM && hp->alpha == HITPOINT_VOLUME_ALPHA; }
+
+/* A volume hit point at p, seen from wo, in a medium of extinction sigma_t and phase g; weight is
+ * the eye path's throughput times sigma_s T / pdf of its free flight. Every field written. */
+void store_volume_hitpoint(__global HitPoint* hp, uint pixel, float3 p, float3 wo, float3 weight, float3 sigma_t,
+                           float g, float footprint) {
+    HitPoint v;
+    v.pos[0] = p.x;
+    v.pos[1] = p.y;
+    v.pos[2] = p.z;
+    v.pixel = pixel;
+    v.weight[0] = weight.x;
+    v.weight[1] = weight.y;
+    v.weight[2] = weight.z;
+    v.footprint = footprint;
+    v.color[0] = sigma_t.x;
+    v.color[1] = sigma_t.y;
+    v.color[2] = sigma_t.z;
+    v.alpha = HITPOINT_VOLUME_ALPHA;
+    v.f0[0] = v.f0[1] = v.f0[2] = 0.0f;
+    v.f90 = g;
+    v.dielectric = v.metal = 0.0f;
+    v.wo_oct = oct_encode(wo);
+    v.normal_oct = v.ng_oct = v.nl_oct = v.nc_oct = v.wo_oct;
+    v.coat = v.coat_alpha = 0.0f;
+    v.sheen[0] = v.sheen[1] = v.sheen[2] = v.sheen_r = 0.0f;
+    v.irid = v.irid_ior = v.irid_d = 0.0f;
+    v.t_oct = 0u;
+    v.alpha_t = 0.0f;
+    v.translucent[0] = v.translucent[1] = v.translucent[2] = v.dt = 0.0f;
+    *hp = v;
+}
+
 /* The material at the hit point, with shading normal n (decoded once by the caller). */
 Bsdf hitpoint_bsdf(__global const HitPoint* hp, float3 n) {
     Bsdf b;

@@ -74,6 +74,24 @@ bool leaving_in_world_medium(SCENE_PARAMS, const Surface* sf, float3 w) {
     return sf->front ? dot(w, sf->ng) >= 0.0f : dot(w, sf->ng) <= 0.0f;
 }
 
+/* The medium a segment along dir ran in, ending at the hit h (found) or leaving the scene: the
+ * world's, or the scattering medium of the closed mesh it ends inside (*inside). False where the
+ * segment runs in no medium to sample: a clear world, or a mesh that only absorbs (its toll is
+ * taken at the surface, scene.cl volume_transmittance). The one rule of every path (the header). */
+bool segment_medium(SCENE_PARAMS, bool found, float3 dir, const Hit* h, Medium* m, bool* inside) {
+    *inside = false;
+    if (!found || segment_in_world_medium(SCENE_ARGS, dir, h)) {
+        if (!world_has_medium(info)) return false;
+        *m = world_medium(info);
+        return true;
+    }
+    __global const Material* mat = &materials[shading[h->prim].material];
+    if (!material_scatters(mat)) return false;
+    *m = material_medium(mat);
+    *inside = true;
+    return true;
+}
+
 /* The Henyey-Greenstein phase function (Henyey and Greenstein 1941; pbrt-v4 Sec. 11.3.1) at the
  * cosine between the direction light travelled in and the one it leaves in:
  * p = (1 - g^2) / (4 pi (1 + g^2 - 2 g cos)^(3/2)), g > 0 forwards. */
@@ -149,7 +167,8 @@ float equiangular_pdf(float3 o, float3 d, float t_max, float3 c, float t) {
 
 /* One free-flight distance along a segment of length t_max (INFINITY: to the end of the world)
  * in the medium m, from the uniforms u (x: the channel, y: the distance). Returns true with the
- * scattering point's distance in *t and *beta times sigma_s T / pdf, or false with *beta times
+ * collision's distance in *t and *beta times sigma_t T / pdf (the albedo, which a scattering there
+ * takes, is the caller's: photons store the flux that arrives), or false with *beta times
  * T(t_max) / P(no event before t_max). */
 bool medium_sample_distance(const Medium* m, float t_max, float2 u, float3* beta, float* t) {
     float3 sigma = m->sigma_t;
@@ -159,7 +178,7 @@ bool medium_sample_distance(const Medium* m, float t_max, float2 u, float3* beta
     if (ts < t_max) {
         float3 T = medium_transmittance(sigma, ts);
         float pdf = dot(pc, sigma * T);
-        *beta = pdf > 0.0f ? *beta * (m->albedo * sigma * T) / pdf : (float3)(0.0f);
+        *beta = pdf > 0.0f ? *beta * (sigma * T) / pdf : (float3)(0.0f);
         *t = ts;
         return true;
     }

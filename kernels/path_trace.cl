@@ -18,6 +18,7 @@
 #include "mean_film.cl"
 #include "dispersion.cl"
 #include "medium.cl"
+#include "medium_light.cl"
 
 /* The path's numbers: a pixel's Sobol' points over the passes, or (built with
  * -DPATH_SAMPLER_INDEPENDENT) an independent stream. */
@@ -106,16 +107,6 @@ float3 equiangular_next_event(SCENE_PARAMS, const Medium* m, float3 o, float3 d,
 }
 #endif
 
-/* How far a light sample's light is through the world's medium: a directional light and the
- * environment lie at infinity, where an unbounded medium lets nothing through (as rays that leave the
- * scene find); the others at the sample's distance. */
-float medium_light_distance(SCENE_PARAMS, const LightSample* s) {
-    uint type = lights[s->light].type;
-    if (HAS_DIRECTIONAL_LIGHTS && type == LIGHT_DIRECTIONAL) return INFINITY;
-    if (HAS_ENV_LIGHT && type == LIGHT_ENVIRONMENT) return INFINITY;
-    return s->dist;
-}
-
 /* Light scattered at the medium point p towards -d (d: the direction the path arrived in) from the
  * light sample s: the phase function, the shadow ray and the medium's transmittance along it,
  * weighted by the power heuristic against sampling the phase function. */
@@ -127,7 +118,7 @@ float3 medium_next_event(SCENE_PARAMS, const Medium* m, float3 p, float3 d, bool
     float ph = hg_phase(dot(d, wi), m->g);
     if (!(ph > 0.0f) || trace_occluded(SCENE_ARGS, p, wi, dist)) return (float3)(0.0f);
     float mis = light_pdf > 0.0f ? power_heuristic(light_pdf, ph) : 1.0f;
-    return contrib * medium_transmittance(m->sigma_t, medium_light_distance(SCENE_ARGS, s)) * (ph * mis);
+    return contrib * light_sample_transmittance(SCENE_ARGS, m->sigma_t, s) * (ph * mis);
 }
 
 /* Pixel `pixel`'s sample of pass `pass` (counted from 1). */
@@ -163,24 +154,14 @@ float3 path_sample(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong pass,
                                info->env_light + 1u == info->num_lights && lights[info->env_light].prim == ENV_UNIFORM;
     const float pick_share = world_by_bsdf ? light_cdf[info->env_light] : 1.0f;
     bool dispersed = false; /* the path has met a dispersive surface and carries W (dispersion.cl) */
-    const bool medium = world_has_medium(info);
     for (uint depth = 0; depth < info->max_bounces; ++depth) {
         Hit hit;
         const bool found = trace_closest(SCENE_ARGS, org, dir, INFINITY, &hit);
         /* The medium the segment ran in (kernels/medium.cl): the world's, or a closed mesh's own
          * that scatters (inside); a mesh that only absorbs takes its toll at the surface below. */
         Medium med;
-        bool in_medium = false, inside = false;
-        if (HAS_MEDIUM) {
-            if (!found || segment_in_world_medium(SCENE_ARGS, dir, &hit)) {
-                in_medium = medium;
-                if (medium) med = world_medium(info);
-            } else if (material_scatters(&materials[shading[hit.prim].material])) {
-                med = material_medium(&materials[shading[hit.prim].material]);
-                in_medium = inside = true;
-            }
-        }
-        if (HAS_MEDIUM && in_medium) {
+        bool inside = false;
+        if (HAS_MEDIUM && segment_medium(SCENE_ARGS, found, dir, &hit, &med, &inside)) {
             /* A free flight, and a scattering there with a light sample and a direction from the
              * phase function, or the segment's transmittance. Inside a closed mesh no shadow ray
              * leaves (its surface stops them): light arrives through the surface's own vertices,
@@ -197,6 +178,7 @@ float3 path_sample(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong pass,
 #endif
             float t;
             if (medium_sample_distance(&med, t_max, u_flight, &beta, &t)) {
+                beta *= med.albedo;
                 float3 p = org + d * t;
                 if (light_samples) {
                     LightSample ls;
@@ -249,9 +231,7 @@ float3 path_sample(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong pass,
             LightSample ls;
             bool ok = path_light_sample(SCENE_ARGS, &ps, sf.p, world_by_bsdf, pick_share, &ls);
             float3 ne = next_event_from(SCENE_ARGS, &b, sf.p, wo, LOBE_ALL, ok, &ls);
-            /* the shadow ray's way through the world's medium */
-            if (HAS_MEDIUM && medium && ok && leaving_in_world_medium(SCENE_ARGS, &sf, ls.wi))
-                ne *= medium_transmittance(world_sigma_t(info), medium_light_distance(SCENE_ARGS, &ls));
+            if (HAS_MEDIUM && ok) ne *= surface_light_transmittance(SCENE_ARGS, &sf, &ls);
             L += beta * ne;
         }
         BsdfSample s;

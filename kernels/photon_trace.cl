@@ -13,6 +13,7 @@
 #include "bsdf.cl"
 #include "dispersion.cl"
 #include "hash_grid.cl"
+#include "medium_light.cl"
 
 /* A stored photon: hit point p with normal n, flux, direction wi back along the path. */
 Photon make_photon(float3 p, float3 n, float3 flux, float3 wi, bool dispersed) {
@@ -25,6 +26,13 @@ Photon make_photon(float3 p, float3 n, float3 flux, float3 wi, bool dispersed) {
     ph.flux[1] = flux.y;
     ph.flux[2] = flux.z;
     ph.wi_oct = oct_encode(wi);
+    return ph;
+}
+
+/* A photon stored at a collision in a medium (PHOTON_VOLUME_FLAG): flux times sigma_t T / pdf. */
+Photon make_volume_photon(float3 p, float3 flux, float3 wi, bool dispersed) {
+    Photon ph = make_photon(p, wi, flux, wi, dispersed);
+    ph.flux[1] = as_float(as_uint(ph.flux[1]) | PHOTON_VOLUME_FLAG);
     return ph;
 }
 
@@ -56,20 +64,66 @@ void put_photon(__global Photon* photons, uint capacity, volatile __global uint*
 #define RECORD_PHOTON(ph)
 #endif
 
-/* Traces one photon path from rng's numbers and returns how many of its hits it stored. */
+/* Roulette of photons scattered in media (photon_path), as Mitsuba 3's volpath caps its survival. */
+#define PHOTON_MEDIUM_RR_DEPTH 5
+#define PHOTON_MEDIUM_RR_SURVIVAL 0.95f
+
+/* Keeps the photon ph found at p (recorded for the chains; stored where seen): 1 if stored. */
+uint keep_photon(const Photon* ph, float3 p, __global Photon* photons, uint capacity,
+                 volatile __global uint* counter SEEN_PARAMS) {
+    RECORD_PHOTON(*ph);
+    if (!PHOTON_SEEN(p)) return 0;
+    put_photon(photons, capacity, counter, ph);
+    return 1;
+}
+
+/* Traces one photon path from rng's numbers and returns how many of its hits it stored. In a
+ * medium (kernels/medium.cl) a free flight may end in a collision, where the photon is stored
+ * (volume hit points gather it) and scatters by the phase function with the albedo as its
+ * survival probability; a collision, like a surface, is one bounce. */
 uint photon_path(SCENE_PARAMS, Rng* rng, const PassWavelength* pw, uint skip_direct, __global Photon* photons,
                  uint capacity, volatile __global uint* counter SEEN_PARAMS) {
-    float3 org, dir, flux;
-    emit_photon(SCENE_ARGS, rng, &org, &dir, &flux);
+    LightEmission e;
+    emit_light(SCENE_ARGS, rng, &e);
+    float3 org = e.org, dir = e.dir, flux = e.flux;
+    if (HAS_MEDIUM) flux *= emitted_through_world_medium(SCENE_ARGS, e.finite);
     if (!(max3(flux) > 0.0f)) return 0;
     bool dispersed = false; /* the photon has met a dispersive surface and carries W (dispersion.cl) */
     uint stored = 0;
 
     for (uint bounce = 0; bounce < info->max_bounces; ++bounce) {
         Hit hit;
-        if (!trace_closest(SCENE_ARGS, org, dir, INFINITY, &hit)) return stored;
+        const bool found = trace_closest(SCENE_ARGS, org, dir, INFINITY, &hit);
+        bool inside = false;
+        Medium med;
+        if (HAS_MEDIUM && segment_medium(SCENE_ARGS, found, dir, &hit, &med, &inside)) {
+            const float3 d = normalize(dir);
+            const float u0 = rng_float(rng), u1 = rng_float(rng);
+            float t;
+            if (medium_sample_distance(&med, found ? hit.t * length(dir) : INFINITY, (float2)(u0, u1), &flux, &t)) {
+                const float3 p = org + d * t;
+                if (!(skip_direct && bounce == 0)) {
+                    const Photon ph = make_volume_photon(p, flux, -d, dispersed);
+                    stored += keep_photon(&ph, p, photons, capacity, counter SEEN_ARGS);
+                }
+                /* after PHOTON_MEDIUM_RR_DEPTH events at most PHOTON_MEDIUM_RR_SURVIVAL survive: in an
+                 * unbounded white medium a photon that leaves the scene would wander forever */
+                const float q =
+                    fmin(max3(med.albedo), bounce >= PHOTON_MEDIUM_RR_DEPTH ? PHOTON_MEDIUM_RR_SURVIVAL : 1.0f);
+                if (q < 1.0f && !(rng_float(rng) < q)) return stored;
+                flux *= med.albedo / q;
+                const float u2 = rng_float(rng), u3 = rng_float(rng);
+                float pdf;
+                dir = hg_sample(d, med.g, (float2)(u2, u3), &pdf);
+                org = p;
+                if (!(max3(flux) > 0.0f)) return stored;
+                continue;
+            }
+            if (!(max3(flux) > 0.0f)) return stored;
+        }
+        if (!found) return stored;
         Surface sf = make_surface(SCENE_ARGS, dir, &hit);
-        if (HAS_VOLUME) {
+        if (HAS_VOLUME && !inside) {
             flux *= volume_transmittance(SCENE_ARGS, &sf, sf.t * length(dir));
             if (!(max3(flux) > 0.0f)) return stored;
         }
@@ -79,11 +133,7 @@ uint photon_path(SCENE_PARAMS, Rng* rng, const PassWavelength* pw, uint skip_dir
         /* Stored where the eye pass puts hit points: on surfaces with lobes the gather keeps. */
         if (!(skip_direct && bounce == 0) && bsdf_has_gathered(&bsdf)) {
             const Photon ph = make_photon(sf.p, sf.ns, flux, wo, dispersed);
-            RECORD_PHOTON(ph);
-            if (PHOTON_SEEN(sf.p)) {
-                put_photon(photons, capacity, counter, &ph);
-                ++stored;
-            }
+            stored += keep_photon(&ph, sf.p, photons, capacity, counter SEEN_ARGS);
         }
         /* The BSDF is reciprocal, so sampling it from the photon's side scatters flux correctly. */
         BsdfSample s;

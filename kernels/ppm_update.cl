@@ -3,6 +3,7 @@
  * in double precision. The gather summed f Phi over the photons; tau_M is that times the hit
  * point's path throughput. */
 #include "shared_types.h"
+#include "hitpoint.cl"
 
 void ppm_update_stats(__global HitStats* s, double M, double3 tau_M, double alpha) {
     if (M <= 0.0) return; /* no photon: nothing changes (Eq. 7 with M = 0) */
@@ -30,7 +31,8 @@ __kernel __attribute__((reqd_work_group_size(PPM_UPDATE_WG, 1, 1))) void ppm_upd
         __global const HitPoint* hp = &hitpoints[i];
         double3 phi = (double3)((double)pf->flux[0], (double)pf->flux[1], (double)pf->flux[2]) / FLUX_FIXED_SCALE;
         double3 w = (double3)(hp->weight[0], hp->weight[1], hp->weight[2]);
-        ppm_update_stats(&stats[i], (double)pf->m, w * phi, alpha);
+        /* a volume hit point's estimate is not progressive per pixel (sppm.cl volume_accumulate) */
+        if (!hitpoint_in_volume(hp)) ppm_update_stats(&stats[i], (double)pf->m, w * phi, alpha);
         float r = (float)sqrt(stats[i].r2);
         mine = (float2)(r, r);
     }

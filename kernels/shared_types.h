@@ -230,7 +230,11 @@ typedef struct {
 
 /* A hit point from the eye pass (Hachisuka et al. 2008, Sec. 4.1): where the eye path first
  * meets a non-specular surface, with what the gather needs to evaluate the BRDF there.
- * Statistics (R, N, tau) live apart in HitStats. */
+ * Statistics (R, N, tau) live apart in HitStats.
+ * A volume hit point, where the eye path scattered in a participating medium (kernels/medium.cl),
+ * has alpha HITPOINT_VOLUME_ALPHA, the medium's sigma_t in color, its Henyey-Greenstein g in f90,
+ * weight the throughput times sigma_s T / pdf of the free flight, and wo_oct; it gathers the
+ * photons stored in media within a sphere (kernels/gather.cl). */
 typedef struct {
     float pos[3];
     u32 pixel;       /* y * width + x; HITPOINT_NONE marks an unused slot */
@@ -263,6 +267,7 @@ typedef struct {
 } HitPoint;               /* 152 bytes */
 
 #define HITPOINT_NONE 0xffffffffu
+#define HITPOINT_VOLUME_ALPHA (-1.0f)
 
 /* What one pass's gather found for one hit point: M and the sum of photon flux, in fixed point
  * (FLUX_FIXED_SCALE) so that the sum does not depend on the order photons are visited in. */
@@ -281,13 +286,19 @@ typedef struct {
     double direct[3]; /* explicit direct lighting: running sum over passes */
 } HitStats;           /* 64 bytes */
 
-/* A photon hit on a non-specular surface. */
+/* A photon hit on a non-specular surface, or (PHOTON_VOLUME_FLAG) a collision in a participating
+ * medium: there flux is what arrived times sigma_t T / pdf of the free flight (kernels/medium.cl),
+ * about the arriving flux itself, so sums stay in range at any density and scene scale, and
+ * normal_oct is unused. */
 typedef struct {
     float pos[3];
     u32 normal_oct; /* surface normal, octahedral 2x16 bits */
     float flux[3];  /* in units of SceneInfo.total_power */
     u32 wi_oct;     /* unit direction towards where the photon came from, octahedral 2x16 */
 } Photon;           /* 32 bytes */
+
+/* The sign bit of Photon.flux[1] marks a photon stored in a medium (flux[0]'s marks dispersion). */
+#define PHOTON_VOLUME_FLAG 0x80000000u
 
 /* The uniform hashed grid over this pass's photons (Sec. 4.3). */
 typedef struct {

@@ -6,6 +6,7 @@
  *        r_{i+1}^2 = r_i^2 (i + alpha)/(i + 1) (Knaus and Zwicker, Eq. 20), and averages the pass
  *        images: HitStats.tau holds the running sum of f Phi / (pi r_i^2). */
 #include "radiance_estimate.cl"
+#include "hitpoint.cl"
 
 __kernel void accumulate_emission(__global const float4* sample_emission, __global HitStats* stats, uint n) {
     uint i = get_global_id(0);
@@ -22,8 +23,26 @@ __kernel void pppm_accumulate(__global const PassFlux* pass, __global const HitP
     uint i = get_global_id(0);
     if (i >= n || pass[i].m == 0) return;
     __global const HitPoint* hp = &hitpoints[i];
+    if (hitpoint_in_volume(hp)) return; /* volume_accumulate */
     for (int c = 0; c < 3; ++c)
         stats[i].tau[c] += (double)hp->weight[c] * ((double)pass[i].flux[c] / FLUX_FIXED_SCALE) * inv_area;
+}
+
+/* A pass's volume hit points (shared_types.h): their estimate from this pass's photons with the
+ * pass's radius r_v, the same for every pixel and shrinking over the passes as probabilistic PPM's
+ * does in three dimensions (Knaus and Zwicker 2011, Sec. 4.3: r_{i+1}^3 = r_i^3 (i + alpha) /
+ * (i + 1)), joins the running sum of the pixel's direct light, which SPPM's and PPPM's films
+ * average over the passes: scale = P / (M 4/3 pi r_v^3), the photons' flux in units of P. So a
+ * pixel may see a surface in one pass and fog in the next; its surface statistics are untouched
+ * by the passes where it saw fog (ppm_update). */
+__kernel void volume_accumulate(__global const PassFlux* pass, __global const HitPoint* hitpoints,
+                                __global HitStats* stats, uint n, double scale) {
+    uint i = get_global_id(0);
+    if (i >= n || pass[i].m == 0) return;
+    __global const HitPoint* hp = &hitpoints[i];
+    if (!hitpoint_in_volume(hp)) return;
+    for (int c = 0; c < 3; ++c)
+        stats[i].direct[c] += (double)hp->weight[c] * ((double)pass[i].flux[c] / FLUX_FIXED_SCALE) * scale;
 }
 
 /* SPPM: L = tau / (pi R^2 N_emitted) + (emission + direct) / passes, one visible point per pixel. */

@@ -3,9 +3,9 @@
 # accesses, reads of uninitialised values (--uninitialized) and data races between work items
 # (--data-races). Small renders by every integrator (PPM, SPPM, PPPM, the path tracer, VCM, BPT),
 # error estimation, visual importance (photon chains), an environment map, dispersion, the sun and
-# sky, the world's medium and a scattering mesh, and the generic kernels (every feature compiled
-# in) on glass and in fog. The check passes when oclgrind says nothing at all: any line of its
-# output fails it.
+# sky, the world's medium and a scattering mesh (the path tracer's and the photons'), and the
+# generic kernels (every feature compiled in) on glass and in fog. The check passes when oclgrind
+# says nothing at all: any line of its output fails it.
 #
 # Three things make oclgrind 21.10 usable here, none of which changes an image:
 #   - -cl-opt-disable: its optimiser turns the kernels' bit tricks into llvm.bitreverse and
@@ -47,6 +47,8 @@ cases=(
   "fog-pt|$here/tests/data/fog_room.gltf --integrator pt"
   "fog-generic|$here/tests/data/fog_room.gltf --integrator pt --generic-kernels"
   "wax-pt|$here/tests/data/wax_block.gltf --integrator pt"
+  "fog-sppm|$here/tests/data/fog_room.gltf --integrator sppm"
+  "wax-pppm|$here/tests/data/wax_block.gltf --integrator pppm"
 )
 status=0
 for c in "${cases[@]}"; do

@@ -5,6 +5,8 @@
 // glossy scene under its own lights, or a scene lit only by its environment; SPPM (so that the
 // error is plain: "no lights") when there is no light at all; SPPM, with visual importance for a
 // directional light, where the lights reach almost nothing the camera sees (light through a gap).
+// In participating media: SPPM where glass or smooth metal focuses the lights into them
+// (volumetric caustics), the path tracer otherwise.
 #include <gtest/gtest.h>
 
 #include "integrators/default_integrator.h"
@@ -39,6 +41,21 @@ TEST(DefaultIntegrator, ADiffuseSceneUnderItsOwnLightsGetsThePathTracer) {
     EXPECT_EQ(default_integrator(s, RenderSettings{}, true).integrator, "pt"); // lamp and sky alike
     EXPECT_EQ(default_integrator(plane_of(MAT_METAL, 0.5f), RenderSettings{}, true).integrator,
               "pt"); // rough metal: no caustic to speak of
+}
+
+TEST(DefaultIntegrator, MediaGetPhotonsForVolumetricCausticsAndThePathTracerOtherwise) {
+    auto fog = [](Scene s) {
+        s.medium.present = true;
+        s.medium.medium = MediumDesc{{0.3f, 0.3f, 0.3f}, {0.9f, 0.9f, 0.9f}, 0.f};
+        s.medium.source = "<test>";
+        return s;
+    };
+    IntegratorChoice c = default_integrator(fog(plane_of(MAT_GLASS)), RenderSettings{}, true);
+    EXPECT_EQ(c.integrator, "sppm");
+    EXPECT_NE(c.reason.find("volumetric caustics"), std::string::npos) << c.reason;
+    c = default_integrator(fog(plane_under_point_light(0.5f, 10.f, 1.f)), RenderSettings{}, true);
+    EXPECT_EQ(c.integrator, "pt");
+    EXPECT_NE(c.reason.find("participating medium"), std::string::npos) << c.reason;
 }
 
 TEST(DefaultIntegrator, GlassOrSmoothMetalGetsVertexConnectionAndMerging) {

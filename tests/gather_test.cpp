@@ -1,10 +1,13 @@
 // The hashed-grid gather (kernels/hash_grid.cl, kernels/gather.cl) against a brute-force gather
 // over all photons: the same photons counted, the same flux sums to the last fixed-point unit,
 // for radii smaller than, equal to and larger than a cell, and hit points on cell boundaries; each
-// hit point's sum divided by its disc's covered fraction (kernels/disc_coverage.cl).
+// hit point's sum divided by its disc's covered fraction (kernels/disc_coverage.cl). Volume hit
+// points (participating media) take the photons stored in media within their sphere, weighted by
+// the phase function over sigma_t, and surfaces never take those.
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <random>
 
 #include "device/kernel_program.h"
@@ -33,6 +36,7 @@ struct GatherCase {
     std::vector<dev::HitStats> stats;
     std::vector<cl_float2> coverage; // (f, g) per hit point; the gather divides by f
     dev::GridInfo grid{};
+    float volume_r2 = 0;
 };
 
 // Photons and hit points on the plane y = 0 (normal +y) and on its underside; some photons
@@ -81,6 +85,12 @@ GatherCase make_case(float cell, float radius, uint32_t n_photons, uint32_t n_hi
     return c;
 }
 
+bool photon_in_volume(const dev::Photon& p) {
+    uint32_t bits;
+    std::memcpy(&bits, &p.flux[1], sizeof bits);
+    return (bits & PHOTON_VOLUME_FLAG) != 0;
+}
+
 // Brute force: every photon against every hit point, the rules written out plainly.
 std::vector<dev::PassFlux> brute_force(const GatherCase& c) {
     std::vector<dev::PassFlux> out(c.hitpoints.size());
@@ -93,7 +103,7 @@ std::vector<dev::PassFlux> brute_force(const GatherCase& c) {
             // Accepted photons arrive from above (wi.y > 0) on an upward face (normal.y > 0): the
             // encodings put y in the upper 16 bits, above the midpoint for positive y.
             bool wi_up = (p.wi_oct >> 16) > 32768, n_up = (p.normal_oct >> 16) > 32768;
-            if (!wi_up || !n_up) continue;
+            if (!wi_up || !n_up || photon_in_volume(p)) continue;
             const float f = 1.0f * 0.31830988618379067154f; // albedo 1 / pi, in float as the kernel
             const float inv_cover = 1.0f / c.coverage[i].s[0];
             for (int k = 0; k < 3; ++k)
@@ -130,8 +140,8 @@ std::vector<dev::PassFlux> device_gather(const GatherCase& c) {
     scatter.setArg(4, sorted);
     gather.setArg(0, grid), gather.setArg(1, sorted), gather.setArg(2, starts), gather.setArg(3, hps);
     gather.setArg(4, stats), gather.setArg(5, cl_uint(c.hitpoints.size())), gather.setArg(6, cl_float(0));
-    gather.setArg(7, cl_uint(0)), gather.setArg(8, out), gather.setArg(9, cl_ulong(1)), gather.setArg(10, cl_ulong(1));
-    gather.setArg(11, coverage);
+    gather.setArg(7, cl_float(c.volume_r2)), gather.setArg(8, cl_uint(0)), gather.setArg(9, out);
+    gather.setArg(10, cl_ulong(1)), gather.setArg(11, cl_ulong(1)), gather.setArg(12, coverage);
     dc.queue.enqueueNDRangeKernel(count, cl::NullRange, cl::NDRange(c.photons.size()));
     dc.queue.enqueueNDRangeKernel(scan, cl::NullRange, cl::NDRange(256), cl::NDRange(256));
     dc.queue.enqueueNDRangeKernel(scatter, cl::NullRange, cl::NDRange(c.photons.size()));
@@ -174,4 +184,94 @@ TEST(Gather, CrowdedHashTableStillCountsEachPhotonOnce) {
     GatherCase c = make_case(0.02f, 0.05f, 20000, 300, false, 7);
     c.grid.table_size = 1024;
     expect_same(c, "crowded table");
+}
+
+namespace {
+
+// Octahedral decoding as in kernels/sampling.cl, in double.
+void unoct(uint32_t e, double w[3]) {
+    double x = double(e & 0xffffu) * (2.0 / 65535.0) - 1, y = double(e >> 16) * (2.0 / 65535.0) - 1;
+    double z = 1 - std::fabs(x) - std::fabs(y), t = std::max(-z, 0.0);
+    x += x >= 0 ? -t : t;
+    y += y >= 0 ? -t : t;
+    const double l = std::sqrt(x * x + y * y + z * z);
+    w[0] = x / l, w[1] = y / l, w[2] = z / l;
+}
+
+} // namespace
+
+// make_case's plane with as many photons again stored in media through the cube around it (half
+// of them lying on the plane, arriving from above on an upward normal, as surface photons the
+// plane's hit points would take), and volume hit points through the cube: the surface sums are
+// still the plane's photons' to the last unit, and each volume hit point sums, over the volume
+// photons within its sphere, flux / sigma_t times the Henyey-Greenstein phase function of the
+// angle between the photon's direction and the way to the eye (relative 1e-5 of the sum: the
+// kernel's float against double here).
+TEST(Gather, VolumeHitPointsTakeTheMediaPhotonsInTheirSphere) {
+    const float cell = 0.05f;
+    GatherCase c = make_case(cell, 1.0f * cell, 20000, 300, false, 8);
+    std::mt19937 rng(9);
+    std::uniform_real_distribution<float> u(-1.f, 1.f), u01(0.f, 1.f);
+    const size_t surfaces = c.hitpoints.size();
+    for (uint32_t i = 0; i < 20000; ++i) {
+        dev::Photon p{};
+        const bool on_plane = i % 2 == 0;
+        p.pos[0] = u(rng), p.pos[1] = on_plane ? 0.f : u(rng), p.pos[2] = u(rng);
+        p.normal_oct = oct(0, 1, 0);
+        const float wx = u(rng), wy = on_plane ? 0.3f + u01(rng) : u(rng), wz = u(rng);
+        const float l = std::sqrt(wx * wx + wy * wy + wz * wz);
+        p.wi_oct = oct(wx / l, wy / l, wz / l);
+        for (int k = 0; k < 3; ++k) p.flux[k] = 0.1f + 2.f * u01(rng);
+        uint32_t bits;
+        std::memcpy(&bits, &p.flux[1], sizeof bits);
+        bits |= PHOTON_VOLUME_FLAG;
+        std::memcpy(&p.flux[1], &bits, sizeof bits);
+        c.photons.push_back(p);
+    }
+    c.grid.num_photons = uint32_t(c.photons.size());
+    c.grid.table_size = 65536;
+    c.volume_r2 = 0.12f * 0.12f;
+    const float gs[3] = {0.f, 0.6f, -0.3f};
+    for (uint32_t i = 0; i < 300; ++i) {
+        dev::HitPoint h{};
+        h.pos[0] = 0.9f * u(rng), h.pos[1] = 0.9f * u(rng), h.pos[2] = 0.9f * u(rng);
+        const float wx = u(rng), wy = u(rng), wz = u(rng), l = std::sqrt(wx * wx + wy * wy + wz * wz);
+        h.wo_oct = oct(wx / l, wy / l, wz / l);
+        for (int k = 0; k < 3; ++k) h.color[k] = 0.5f + 1.5f * u01(rng), h.weight[k] = 1;
+        h.alpha = HITPOINT_VOLUME_ALPHA;
+        h.f90 = gs[i % 3];
+        h.pixel = uint32_t(surfaces + i);
+        c.hitpoints.push_back(h);
+        c.stats.push_back(dev::HitStats{0.01, 0, {0, 0, 0}, {0, 0, 0}});
+        c.coverage.push_back(cl_float2{{1.0f, 1.0f}});
+    }
+    const std::vector<dev::PassFlux> got = device_gather(c), plane = brute_force(c);
+    for (size_t i = 0; i < surfaces; ++i) {
+        ASSERT_EQ(got[i].m, plane[i].m) << "surface hit point " << i << " took a photon stored in a medium";
+        for (int k = 0; k < 3; ++k) ASSERT_EQ(got[i].flux[k], plane[i].flux[k]) << "surface hit point " << i;
+    }
+    uint64_t total = 0;
+    for (size_t i = surfaces; i < c.hitpoints.size(); ++i) {
+        const dev::HitPoint& h = c.hitpoints[i];
+        double wo[3], want[3] = {0, 0, 0};
+        unoct(h.wo_oct, wo);
+        uint32_t m = 0;
+        for (const dev::Photon& p : c.photons) {
+            const float dx = p.pos[0] - h.pos[0], dy = p.pos[1] - h.pos[1], dz = p.pos[2] - h.pos[2];
+            if (!photon_in_volume(p) || dx * dx + dy * dy + dz * dz > c.volume_r2) continue;
+            double wi[3];
+            unoct(p.wi_oct, wi);
+            const double g = h.f90, cos_t = -(wi[0] * wo[0] + wi[1] * wo[1] + wi[2] * wo[2]);
+            const double d = 1 + g * g - 2 * g * cos_t, phase = (1 - g * g) / (4 * M_PI * d * std::sqrt(d));
+            const double flux[3] = {p.flux[0], -p.flux[1], p.flux[2]};
+            for (int k = 0; k < 3; ++k) want[k] += flux[k] / h.color[k] * phase;
+            ++m;
+        }
+        total += m;
+        ASSERT_EQ(got[i].m, m) << "volume hit point " << i;
+        for (int k = 0; k < 3; ++k)
+            ASSERT_NEAR(double(got[i].flux[k]) / FLUX_FIXED_SCALE, want[k], 1e-5 * want[k] + 1e-6)
+                << "volume hit point " << i << ", channel " << k;
+    }
+    EXPECT_GT(total, 300u * 10u) << "the volume hit points must actually gather";
 }

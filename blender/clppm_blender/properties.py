@@ -6,10 +6,11 @@ import bpy
 # The library's integrators in its order, each described as clppm.integrators() describes it
 # (tests/python/test_option_lists.py fails when they part); the labels are the add-on's own.
 INTEGRATORS = [
-    ("auto", "Auto", "The fastest for the scene (pt in a world with a medium, vcm where glass or smooth metal "
-                     "casts caustics from the scene's own lights (sppm for an orthographic camera or --filter tent), "
-                     "sppm where they reach under 5% of what the camera sees directly (light through a gap), pt "
-                     "otherwise; measured: bench/RESULTS.md)"),
+    ("auto", "Auto", "The fastest for the scene (in participating media sppm where glass or smooth metal casts "
+                     "caustics from the scene's own lights (volumetric caustics), pt otherwise; without media vcm "
+                     "where they cast caustics (sppm for an orthographic camera or --filter tent), sppm where the "
+                     "lights reach under 5% of what the camera sees directly (light through a gap), pt otherwise; "
+                     "measured: bench/RESULTS.md)"),
     ("ppm", "PPM", "Progressive photon mapping (fixed hit points, Hachisuka et al. 2008)"),
     ("sppm", "SPPM", "Stochastic PPM (a new eye sample per pixel every pass)"),
     ("pppm", "PPPM", "Probabilistic PPM (independent passes, Knaus and Zwicker 2011)"),

@@ -42,20 +42,27 @@ std::string vcm_obstacle(const Scene& scene, const RenderSettings& settings) {
 } // namespace
 
 const char* const kDefaultIntegratorRule =
-    "pt in a world with a medium, vcm where glass or smooth metal casts caustics from the scene's own lights (sppm for "
-    "an orthographic camera or --filter tent), sppm where they reach under 5% of what the camera sees directly (light "
-    "through a gap), pt otherwise; measured: bench/RESULTS.md";
+    "in participating media sppm where glass or smooth metal casts caustics from the scene's own lights (volumetric "
+    "caustics), pt otherwise; without media vcm where they cast caustics (sppm for an orthographic camera or --filter "
+    "tent), sppm where the lights reach under 5% of what the camera sees directly (light through a gap), pt "
+    "otherwise; measured: bench/RESULTS.md";
 
 IntegratorChoice default_integrator(const Scene& scene, const RenderSettings& settings, bool chains_allowed) {
     const bool own_lights = scene_has_lights(scene);
     if (!own_lights && !scene.environment.present) // no light at all: the error says so
         return {"sppm", "the scene has no lights"};
-    if (scene.medium.present)
-        return {"pt",
-                "the world has a participating medium (" + scene.medium.source + "), which the path tracer renders"};
-    if (scene_has_media(scene))
-        return {"pt", "a mesh's volume scatters (KHR_materials_volume_scatter), which the path tracer renders"};
     const std::string caustic = own_lights ? caustic_material(scene) : "";
+    if (scene_has_media(scene)) {
+        const std::string medium = scene.medium.present
+                                       ? "the world has a participating medium (" + scene.medium.source + ")"
+                                       : "a mesh's volume scatters (KHR_materials_volume_scatter)";
+        if (!caustic.empty())
+            return {"sppm", medium + " and material " + caustic +
+                                " (glass or smooth metal) focuses the scene's lights into it: volumetric caustics, "
+                                "which photons find (--integrator pt for the path tracer)"};
+        return {"pt", medium + ", where the path tracer converges fastest without caustics (--integrator sppm for "
+                               "photon mapping)"};
+    }
     if (!caustic.empty()) {
         // VCM had 20 to 40 times SPPM's box-4 error less on the caustic scenes, measured against
         // references that do not share SPPM's blur (bench/RESULTS.md, "SPPM, the default for

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 namespace clppm {
 
@@ -13,6 +14,12 @@ double initial_radius_heuristic(std::vector<float> footprints, double scene_radi
     double r = 2.0 * double(*mid);
     if (!std::isfinite(r)) r = 1e-3 * diameter;
     return std::clamp(r, 1e-6 * diameter, 0.05 * diameter);
+}
+
+double initial_volume_radius(std::vector<float> footprints, double scene_radius) {
+    const double diameter = 2 * scene_radius;
+    const double r = kVolumeRadiusScale * initial_radius_heuristic(std::move(footprints), scene_radius);
+    return std::clamp(r, 1e-6 * diameter, 0.1 * diameter);
 }
 
 } // namespace clppm

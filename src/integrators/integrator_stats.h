@@ -19,6 +19,8 @@ struct IntegratorStats {
     uint64_t hitpoints = 0;
     double initial_radius = 0;
     double mean_radius = 0;                      // current mean R over hit points (PPM)
+    double initial_volume_radius = 0;            // SPPM and PPPM in media: the volume hit points' first radius
+    double volume_radius = 0;                    // and the next pass's
     std::map<std::string, double> phase_seconds; // device time per phase, from profiling events
     size_t device_bytes = 0;                     // integrator buffers (scene buffers are counted apart)
     size_t photon_bytes = 0;                     // photon and grid buffers

@@ -49,10 +49,10 @@ const std::vector<IntegratorRow> kTable = {
      make<PpmIntegrator>, nullptr, true, kProgressiveRadii, false},
     {"sppm", nullptr, "stochastic PPM (a new eye sample per pixel every pass)", "sppm_program.cl", SPPM_EYE_SLOTS,
      WorkUnit::Photons, kPhotonPasses, true, true, true, "", sppm_memory, photon_memory, make<SppmIntegrator>, nullptr,
-     true, kProgressiveRadii, false},
+     true, kProgressiveRadii, true},
     {"pppm", nullptr, "probabilistic PPM (independent passes, Knaus and Zwicker 2011)", "sppm_program.cl",
      SPPM_EYE_SLOTS, WorkUnit::Photons, kPhotonPasses, true, true, true, "", sppm_memory, photon_memory,
-     make<SppmIntegrator>, nullptr, false, kProbabilisticRadii, false},
+     make<SppmIntegrator>, nullptr, false, kProbabilisticRadii, true},
     {"pt", nullptr, "path tracing", "path_trace.cl", PPM_EYE_SLOTS, WorkUnit::Pixels, kPixelPasses, false, true, true,
      "", pt_memory, no_transport_memory, make<PtIntegrator>, PtIntegrator::warnings, false, 0, true},
     {"vcm", nullptr, "vertex connection and merging (bidirectional path tracing and photon merging under MIS)",
@@ -100,7 +100,7 @@ void require_media_support(const IntegratorRow& row, bool scene_has_medium) {
         throw Error(std::string("--integrator ") + row.name +
                     ": the scene has a participating medium (extras.clppm_medium, --medium-density or "
                     "KHR_materials_volume_scatter), which only " +
-                    media_integrators() + " renders so far; pick it, or --no-medium for the world's");
+                    media_integrators() + " can render so far; pick one, or --no-medium for the world's");
 }
 
 std::unique_ptr<IntegratorBase> make_integrator(const DeviceContext& dc, const DeviceScene& scene,

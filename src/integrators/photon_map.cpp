@@ -49,17 +49,16 @@ size_t PhotonMap::device_bytes() const {
 }
 
 void PhotonMap::run_pass(uint64_t pass, uint32_t first_photon, uint32_t count_photons, const cl::Buffer& hitpoints,
-                         const cl::Buffer& stats, uint32_t n, float global_r2, double typical_radius, double max_radius,
-                         const cl::Buffer& out) {
+                         const cl::Buffer& stats, uint32_t n, const PassRadii& radii, const cl::Buffer& out) {
     batches_ = 0;
     if (count_photons == 0) {
         if (n > 0) fill_buffer(dc_.queue, out, cl_uchar(0), 0, size_t(n) * sizeof(dev::PassFlux));
         return;
     }
-    measure_coverage(pass, hitpoints, stats, n, global_r2);
+    measure_coverage(pass, hitpoints, stats, n, radii.global_r2);
     if (chains_) { // where hit points may gather: cells of the initial radius
-        const double cell = std::max(max_radius, 2.0 * scene_.info.radius / double(1 << 20));
-        chains_->mark(hitpoints, stats, n, global_r2, scene_.bounds_min, cell);
+        const double cell = std::max(radii.max, 2.0 * scene_.info.radius / double(1 << 20));
+        chains_->mark(hitpoints, stats, n, radii.global_r2, scene_.bounds_min, cell);
         chains_->begin_pass();
     }
     // Items: photons [first, first + count), or with chains every chain (one device and process).
@@ -71,8 +70,8 @@ void PhotonMap::run_pass(uint64_t pass, uint32_t first_photon, uint32_t count_ph
         first_item, end_item, [&](uint32_t first, uint32_t count) { trace(pass, first, count); },
         [&](uint32_t, uint32_t, uint32_t stored) {
             if (chains_) chains_->commit_batch();
-            build_grid(stored, typical_radius, max_radius);
-            gather(pass, hitpoints, stats, n, global_r2, batches_ > 0, out);
+            build_grid(stored, radii);
+            gather(pass, hitpoints, stats, n, radii, batches_ > 0, out);
             stats_.photons_stored += stored;
             ++batches_;
         });
@@ -91,28 +90,28 @@ void PhotonMap::trace(uint64_t pass, uint32_t first, uint32_t count) {
     add_event_time(stats_, "photon_trace", ev);
 }
 
-void PhotonMap::build_grid(uint32_t stored, double typical_radius, double max_radius) {
+void PhotonMap::build_grid(uint32_t stored, const PassRadii& radii) {
     const double extent = 2.0 * scene_.info.radius;
-    const double cell = std::max({2.0 * typical_radius, max_radius / 4.0, extent / double(1 << 20)});
+    const double cell = std::max({2.0 * radii.typical, radii.max / 4.0, extent / double(1 << 20)});
     grid_.build(trace_.records(), trace_.sorted(), stored, scene_.bounds_min, cell);
 }
 
-void PhotonMap::gather(uint64_t pass, const cl::Buffer& hitpoints, const cl::Buffer& stats, uint32_t n, float global_r2,
-                       bool accumulate, const cl::Buffer& out) {
+void PhotonMap::gather(uint64_t pass, const cl::Buffer& hitpoints, const cl::Buffer& stats, uint32_t n,
+                       const PassRadii& radii, bool accumulate, const cl::Buffer& out) {
     if (n == 0) return;
-    enqueue_gather(k_gather_, pass, hitpoints, stats, n, global_r2, accumulate, out, "gather");
+    enqueue_gather(k_gather_, pass, hitpoints, stats, n, radii, accumulate, out, "gather");
     if (k_second_())
-        enqueue_gather(k_second_, pass, hitpoints, stats, n, global_r2, accumulate, second_out_, second_phase_);
+        enqueue_gather(k_second_, pass, hitpoints, stats, n, radii, accumulate, second_out_, second_phase_);
 }
 
 // gather and the second gather take the same arguments, each with its own output; the seed and
 // the pass give the pass's wavelength (kernels/dispersion.cl).
 void PhotonMap::enqueue_gather(cl::Kernel& kernel, uint64_t pass, const cl::Buffer& hitpoints, const cl::Buffer& stats,
-                               uint32_t n, float global_r2, bool accumulate, const cl::Buffer& out,
+                               uint32_t n, const PassRadii& radii, bool accumulate, const cl::Buffer& out,
                                const std::string& phase) {
     set_args(kernel, 0, grid_.info(), trace_.sorted(), grid_.starts(), hitpoints, stats, cl_uint(n),
-             cl_float(global_r2), cl_uint(accumulate ? 1 : 0), out, cl_ulong(settings_.seed), cl_ulong(pass),
-             coverage_);
+             cl_float(radii.global_r2), cl_float(radii.volume_r2), cl_uint(accumulate ? 1 : 0), out,
+             cl_ulong(settings_.seed), cl_ulong(pass), coverage_);
     cl::Event ev;
     enqueue_1d(dc_.queue, kernel, n, &ev);
     add_event_time(stats_, phase, ev);

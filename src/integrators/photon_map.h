@@ -21,6 +21,16 @@ namespace clppm {
 
 // Stored photons per emitted photon a buffer starts out sized for; it grows if a scene stores more.
 constexpr uint32_t kStoredPerEmitted = 3;
+// The radii of one pass's gathers: PPPM's one radius for every surface hit point (global_r2 > 0;
+// else each its own, HitStats.r2), the volume hit points' one radius (volume_r2), and the sizes
+// the grid's cells are made for (typical, and max, which covers every sphere of the pass).
+struct PassRadii {
+    float global_r2 = 0;
+    float volume_r2 = 0;
+    double typical = 0;
+    double max = 0;
+};
+
 // Photons traced at once at most: memory stays bounded whatever --photons says, and Ctrl-C is
 // answered between batches (about a second each on two CPU cores). Batches do not change the
 // image (the flux sums are exact integers).
@@ -37,11 +47,10 @@ public:
 
     // Pass `pass` (1-based: the RNG streams): traces photons [first, first + count) of the pass's
     // settings.photons, in batches when needed, and for each batch builds the grid (cells sized
-    // for radii around typical_radius, no smaller than a quarter of max_radius) and lets the n hit
-    // points gather into out (their radius is stats[i].r2, or global_r2 when > 0). With count 0,
-    // out is cleared.
+    // for radii around radii.typical, no smaller than a quarter of radii.max) and lets the n hit
+    // points gather into out with the radii (PassRadii). With count 0, out is cleared.
     void run_pass(uint64_t pass, uint32_t first, uint32_t count, const cl::Buffer& hitpoints, const cl::Buffer& stats,
-                  uint32_t n, float global_r2, double typical_radius, double max_radius, const cl::Buffer& out);
+                  uint32_t n, const PassRadii& radii, const cl::Buffer& out);
 
     // A further gather over every batch's grid, after the flux gather: `kernel` takes gather's
     // arguments with its own output buffer `out` in place of the PassFlux one (error estimation's
@@ -60,11 +69,12 @@ public:
 
 private:
     void trace(uint64_t pass, uint32_t first, uint32_t count);
-    void build_grid(uint32_t stored, double typical_radius, double max_radius);
-    void gather(uint64_t pass, const cl::Buffer& hitpoints, const cl::Buffer& stats, uint32_t n, float global_r2,
+    void build_grid(uint32_t stored, const PassRadii& radii);
+    void gather(uint64_t pass, const cl::Buffer& hitpoints, const cl::Buffer& stats, uint32_t n, const PassRadii& radii,
                 bool accumulate, const cl::Buffer& out);
     void enqueue_gather(cl::Kernel& kernel, uint64_t pass, const cl::Buffer& hitpoints, const cl::Buffer& stats,
-                        uint32_t n, float global_r2, bool accumulate, const cl::Buffer& out, const std::string& phase);
+                        uint32_t n, const PassRadii& radii, bool accumulate, const cl::Buffer& out,
+                        const std::string& phase);
     void measure_coverage(uint64_t pass, const cl::Buffer& hitpoints, const cl::Buffer& stats, uint32_t n,
                           float global_r2);
 

@@ -18,6 +18,9 @@ PhotonMappingIntegrator::PhotonMappingIntegrator(const DeviceContext& dc, const 
     if (settings.visual_importance && !integrator_row(settings.integrator).visual_importance)
         throw Error("--visual-importance: needs --integrator " + visual_importance_integrators() +
                     " (photon paths that the chains guide)");
+    if (settings.visual_importance && scene.media)
+        throw Error("--visual-importance: the scene has a participating medium, whose photons the chains do not "
+                    "guide yet; leave it off");
     photons_ = std::make_unique<PhotonPasses>(dc, scene, settings_, program, stats_, secondaries.devices,
                                               secondaries.program_file, secondaries.build_options);
     k_eye_ = cl::Kernel(program, "eye_pass");

@@ -67,7 +67,7 @@ void PhotonPasses::set_second_gather(const cl::Kernel& kernel, const cl::Buffer&
 }
 
 void PhotonPasses::run_pass(uint64_t pass, const cl::Buffer& hitpoints, const cl::Buffer& stats, uint32_t n,
-                            float global_r2, double typical_radius, double max_radius, const cl::Buffer& out) {
+                            const PassRadii& radii, const cl::Buffer& out) {
     Cluster& cl = cluster();
     const uint32_t M = uint32_t(settings_.photons);
     // This rank's share of the pass's photon indices, [first, first + count): in proportion to the
@@ -81,7 +81,7 @@ void PhotonPasses::run_pass(uint64_t pass, const cl::Buffer& hitpoints, const cl
     }
     const double t0 = steady_seconds();
     const uint64_t stored_before = stats_.photons_stored;
-    run_local(pass, first, count, hitpoints, stats, n, global_r2, typical_radius, max_radius, out);
+    run_local(pass, first, count, hitpoints, stats, n, radii, out);
     stats_.local_work += count;
     if (!cl.distributed()) return;
     // One reduction per pass: the flux sums (PassFlux: three int64 and the count m in the low half
@@ -107,10 +107,9 @@ void PhotonPasses::run_pass(uint64_t pass, const cl::Buffer& hitpoints, const cl
 }
 
 void PhotonPasses::run_local(uint64_t pass, uint32_t first_photon, uint32_t M, const cl::Buffer& hitpoints,
-                             const cl::Buffer& stats, uint32_t n, float global_r2, double typical_radius,
-                             double max_radius, const cl::Buffer& out) {
+                             const cl::Buffer& stats, uint32_t n, const PassRadii& radii, const cl::Buffer& out) {
     if (workers_.empty()) {
-        primary_.run_pass(pass, first_photon, M, hitpoints, stats, n, global_r2, typical_radius, max_radius, out);
+        primary_.run_pass(pass, first_photon, M, hitpoints, stats, n, radii, out);
         split_ = {M};
         stats_.device_photons = split_;
         return;
@@ -126,7 +125,7 @@ void PhotonPasses::run_local(uint64_t pass, uint32_t first_photon, uint32_t M, c
     std::vector<dev::PassFlux> sum;
     fan_out_.run(first_photon, split_, [&](size_t k, uint32_t begin, uint32_t count) {
         if (k == 0) {
-            primary_.run_pass(pass, begin, count, hitpoints, stats, n, global_r2, typical_radius, max_radius, out);
+            primary_.run_pass(pass, begin, count, hitpoints, stats, n, radii, out);
             sum = read_buffer<dev::PassFlux>(dc_.queue, out, n);
             return;
         }
@@ -134,7 +133,7 @@ void PhotonPasses::run_local(uint64_t pass, uint32_t first_photon, uint32_t M, c
         w.ensure(std::max<uint32_t>(1, n));
         if (send_hitpoints) write_buffer(w.dc.queue, w.hitpoints, hp);
         write_buffer(w.dc.queue, w.hstats, hs);
-        w.map->run_pass(pass, begin, count, w.hitpoints, w.hstats, n, global_r2, typical_radius, max_radius, w.out);
+        w.map->run_pass(pass, begin, count, w.hitpoints, w.hstats, n, radii, w.out);
         w.result = read_buffer<dev::PassFlux>(w.dc.queue, w.out, n);
         collect_event_times(w.stats);
     });

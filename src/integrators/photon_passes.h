@@ -35,8 +35,8 @@ public:
 
     // As PhotonMap::run_pass for the pass's whole photon range; hitpoints, stats and out are the
     // primary device's buffers.
-    void run_pass(uint64_t pass, const cl::Buffer& hitpoints, const cl::Buffer& stats, uint32_t n, float global_r2,
-                  double typical_radius, double max_radius, const cl::Buffer& out);
+    void run_pass(uint64_t pass, const cl::Buffer& hitpoints, const cl::Buffer& stats, uint32_t n,
+                  const PassRadii& radii, const cl::Buffer& out);
 
     // PhotonMap::set_second_gather on the primary device; with further devices it is an error
     // (their photons would miss the second gather).
@@ -49,8 +49,7 @@ private:
     struct Worker;
     // This process's photons [first_photon, first_photon + M), on its devices.
     void run_local(uint64_t pass, uint32_t first_photon, uint32_t M, const cl::Buffer& hitpoints,
-                   const cl::Buffer& stats, uint32_t n, float global_r2, double typical_radius, double max_radius,
-                   const cl::Buffer& out);
+                   const cl::Buffer& stats, uint32_t n, const PassRadii& radii, const cl::Buffer& out);
 
     const DeviceContext& dc_;
     const RenderSettings& settings_;

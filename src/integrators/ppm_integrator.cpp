@@ -171,7 +171,8 @@ void PpmIntegrator::eye_pass() {
 // Photons, explicit direct light, then Eqs. 7-10 with this pass's M(x) and Phi_M(x).
 void PpmIntegrator::run_pass() {
     const uint64_t pass = stats_.passes + 1;
-    photons_->run_pass(pass, hitpoints_, stats_buf_, num_hitpoints_, 0.f, typical_radius_, max_radius_, passflux_);
+    photons_->run_pass(pass, hitpoints_, stats_buf_, num_hitpoints_, PassRadii{0.f, 0.f, typical_radius_, max_radius_},
+                       passflux_);
     direct_light(pass, num_hitpoints_);
     progressive_update(num_hitpoints_);
     collect_event_times(stats_);

@@ -44,11 +44,8 @@ std::vector<std::string> PtIntegrator::warnings(const Scene& scene, const SceneF
     for (const dev::Material& m : scene.materials)
         smooth = smooth || (m.roughness < 0.01f && (m.metallic > 0.f || m.transmission > 0.f));
     if (!smooth || !(features.point_lights || features.spot_lights || features.directional_lights)) return {};
-    return {std::string("the path tracer cannot find caustics of point, spot or directional lights through glass or "
-                        "mirrors: that light is missing from its image and from its error estimate (") +
-            (scene.medium.present ? "the photon mappers, which find it, do not render media yet"
-                                  : "--integrator sppm finds it") +
-            ")"};
+    return {"the path tracer cannot find caustics of point, spot or directional lights through glass or mirrors: that "
+            "light is missing from its image and from its error estimate (--integrator sppm finds it)"};
 }
 
 bool PtIntegrator::sobol_passes() const { return settings_.sampler != Sampler::Independent; }

@@ -19,6 +19,7 @@ SppmIntegrator::SppmIntegrator(const DeviceContext& dc, const DeviceScene& scene
     k_emission_ = cl::Kernel(program, "accumulate_emission");
     k_accumulate_ = cl::Kernel(program, "pppm_accumulate");
     k_film_ = cl::Kernel(program, probabilistic_ ? "pppm_film" : "sppm_film");
+    if (scene.media) k_volume_ = cl::Kernel(program, "volume_accumulate");
 }
 
 IntegratorMemory SppmIntegrator::memory_needed(size_t pixels, bool error_estimation) {
@@ -54,11 +55,18 @@ void SppmIntegrator::prepare() {
     eye_pass(1);
     std::vector<dev::HitPoint> hps(n);
     dc_.queue.enqueueReadBuffer(hitpoints_, CL_TRUE, 0, n * sizeof(dev::HitPoint), hps.data());
-    std::vector<float> footprints;
-    for (const dev::HitPoint& hp : hps)
-        if (hp.pixel != HITPOINT_NONE) footprints.push_back(std::fabs(hp.footprint));
+    std::vector<float> footprints, volume_footprints;
+    for (const dev::HitPoint& hp : hps) {
+        if (hp.pixel == HITPOINT_NONE) continue;
+        (hp.alpha == HITPOINT_VOLUME_ALPHA ? volume_footprints : footprints).push_back(std::fabs(hp.footprint));
+    }
     const double r0 =
         settings_.radius > 0 ? settings_.radius : initial_radius_heuristic(footprints, scene_.info.radius);
+    if (scene_.media) {
+        volume_r0_ =
+            initial_volume_radius(volume_footprints.empty() ? footprints : volume_footprints, scene_.info.radius);
+        stats_.initial_volume_radius = volume_r0_;
+    }
     stats_.initial_radius = stats_.mean_radius = typical_radius_ = max_radius_ = r0;
     r2_ = r0 * r0;
     const dev::HitStats init{r0 * r0, 0.0, {0, 0, 0}, {0, 0, 0}};
@@ -88,20 +96,42 @@ void SppmIntegrator::run_pass() {
     // The photons first: a pass cancelled between photon batches (Ctrl-C) leaves the statistics
     // as the last complete pass left them. The gather reads only their radii, which the emission
     // and direct light below do not touch, so the order changes no result.
+    PassRadii radii;
     if (probabilistic_) {
         const double r = std::sqrt(r2_);
-        photons_->run_pass(pass, hitpoints_, stats_buf_, num_pixels_, float(r2_), r, r, passflux_);
+        radii = PassRadii{float(r2_), 0.f, r, r};
     } else {
-        photons_->run_pass(pass, hitpoints_, stats_buf_, num_pixels_, 0.f, typical_radius_, max_radius_, passflux_);
+        radii = PassRadii{0.f, 0.f, typical_radius_, max_radius_};
     }
+    if (scene_.media) {
+        const double rv = volume_radius();
+        radii.volume_r2 = float(rv * rv);
+        radii.max = std::max(radii.max, rv);
+    }
+    photons_->run_pass(pass, hitpoints_, stats_buf_, num_pixels_, radii, passflux_);
     set_args(k_emission_, 0, sample_emission_, stats_buf_, cl_uint(num_pixels_));
     enqueue_1d(dc_.queue, k_emission_, num_pixels_);
     direct_light(pass, num_pixels_);
+    if (scene_.media) volume_update(pass);
     if (probabilistic_) probabilistic_update();
     else progressive_update(num_pixels_);
     collect_event_times(stats_);
     stats_.passes = pass;
     stats_.photons_emitted += settings_.photons;
+}
+
+double SppmIntegrator::volume_radius() const { return volume_r0_ * std::cbrt(volume_shrink_); }
+
+// Before the error estimate's update, which reads the pixels' direct sums.
+void SppmIntegrator::volume_update(uint64_t pass) {
+    const double rv = volume_radius();
+    const double scale = power_per_photon() / (4.0 / 3.0 * M_PI * rv * rv * rv);
+    set_args(k_volume_, 0, passflux_, hitpoints_, stats_buf_, cl_uint(num_pixels_), cl_double(scale));
+    cl::Event ev;
+    enqueue_1d(dc_.queue, k_volume_, num_pixels_, &ev);
+    add_event_time(stats_, "volume", ev);
+    volume_shrink_ = next_pppm_radius2(volume_shrink_, pass, settings_.alpha);
+    stats_.volume_radius = volume_radius();
 }
 
 // Knaus and Zwicker 2011: each pass's estimate with this pass's radius joins a running mean; the
@@ -117,12 +147,22 @@ void SppmIntegrator::probabilistic_update() {
     stats_.mean_radius = std::sqrt(r2_);
 }
 
-void SppmIntegrator::save_state(Checkpoint& ck) const { ck.header["pppm_r2"] = r2_; }
+void SppmIntegrator::save_state(Checkpoint& ck) const {
+    ck.header["pppm_r2"] = r2_;
+    ck.header["volume_r0"] = volume_r0_;
+    ck.header["volume_shrink"] = volume_shrink_;
+}
 
 void SppmIntegrator::restore_state(const Checkpoint& ck) {
     const double r0 = stats_.initial_radius;
     r2_ = checkpoint_number(ck, "pppm_r2", 0, r0 * r0 * (1 + 1e-9));
     require_checkpoint_field(ck, r2_ > 0, "pppm_r2");
+    if (!scene_.media) return;
+    volume_r0_ = checkpoint_number(ck, "volume_r0", 0, 2 * scene_.info.radius);
+    volume_shrink_ = checkpoint_number(ck, "volume_shrink", 0, 1);
+    require_checkpoint_field(ck, volume_r0_ > 0 && volume_shrink_ > 0, "volume_r0");
+    stats_.initial_volume_radius = volume_r0_;
+    stats_.volume_radius = volume_radius();
 }
 
 Image SppmIntegrator::image() {

@@ -26,11 +26,18 @@ private:
     void restore_state(const Checkpoint& ck) override;
     void eye_pass(uint64_t pass);
     void probabilistic_update();
+    // Participating media: the pass's volume hit points' estimates join their pixels' sums
+    // (kernels/sppm.cl volume_accumulate), and their radius shrinks.
+    void volume_update(uint64_t pass);
+    double volume_radius() const;
 
     bool probabilistic_;
-    cl::Kernel k_emission_, k_accumulate_;
+    cl::Kernel k_emission_, k_accumulate_, k_volume_;
     cl::Buffer sample_emission_;
     double r2_ = 0; // PPPM: this pass's radius squared
+    // Media: the volume hit points' radius is volume_r0_ times volume_shrink_^(1/3), the product
+    // over the passes so far of (i + alpha) / (i + 1) (Knaus and Zwicker 2011, in 3-D).
+    double volume_r0_ = 0, volume_shrink_ = 1;
 };
 
 } // namespace clppm

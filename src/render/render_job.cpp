@@ -303,6 +303,10 @@ Json RenderJob::stats_json(const RenderEnd& end, const Image* given) const {
     j["seed"] = options_.settings.seed;
     j["initial_radius"] = st.initial_radius;
     j["mean_radius"] = st.mean_radius;
+    if (st.initial_volume_radius > 0) {
+        j["initial_volume_radius"] = st.initial_volume_radius;
+        j["volume_radius"] = st.volume_radius;
+    }
     j["render_seconds"] = render_s;
     j["total_seconds"] = steady_seconds() - created_s_;
     j["passes_per_second"] = render_s > 0 ? double(st.passes) / render_s : 0.0;
