@@ -10,16 +10,9 @@ and after every pass the relative MSE of its image against the reference is reco
 time. Small alpha shrinks the radius fast (less bias, more noise); large alpha the reverse.
 """
 import argparse
-import time
-
-import numpy as np
 
 import clppm
-
-
-def rel_mse(image, reference):
-    """Mean over pixels and channels of (a - b)^2 / (b^2 + 0.01), as `clppm compare` reports it."""
-    return float(np.mean((image - reference) ** 2 / (reference**2 + 1e-2)))
+from error_curves import error_curve, plot
 
 
 def sweep(scene, alphas, seconds, size, reference_passes, photons):
@@ -27,33 +20,10 @@ def sweep(scene, alphas, seconds, size, reference_passes, photons):
     reference = clppm.render(scene, seed=1000, passes=reference_passes, **common)
     curves = {}
     for alpha in alphas:
-        points = []
-        with clppm.Renderer(scene, alpha=alpha, time=seconds, **common) as r:
-            start = time.perf_counter()
-            for _ in r:  # until --time
-                points.append((time.perf_counter() - start, rel_mse(r.image(), reference)))
-        curves[alpha] = points
+        points = error_curve(scene, reference, alpha=alpha, time=seconds, **common)
+        curves[f"alpha {alpha}"] = points
         print(f"alpha {alpha}: {len(points)} passes, rel MSE {points[-1][1]:.3g} after {points[-1][0]:.1f} s")
     return curves
-
-
-def plot(curves, path, title):
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    fig, ax = plt.subplots(figsize=(6, 4))
-    for alpha, points in curves.items():
-        t, e = zip(*points)
-        ax.loglog(t, e, label=f"alpha {alpha}")
-    ax.set_xlabel("render time (s)")
-    ax.set_ylabel("relative MSE against the reference")
-    ax.set_title(title)
-    ax.grid(True, which="both", alpha=0.3)
-    ax.legend()
-    fig.tight_layout()
-    fig.savefig(path, dpi=100)
 
 
 def main():

@@ -15,9 +15,9 @@ required=(
 # Optional: Embree (the CPU traversal yardstick) and gnuplot (plots) for the benchmarks; tests that
 # need the others skip, saying so, without them.
 optional=(libembree-dev gnuplot-nox chromium python3-matplotlib blender xvfb xauth oclgrind) # chromium: the live
-# view's browser test; matplotlib: examples/alpha_sweep.py; blender, xvfb: the add-on's check in
-# Blender's own window (scripts/check_blender_ui.sh); oclgrind: the kernels' memory and race check
-# (scripts/check_oclgrind.sh)
+# view's browser test; matplotlib: examples/alpha_sweep.py and volumetric_caustic.py; blender,
+# xvfb: the add-on's check in Blender's own window (scripts/check_blender_ui.sh); oclgrind: the
+# kernels' memory and race check (scripts/check_oclgrind.sh)
 
 # Prints the packages of "$@" that are not fully installed (one dpkg-query for all of them).
 missing_of() {

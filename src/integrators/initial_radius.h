@@ -10,8 +10,9 @@ double initial_radius_heuristic(std::vector<float> footprints, double scene_radi
 
 // The volume hit points' initial radius (participating media), from their footprints: photons in
 // a volume are sparser than on surfaces, so kVolumeRadiusScale times the surfaces' heuristic, kept
-// within [1e-6, 0.1] of the diameter.
-constexpr double kVolumeRadiusScale = 4.0;
+// within [1e-6, 0.1] of the diameter. 8 had the least box-4 error at 15 s on the fogged Cornell
+// boxes (bench/RESULTS.md, "Photons in participating media"): 2 and 4 left more noise, 16 more blur.
+constexpr double kVolumeRadiusScale = 8.0;
 double initial_volume_radius(std::vector<float> footprints, double scene_radius);
 
 } // namespace clppm
