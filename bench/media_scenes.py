@@ -6,6 +6,9 @@
                       the ceiling light into it (a volumetric caustic of an area light)
     god_rays.gltf     scenes/doorway.gltf in fog, with a spot light in the lit room aimed through
                       the doorway: its beam crosses into the room the camera sees
+    spot_caustic.gltf scenes/caustic.gltf in fog: the glass sphere focuses the spot light into a
+                      caustic cone in the fog, which no path tracer finds (a delta light through
+                      smooth glass)
 
 The fog is the world's medium (extras.clppm_medium, docs/scenes.md "The world's medium"). The
 translucent solid is tests/data/wax_block.gltf (KHR_materials_volume_scatter).
@@ -70,6 +73,9 @@ def main():
                          "extensions": {"KHR_lights_punctual": {"light": 0}}})
     doc["scenes"][doc.get("scene", 0)]["nodes"].append(len(doc["nodes"]) - 1)
     write(with_medium(doc, {"density": 0.3, "albedo": 0.8, "anisotropy": 0.2}), os.path.join(out, "god_rays.gltf"))
+    write(with_medium(json.load(open(os.path.join(ROOT, "scenes", "caustic.gltf"))),
+                      {"density": 0.08, "albedo": 0.9, "anisotropy": 0.3}),
+          os.path.join(out, "spot_caustic.gltf"))
 
 
 if __name__ == "__main__":

@@ -12,7 +12,7 @@ time. Small alpha shrinks the radius fast (less bias, more noise); large alpha t
 import argparse
 
 import clppm
-from error_curves import error_curve, plot
+from error_curves import add_common_arguments, error_curve, plot
 
 
 def sweep(scene, alphas, seconds, size, reference_passes, photons):
@@ -28,13 +28,9 @@ def sweep(scene, alphas, seconds, size, reference_passes, photons):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    ap.add_argument("scene", nargs="?", help="a .gltf or .glb file (default: the built-in Cornell box)")
+    add_common_arguments(ap, photons=100000, out="alpha_sweep.png")
     ap.add_argument("--alphas", default="0.3,0.5,0.7,0.9")
     ap.add_argument("--seconds", type=float, default=20.0, help="render time per alpha")
-    ap.add_argument("--size", type=int, default=128)
-    ap.add_argument("--photons", type=int, default=100000)
-    ap.add_argument("--reference-passes", type=int, default=400)
-    ap.add_argument("--out", default="alpha_sweep.png")
     a = ap.parse_args()
     alphas = [float(x) for x in a.alphas.split(",")]
     curves = sweep(a.scene, alphas, a.seconds, a.size, a.reference_passes, a.photons)

@@ -23,6 +23,16 @@ def error_curve(scene, reference, **options):
     return points
 
 
+def add_common_arguments(ap, photons, out):
+    """The arguments both examples take: the scene, the size, the photons per pass (default
+    `photons`), the reference's passes and the plot's file (default `out`)."""
+    ap.add_argument("scene", nargs="?", help="a .gltf or .glb file (default: the built-in Cornell box)")
+    ap.add_argument("--size", type=int, default=128)
+    ap.add_argument("--photons", type=int, default=photons)
+    ap.add_argument("--reference-passes", type=int, default=400)
+    ap.add_argument("--out", default=out)
+
+
 def plot(curves, path, title):
     """Writes the curves ({label: [(seconds, error)]}) on log-log axes to the PNG `path`."""
     import matplotlib

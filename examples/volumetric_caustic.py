@@ -14,7 +14,7 @@ import argparse
 import os
 
 import clppm
-from error_curves import error_curve, plot
+from error_curves import add_common_arguments, error_curve, plot
 
 FOG = dict(medium_density=0.25, medium_albedo=0.95, medium_anisotropy=0.5)
 
@@ -32,13 +32,9 @@ def curves(scene, integrators, seconds, size, reference_passes, photons):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    ap.add_argument("scene", nargs="?", help="a .gltf or .glb file (default: the built-in Cornell box)")
+    add_common_arguments(ap, photons=50000, out="volumetric_caustic.png")
     ap.add_argument("--integrators", default="sppm,pppm,pt")
     ap.add_argument("--seconds", type=float, default=20.0, help="render time per integrator")
-    ap.add_argument("--size", type=int, default=128)
-    ap.add_argument("--photons", type=int, default=200000)
-    ap.add_argument("--reference-passes", type=int, default=400)
-    ap.add_argument("--out", default="volumetric_caustic.png")
     a = ap.parse_args()
     result = curves(a.scene, a.integrators.split(","), a.seconds, a.size, a.reference_passes, a.photons)
     plot(result, a.out, f"{a.scene or 'the Cornell box'} in fog, {a.size}x{a.size}")

@@ -61,12 +61,8 @@ TEST(MediumPhotons, ScatteringMeshKeepsTheFurnacesRadiance) {
 // wide footprints, and the radius starts from them). The bias falls with the radius; the furnace
 // above, whose density is uniform, has none.
 TEST(MediumPhotons, SingleScatteringFromAPointLight) {
-    const std::array<float, 3> sigma{0.4f, 0.8f, 0.2f}, albedo{0.9f, 0.5f, 0.7f};
-    const float g = 0.6f, I = 2.f;
-    const D3 light{0.3, 0.4, -0.5};
-    Scene scene = glowing_box(0.f, 0.f);
-    add_point_light(scene, {0.3f, 0.4f, -0.5f}, I);
-    set_medium(scene, sigma, albedo, g);
+    const PointLightInFog fog;
+    const Scene scene = fog.scene();
     struct Case {
         DirectLighting direct;
         double alpha, tol;
@@ -85,9 +81,7 @@ TEST(MediumPhotons, SingleScatteringFromAPointLight) {
         const dev::Camera cam = camera_of(scene, s);
         double excess = 0;
         for (int c = 0; c < 3; ++c) {
-            const double st = sigma[size_t(c)], ss = st * albedo[size_t(c)];
-            auto ref = [&](D3 d) { return single_scattering(d, light, st, ss, g, I); };
-            excess += expect_region(img, cam, 0, 24, c, k.tol, ref, "the whole image") - 1.0;
+            excess += expect_region(img, cam, 0, 24, c, k.tol, fog.reference(c), "the whole image") - 1.0;
         }
         if (k.direct == DirectLighting::Photons && k.alpha == 0.7) excess_07 = excess;
         if (k.alpha == 0.3) {

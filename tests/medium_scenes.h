@@ -129,6 +129,17 @@ inline Scene scattering_cube(float rho, std::array<float, 3> sigma, std::array<f
     return scene;
 }
 
+// glowing_box's black walls around a point light in a chromatic medium (g 0.6): the scene of
+// single scattering, whose reference single_scattering() integrates.
+struct PointLightInFog {
+    std::array<float, 3> sigma{0.4f, 0.8f, 0.2f}, albedo{0.9f, 0.5f, 0.7f};
+    float g = 0.6f, I = 2.f;
+    D3 light{0.3, 0.4, -0.5};
+    Scene scene() const;
+    // single_scattering() in channel c, per unit ray direction.
+    std::function<double(D3)> reference(int c) const;
+};
+
 // Light scattered once towards the camera at the origin along the unit direction d, through the
 // medium inside glowing_box's black walls from a point light of intensity I at `light`:
 // L = int_0^d sigma_s e^(-sigma_t t) p(cos) I / r^2 e^(-sigma_t r) dt, by Simpson's rule.
@@ -146,6 +157,18 @@ inline double single_scattering(D3 d, D3 light, double st, double ss, double g, 
         sum += f * (i == 0 || i == n ? 1 : i % 2 ? 4 : 2);
     }
     return sum * t_out / (3 * n);
+}
+
+inline Scene PointLightInFog::scene() const {
+    Scene s = glowing_box(0.f, 0.f);
+    add_point_light(s, {float(light.x), float(light.y), float(light.z)}, I);
+    set_medium(s, sigma, albedo, g);
+    return s;
+}
+
+inline std::function<double(D3)> PointLightInFog::reference(int c) const {
+    const double st = sigma[size_t(c)], ss = st * albedo[size_t(c)];
+    return [=, *this](D3 d) { return single_scattering(d, light, st, ss, g, I); };
 }
 
 } // namespace clppm::test

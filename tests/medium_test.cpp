@@ -93,19 +93,14 @@ TEST(Medium, ScatteringFurnaceKeepsItsRadiance) {
 // One scattering event between the camera and the black walls, lit by a point light:
 // L = int_0^d sigma_s e^(-sigma_t t) p(cos) I / r^2 e^(-sigma_t r) dt along each pixel's ray.
 TEST(Medium, SingleScatteringFromAPointLight) {
-    const std::array<float, 3> sigma{0.4f, 0.8f, 0.2f}, albedo{0.9f, 0.5f, 0.7f};
-    const float g = 0.6f, I = 2.f;
-    const D3 light{0.3, 0.4, -0.5};
-    Scene scene = glowing_box(0.f, 0.f);
-    add_point_light(scene, {0.3f, 0.4f, -0.5f}, I);
-    set_medium(scene, sigma, albedo, g);
+    const PointLightInFog fog;
+    const Scene scene = fog.scene();
     const RenderSettings s = pt_settings(24, 1);
     const Image img = render_passes(scene, s, 1024);
     expect_clean(img);
     const dev::Camera cam = camera_of(scene, s);
     for (int c = 0; c < 3; ++c) {
-        const double st = sigma[size_t(c)], ss = st * albedo[size_t(c)];
-        auto ref = [&](D3 d) { return single_scattering(d, light, st, ss, g, I); };
+        const std::function<double(D3)> ref = fog.reference(c);
         expect_region(img, cam, 0, 24, c, 0.02, ref, "the whole image");
         expect_region(img, cam, 12, 20, c, 0.03, ref, "towards the light");
     }
@@ -295,6 +290,15 @@ TEST(Medium, CommandLineRendersAndRefusesWhatCannot) {
     // glass under a point light in fog: the default takes photons for the volumetric caustics
     EXPECT_NE(log.find("integrator sppm: the world has a participating medium"), std::string::npos) << log;
     EXPECT_NE(log.find("volumetric caustics"), std::string::npos) << log;
+    // photons per pass: 50000 in media unless --photons says
+    EXPECT_NE(log.find("photons: 50000 per pass in participating media"), std::string::npos) << log;
+    ASSERT_EQ(run_clppm(scene + " --width 16 --height 16 --passes 1 --photons 3000 --no-png -o " + out +
+                            " --stats-json " + dir + "/s.json",
+                        &log),
+              0)
+        << log;
+    EXPECT_EQ(log.find("photons: "), std::string::npos) << log;
+    EXPECT_EQ(nlohmann::json::parse(std::ifstream(dir + "/s.json"))["photons_per_pass"], 3000) << log;
     EXPECT_NE(log.find("medium: " + scene + ": extras.clppm_medium: density 0.3 per scene unit, albedo 0.9"),
               std::string::npos)
         << log;

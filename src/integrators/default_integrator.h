@@ -13,6 +13,12 @@
 
 namespace clppm {
 
+// Photons per pass in a scene with participating media where --photons is not given: a photon is
+// stored at each collision there (five per photon in the fogged Cornell boxes), and the grid's
+// sort of a million a pass left SPPM 5.6 times Mitsuba's CPU time to equal error in the fog box
+// against 1.17 with 50000 (bench/RESULTS.md, "Photons in participating media").
+constexpr uint64_t kMediaPhotonsPerPass = 50000;
+
 struct IntegratorChoice {
     std::string integrator;         // a row of integrators/integrator_table.h
     std::string reason;             // for the note: why this one

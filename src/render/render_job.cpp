@@ -98,6 +98,11 @@ void RenderJob::choose_integrator(size_t devices) {
     row_ = &integrator_row(s.integrator);
     s.integrator = row_->name;
     require_media_support(*row_, scene_has_media(scene_));
+    if (row_->unit == WorkUnit::Photons && scene_has_media(scene_) && !options_.photons_given) {
+        s.photons = kMediaPhotonsPerPass;
+        photons_note_ = "photons: " + std::to_string(s.photons) +
+                        " per pass in participating media, where each collision stores one (--photons to choose)";
+    }
     if (s.filter == PixelFilter::Tent && !row_->tent_filter)
         throw Error(std::string("--integrator ") + row_->name +
                     ": light tracing splats with the box filter only; drop --filter tent");
@@ -153,6 +158,7 @@ void RenderJob::build_kernels(const std::vector<DeviceInfo>& chosen) {
     if (!medium_note_.empty()) log_.note(medium_note_);
     if (!variant_note_.empty()) log_.note(variant_note_);
     if (!integrator_note_.empty()) log_.note(integrator_note_);
+    if (!photons_note_.empty()) log_.note(photons_note_);
     const char* unit = row_->unit == WorkUnit::Photons ? "photons" : "pixels";
     if (cluster().distributed())
         log_.note(std::to_string(cluster().size()) + " processes (MPI): each pass's " + unit +

@@ -110,6 +110,7 @@ private:
     Scene scene_;
     uint64_t scene_hash_ = 0;
     std::string integrator_note_;
+    std::string photons_note_; // the photons per pass the scene chose ("" where --photons or the default holds)
     std::string world_note_;   // which world the render uses, and where it came from
     std::string medium_note_;  // its medium, and where that came from ("" for none)
     std::string variant_note_; // the file's material variants and the one rendered

@@ -17,9 +17,10 @@
 namespace clppm {
 
 struct RenderOptions {
-    std::string scene;       // .gltf/.glb; empty: the built-in Cornell box
-    std::string variant;     // --variant: a KHR_materials_variants name; empty: the default materials
-    RenderSettings settings; // what shapes the image (integrator, size, photons, alpha, seed, ...)
+    std::string scene;          // .gltf/.glb; empty: the built-in Cornell box
+    std::string variant;        // --variant: a KHR_materials_variants name; empty: the default materials
+    RenderSettings settings;    // what shapes the image (integrator, size, photons, alpha, seed, ...)
+    bool photons_given = false; // --photons was given: the scene does not choose it (kMediaPhotonsPerPass)
 
     // When to stop. No pass count: the integrator's default (integrator_table.h) without a time
     // limit, unlimited with one. 0 passes: unlimited (needs a time limit).
