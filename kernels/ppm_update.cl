@@ -31,8 +31,10 @@ __kernel __attribute__((reqd_work_group_size(PPM_UPDATE_WG, 1, 1))) void ppm_upd
         __global const HitPoint* hp = &hitpoints[i];
         double3 phi = (double3)((double)pf->flux[0], (double)pf->flux[1], (double)pf->flux[2]) / FLUX_FIXED_SCALE;
         double3 w = (double3)(hp->weight[0], hp->weight[1], hp->weight[2]);
-        /* a volume hit point's estimate is not progressive per pixel (sppm.cl volume_accumulate) */
-        if (!hitpoint_in_volume(hp)) ppm_update_stats(&stats[i], (double)pf->m, w * phi, alpha);
+        /* a volume hit point's estimate is not progressive per pixel (sppm.cl volume_accumulate);
+         * an unused slot has only its pixel written */
+        if (hp->pixel != HITPOINT_NONE && !hitpoint_in_volume(hp))
+            ppm_update_stats(&stats[i], (double)pf->m, w * phi, alpha);
         float r = (float)sqrt(stats[i].r2);
         mine = (float2)(r, r);
     }

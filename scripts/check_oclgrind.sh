@@ -49,6 +49,7 @@ cases=(
   "wax-pt|$here/tests/data/wax_block.gltf --integrator pt"
   "fog-sppm|$here/tests/data/fog_room.gltf --integrator sppm"
   "wax-pppm|$here/tests/data/wax_block.gltf --integrator pppm"
+  "wax-sppm|$here/tests/data/wax_block.gltf --integrator sppm --direct photons"
 )
 status=0
 for c in "${cases[@]}"; do
