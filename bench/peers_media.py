@@ -12,8 +12,9 @@ compares the renderers at equal error; the last column is clppm's CPU time to it
 fraction of Mitsuba's (the targets: at most 0.5 in the fog box for the best of clppm, at most 0.1
 for the default on the caustic). clppm's CPU time includes loading and kernel compilation;
 Mitsuba's is its render's alone, compiled beforehand (peers_diffuse_box.py). Every integrator
-that renders media runs (INTEGRATORS, default auto,sppm@200000,sppm,pppm,pt; NAME@M: --photons M; in
-media the photon integrators take 50000 a pass unless given). SCENES=caustic runs that scene alone.
+that renders media runs (INTEGRATORS, default auto,sppm,sppm@10000:beams,pppm,pt; NAME@M: --photons M,
+NAME:beams: --volume-gather beams; in media the photon integrators take 50000 a pass unless given).
+SCENES=caustic runs that scene alone.
 
     DRJIT_LIBLLVM_PATH=/usr/lib/x86_64-linux-gnu/libLLVM-19.so /tmp/mi/bin/python \\
         bench/peers_media.py [BUILD_DIR] [SECONDS] [SIZE]
@@ -50,7 +51,7 @@ def main():
     seconds = float(sys.argv[2]) if len(sys.argv) > 2 else 15
     size = int(sys.argv[3]) if len(sys.argv) > 3 else 128
     ref_factor = int(os.environ.get("REF_FACTOR", "20"))
-    integrators = os.environ.get("INTEGRATORS", "auto,sppm@200000,sppm,pppm,pt").split(",")
+    integrators = os.environ.get("INTEGRATORS", "auto,sppm,sppm@10000:beams,pppm,pt").split(",")
     binary = os.path.join(build, "clppm")
     mitsuba_fastest_variant(mi)
     print("| scene | renderer | spp or passes | render wall s | CPU s | mean ratio | box-4 relative MSE | MSE x CPU s | "
@@ -69,15 +70,19 @@ def main():
             print("| %s | Mitsuba %s volpath (%s) | %d | %.1f | %.1f | %.4f | %.3e | %.2e | |"
                   % (name, mi.__version__, mi.variant(), spp, wall, cpu, c["mean_ratio"], c["box_rel_mse"], mi_cost))
             for entry in integrators:
+                entry, _, gather = entry.partition(":")
                 integrator, _, photons = entry.partition("@")
                 out = os.path.join(tmp, "clppm.exr")
                 stats = os.path.join(tmp, "stats.json")
                 w, cpu, passes = clppm_timed([binary, path, "--width", str(size), "--height", str(size), "--quiet",
                                               "--no-png", "--time", str(seconds), "--integrator", integrator, "-o",
-                                              out] + (["--photons", photons] if photons else []), stats)
+                                              out] + (["--photons", photons] if photons else []) +
+                                             (["--volume-gather", gather] if gather else []), stats)
                 label = integrator if integrator != "auto" else "default (%s)" % json.load(open(stats))["integrator"]
                 if photons:
                     label += ", %s photons per pass" % photons
+                if gather:
+                    label += ", --volume-gather %s" % gather
                 c = compare(binary, out, ref)
                 cost = c["box_rel_mse"] * cpu
                 print("| %s | clppm %s | %d | %.1f | %.1f | %.4f | %.3e | %.2e | **%.2f** |"

@@ -11,7 +11,10 @@
  * samples the lights (kernels/next_event.cl), and emission its rays find there is weighted by
  * MIS against that, so no hit point is needed for their direct light.
  * In a participating medium (kernels/medium.cl) each segment takes a free flight first; where it
- * collides, the path ends in a volume hit point there (hitpoint.cl store_volume_hitpoint).
+ * collides, the path ends in a volume hit point there (hitpoint.cl store_volume_hitpoint). SPPM and
+ * PPPM (`beams`) make the first scattering segment of each sample a beam instead (kernels/beam.cl)
+ * as far as it runs within the sphere around the scene and the camera (beam_span), and go on
+ * through it with its transmittance: the beam gathers the fog along the whole of it.
  * Stochastic PPM and PPPM build this with EYE_SLOTS 1 and run it every pass with a new `pass`:
  * one visible point per pixel, every choice sampled, new jitter and lens position each pass. */
 #include "portability.h"
@@ -25,6 +28,14 @@
 
 #ifndef EYE_SLOTS
 #define EYE_SLOTS PPM_EYE_SLOTS /* the host passes -DEYE_SLOTS=PPM_EYE_SLOTS or SPPM_EYE_SLOTS */
+#endif
+/* One visible point per pixel in media: eye_pass takes `beams` (whether the hit point buffer holds
+ * a beam slot per sample after the hit points) and may store one there. */
+#define EYE_BEAMS (HAS_MEDIUM && EYE_SLOTS == 1)
+#if EYE_BEAMS
+#define EYE_BEAMS_PARAM , uint beams
+#else
+#define EYE_BEAMS_PARAM
 #endif
 /* A split is only worth a slot when both branches carry real weight. */
 #define SPLIT_MIN_WEIGHT 0.02f
@@ -132,9 +143,37 @@ uint surface_branches(const Bsdf* bsdf, float3 wo, float3 weight, Rng* rng, Bran
     return n;
 }
 
+/* A free flight over [t0, t1) of a segment in the medium m: true with the collision's distance in
+ * *t, and *weight as medium_sample_distance leaves it. */
+bool eye_collides(const Medium* m, float t0, float t1, Rng* rng, float3* weight, float* t) {
+    const float u0 = rng_float(rng), u1 = rng_float(rng);
+    float s;
+    if (!medium_sample_distance(m, t1 - t0, (float2)(u0, u1), weight, &s)) return false;
+    *t = t0 + s;
+    return true;
+}
+
+#if EYE_BEAMS
+/* The span [*ta, *tb] of the segment o + t d, t in [0, t_seg), a beam covers: its part within the
+ * sphere that holds the scene and the camera, where the photons are dense (beyond it, free flights
+ * sample the rest of an unbounded medium). False where that part is empty. */
+bool beam_span(__constant SceneInfo* info, __constant Camera* cam, float3 o, float3 d, float t_seg, float* ta,
+               float* tb) {
+    const float3 c = load3c(info->center);
+    const float R = fmax(info->radius, length(load3c(cam->origin) - c) + cam->lens_radius) * 1.001f;
+    const float3 oc = o - c;
+    const float b = dot(oc, d), disc = b * b - (dot(oc, oc) - R * R);
+    if (!(disc > 0.0f)) return false;
+    const float q = sqrt(disc);
+    *ta = fmax(-b - q, 0.0f);
+    *tb = fmin(-b + q, t_seg);
+    return *tb > *ta;
+}
+#endif
+
 __kernel SCALAR_WORK_ITEMS void eye_pass(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong pass,
                                          uint first_sample, uint num_samples, uint spp, __global HitPoint* hitpoints,
-                                         __global float4* sample_emission) {
+                                         __global float4* sample_emission EYE_BEAMS_PARAM) {
     uint i = get_global_id(0);
     if (i >= num_samples) return;
     uint gsample = first_sample + i;
@@ -164,6 +203,10 @@ __kernel SCALAR_WORK_ITEMS void eye_pass(SCENE_PARAMS, __constant Camera* cam, u
     float3 emitted = (float3)(0.0f);
     __global HitPoint* out = &hitpoints[(size_t)i * EYE_SLOTS];
     for (uint k = 0; k < EYE_SLOTS; ++k) out[k].pixel = HITPOINT_NONE;
+#if EYE_BEAMS
+    bool beam_free = beams != 0;
+    if (beam_free) hitpoints[num_samples + i].pixel = HITPOINT_NONE;
+#endif
 
     while (top > 0) {
         EyeRay r = stack[--top];
@@ -174,12 +217,27 @@ __kernel SCALAR_WORK_ITEMS void eye_pass(SCENE_PARAMS, __constant Camera* cam, u
         if (HAS_MEDIUM && segment_medium(SCENE_ARGS, found, r.dir, &hit, &med, &inside)) {
             /* A free flight in the medium: a collision makes a volume hit point there (its slot is
              * this ray's), which gathers the photons stored in media; otherwise the segment's
-             * transmittance over its probability, on to the surface. */
+             * transmittance over its probability, on to the surface. A beam's span [ta, tb] takes
+             * no free flight: its transmittance is exact. */
             const float3 d = normalize(r.dir);
-            const float u0 = rng_float(&rng), u1 = rng_float(&rng);
-            float t;
-            if (medium_sample_distance(&med, found ? hit.t * length(r.dir) : INFINITY, (float2)(u0, u1), &r.weight,
-                                       &t)) {
+            const float t_seg = found ? hit.t * length(r.dir) : INFINITY;
+            float ta = t_seg, tb = t_seg, t;
+#if EYE_BEAMS
+            if (!(beam_free && max3(med.albedo) > 0.0f && beam_span(info, cam, r.org, d, t_seg, &ta, &tb)))
+                ta = tb = t_seg;
+#endif
+            bool collided = eye_collides(&med, 0.0f, ta, &rng, &r.weight, &t);
+#if EYE_BEAMS
+            if (!collided && tb > ta) {
+                store_beam(&hitpoints[num_samples + i], pixel, r.org + d * ta, d, tb - ta, r.weight, med.sigma_t,
+                           med.albedo, med.g,
+                           with_dispersed(camera_footprint(cam, r.path_length + 0.5f * (ta + tb)), r.dispersed));
+                beam_free = false;
+                r.weight *= medium_transmittance(med.sigma_t, tb - ta);
+                collided = eye_collides(&med, tb, t_seg, &rng, &r.weight, &t);
+            }
+#endif
+            if (collided) {
                 store_volume_hitpoint(&out[stored++], pixel, r.org + d * t, -d, r.weight * med.albedo, med.sigma_t,
                                       med.g, with_dispersed(camera_footprint(cam, r.path_length + t), r.dispersed));
                 continue;

@@ -46,27 +46,40 @@ bool gather_faces(__global const GRID_ELEM* ph, float3 n, bool both_sides, float
  * gather finite in time whatever radius reaches it. */
 #define GATHER_MAX_CELLS_PER_AXIS 16
 
-/* Runs the statement(s) `...` for every element of the grid within squared radius r2 of x
- * (grid_within), with `ph` (the element) and `d2` (its squared distance) in scope. OpenCL C has no
- * lambdas: the per-element action is the macro's body, so every gather runs exactly this loop. */
-#define GRID_FOR_EACH_NEAR(g_, sorted_, starts_, x_, r2_, ...)                                                         \
+/* Runs the statement(s) `...` for every element stored in the buckets of the grid cells c0 to c1
+ * (inclusive, at most GATHER_MAX_CELLS_PER_AXIS per axis) for which keep_ (an expression of `cell`)
+ * holds, with `ph` (the element) and `cell` (the cell visited) in scope; a bucket holds other cells'
+ * elements too, which `...` must skip. OpenCL C has no lambdas: the per-element action is the
+ * macro's body, so every gather runs exactly this loop. */
+#define GRID_FOR_EACH_IN_CELLS(g_, sorted_, starts_, c0_, c1_, keep_, ...)                                             \
     do {                                                                                                               \
-        const float gather_r_ = sqrt(r2_);                                                                             \
-        const int3 gather_c0_ = grid_cell(g_, (x_)-gather_r_);                                                         \
-        const int3 gather_c1_ = min(grid_cell(g_, (x_) + gather_r_), gather_c0_ + (GATHER_MAX_CELLS_PER_AXIS - 1));    \
-        for (int cz = gather_c0_.z; cz <= gather_c1_.z; ++cz)                                                          \
-            for (int cy = gather_c0_.y; cy <= gather_c1_.y; ++cy)                                                      \
-                for (int cx = gather_c0_.x; cx <= gather_c1_.x; ++cx) {                                                \
-                    const int3 gather_cell_ = (int3)(cx, cy, cz);                                                      \
-                    const uint gather_b_ = grid_bucket(g_, gather_cell_);                                              \
-                    const uint gather_end_ = (starts_)[gather_b_ + 1];                                                 \
-                    for (uint gather_k_ = (starts_)[gather_b_]; gather_k_ < gather_end_; ++gather_k_) {                \
-                        __global const GRID_ELEM* ph = &(sorted_)[gather_k_];                                          \
-                        float d2;                                                                                      \
-                        if (!grid_within(g_, ph, x_, r2_, gather_cell_, &d2)) continue;                                \
+        const int3 grid_c0_ = (c0_);                                                                                   \
+        const int3 grid_c1_ = min((c1_), grid_c0_ + (GATHER_MAX_CELLS_PER_AXIS - 1));                                  \
+        for (int cz = grid_c0_.z; cz <= grid_c1_.z; ++cz)                                                              \
+            for (int cy = grid_c0_.y; cy <= grid_c1_.y; ++cy)                                                          \
+                for (int cx = grid_c0_.x; cx <= grid_c1_.x; ++cx) {                                                    \
+                    const int3 cell = (int3)(cx, cy, cz);                                                              \
+                    if (!(keep_)) continue;                                                                            \
+                    const uint grid_b_ = grid_bucket(g_, cell);                                                        \
+                    const uint grid_end_ = (starts_)[grid_b_ + 1];                                                     \
+                    for (uint grid_k_ = (starts_)[grid_b_]; grid_k_ < grid_end_; ++grid_k_) {                          \
+                        __global const GRID_ELEM* ph = &(sorted_)[grid_k_];                                            \
                         __VA_ARGS__                                                                                    \
                     }                                                                                                  \
                 }                                                                                                      \
+    } while (0)
+
+/* Runs the statement(s) `...` for every element of the grid within squared radius r2 of x
+ * (grid_within), with `ph` (the element) and `d2` (its squared distance) in scope. */
+#define GRID_FOR_EACH_NEAR(g_, sorted_, starts_, x_, r2_, ...)                                                         \
+    do {                                                                                                               \
+        const float gather_r_ = sqrt(r2_);                                                                             \
+        GRID_FOR_EACH_IN_CELLS(g_, sorted_, starts_, grid_cell(g_, (x_)-gather_r_), grid_cell(g_, (x_) + gather_r_),   \
+                               true, {                                                                                 \
+                                   float d2;                                                                           \
+                                   if (!grid_within(g_, ph, x_, r2_, cell, &d2)) continue;                             \
+                                   __VA_ARGS__                                                                         \
+                               });                                                                                     \
     } while (0)
 
 /* GRID_FOR_EACH_NEAR with the gather's acceptance (gather_faces) for a hit point with normal n that

@@ -20,6 +20,28 @@
         float volume_r2, uint accumulate, __global out_type *out, ulong seed, ulong pass,                              \
         __global const float2 *coverage
 
+/* c added to three fixed-point sums (FLUX_FIXED_SCALE): exact, in any order. */
+void add_fixed_point(float3 c, long* a0, long* a1, long* a2) {
+    *a0 += convert_long_rte((double)c.x * FLUX_FIXED_SCALE);
+    *a1 += convert_long_rte((double)c.y * FLUX_FIXED_SCALE);
+    *a2 += convert_long_rte((double)c.z * FLUX_FIXED_SCALE);
+}
+
+/* Hit point i's sums of a pass into out[i]; a pass traced in several photon batches adds them up
+ * (accumulate): integer sums, so the result is the same as for one batch. */
+void store_pass_flux(__global PassFlux* out, uint i, long a0, long a1, long a2, uint m, uint accumulate) {
+    if (accumulate) {
+        a0 += out[i].flux[0];
+        a1 += out[i].flux[1];
+        a2 += out[i].flux[2];
+        m += out[i].m;
+    }
+    out[i].flux[0] = a0;
+    out[i].flux[1] = a1;
+    out[i].flux[2] = a2;
+    out[i].m = m;
+}
+
 typedef struct {
     float3 x, n;       /* position and normal */
     HitBrdf brdf;      /* the lobes the hit point keeps */
@@ -91,13 +113,19 @@ VolumeQuery volume_query(__global const HitPoint* hp, float volume_r2, ulong see
     return q;
 }
 
+/* Phi_p of the volume photon ph as a query of a path through dispersive glass or not (dispersed)
+ * sees it at the pass's wavelength pw. */
+float3 volume_photon_flux(__global const Photon* ph, bool dispersed, const PassWavelength* pw) {
+    float3 phi =
+        (float3)(without_dispersed(ph->flux[0]), as_float(as_uint(ph->flux[1]) & ~PHOTON_VOLUME_FLAG), ph->flux[2]);
+    if (HAS_DISPERSION) phi *= merge_dispersion(dispersed, is_dispersed(ph->flux[0]), pw);
+    return phi;
+}
+
 /* p(-wi . wo) Phi_p / sigma_t of the volume photon ph. */
 float3 gather_volume_photon(const VolumeQuery* q, __global const Photon* ph) {
     const float3 wi = oct_decode(ph->wi_oct);
-    float3 phi =
-        (float3)(without_dispersed(ph->flux[0]), as_float(as_uint(ph->flux[1]) & ~PHOTON_VOLUME_FLAG), ph->flux[2]);
-    if (HAS_DISPERSION) phi *= merge_dispersion(q->dispersed, is_dispersed(ph->flux[0]), &q->pw);
-    return phi * q->inv_sigma_t * hg_phase(-dot(wi, q->wo), q->g);
+    return volume_photon_flux(ph, q->dispersed, &q->pw) * q->inv_sigma_t * hg_phase(-dot(wi, q->wo), q->g);
 }
 
 #endif

@@ -28,11 +28,16 @@ uint grid_bucket(__constant GridInfo* g, int3 c) {
     return h & (g->table_size - 1u);
 }
 
+/* Counts the element at p in its bucket. */
+void grid_count_one(__constant GridInfo* g, float3 p, volatile __global uint* counts) {
+    atomic_inc(&counts[grid_bucket(g, grid_cell(g, p))]);
+}
+
 __kernel SCALAR_WORK_ITEMS void grid_count(__constant GridInfo* g, __global const GRID_ELEM* photons,
                                            volatile __global uint* counts) {
     uint i = get_global_id(0);
     if (i >= g->num_photons) return;
-    atomic_inc(&counts[grid_bucket(g, grid_cell(g, load3g(photons[i].pos)))]);
+    grid_count_one(g, load3g(photons[i].pos), counts);
 }
 
 /* Exclusive prefix sum of n counts into starts[0..n] by one work-group of GRID_SCAN_WG items:
@@ -66,15 +71,20 @@ __kernel __attribute__((reqd_work_group_size(GRID_SCAN_WG, 1, 1))) void grid_sca
 }
 
 /* counts still holds the per-bucket counts; counting down gives each photon a distinct slot. */
+void grid_scatter_one(__constant GridInfo* g, const GRID_ELEM* ph, __global const uint* starts,
+                      volatile __global uint* counts, __global GRID_ELEM* sorted) {
+    uint b = grid_bucket(g, grid_cell(g, load3(ph->pos)));
+    uint slot = starts[b] + atomic_dec(&counts[b]) - 1u;
+    sorted[slot] = *ph;
+}
+
 __kernel SCALAR_WORK_ITEMS void grid_scatter(__constant GridInfo* g, __global const GRID_ELEM* photons,
                                              __global const uint* starts, volatile __global uint* counts,
                                              __global GRID_ELEM* sorted) {
     uint i = get_global_id(0);
     if (i >= g->num_photons) return;
     GRID_ELEM ph = photons[i];
-    uint b = grid_bucket(g, grid_cell(g, load3(ph.pos)));
-    uint slot = starts[b] + atomic_dec(&counts[b]) - 1u;
-    sorted[slot] = ph;
+    grid_scatter_one(g, &ph, starts, counts, sorted);
 }
 
 #endif

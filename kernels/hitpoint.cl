@@ -49,8 +49,12 @@ void store_hitpoint(__global HitPoint* hp, uint pixel, float3 p, float3 wo, floa
     hp->pixel = pixel;
 }
 
-/* Whether hp is a volume hit point (shared_types.h): never in a program for scenes without media. */
-bool hitpoint_in_volume(__global const HitPoint* hp) { return HAS_MEDIUM && hp->alpha == HITPOINT_VOLUME_ALPHA; }
+/* Whether hp lies in a medium, a volume hit point or a beam (shared_types.h): none has surface
+ * statistics. Never in a program for scenes without media. */
+bool hitpoint_in_volume(__global const HitPoint* hp) { return HAS_MEDIUM && hp->alpha < 0.0f; }
+
+/* Whether hp is a beam (shared_types.h), which kernels/beam.cl gathers for. */
+bool hitpoint_is_beam(__global const HitPoint* hp) { return HAS_MEDIUM && hp->alpha == HITPOINT_BEAM_ALPHA; }
 
 /* A volume hit point at p, seen from wo, in a medium of extinction sigma_t and phase g; weight is
  * the eye path's throughput times sigma_s T / pdf of its free flight. Every field written. */
@@ -81,6 +85,21 @@ void store_volume_hitpoint(__global HitPoint* hp, uint pixel, float3 p, float3 w
     v.alpha_t = 0.0f;
     v.translucent[0] = v.translucent[1] = v.translucent[2] = v.dt = 0.0f;
     *hp = v;
+}
+
+/* A beam (shared_types.h): the segment o + t d, t in [0, t_max], of a camera ray of throughput
+ * weight at o through the medium m (sigma_t, albedo, g). Every field written. */
+void store_beam(__global HitPoint* hp, uint pixel, float3 o, float3 d, float t_max, float3 weight, float3 sigma_t,
+                float3 albedo, float g, float footprint) {
+    store_volume_hitpoint(hp, pixel, o, -d, weight, sigma_t, g, footprint);
+    hp->alpha = HITPOINT_BEAM_ALPHA;
+    hp->f0[0] = d.x;
+    hp->f0[1] = d.y;
+    hp->f0[2] = d.z;
+    hp->dielectric = t_max;
+    hp->sheen[0] = albedo.x;
+    hp->sheen[1] = albedo.y;
+    hp->sheen[2] = albedo.z;
 }
 
 /* The material at the hit point, with shading normal n (decoded once by the caller). */

@@ -165,6 +165,28 @@ float equiangular_pdf(float3 o, float3 d, float t_max, float3 c, float t) {
     return D / ((th_b - th_a) * (D * D + x * x));
 }
 
+/* A distance in [0, t_max), t_max finite, in proportion to sigma_t T in one channel of extinction
+ * sigma (uniform where sigma is 0): the exponential truncated to the segment. Its density at t. */
+float truncated_distance_pdf(float sigma, float t_max, float t) {
+    return sigma > 0.0f ? sigma * exp(-sigma * t) / -expm1(-sigma * t_max) : 1.0f / t_max;
+}
+
+/* A distance within [0, t_max) in the medium m, from the uniforms u (x: the channel, y: the
+ * distance): truncated_distance_pdf in one channel picked in proportion to beta, weighted by the
+ * one-sample balance heuristic over the channels as medium_sample_distance is. Every sample lands
+ * in the segment (a beam's light samples, kernels/beam.cl). Returns the distance and *beta times
+ * sigma_t T / pdf; false where the pdf vanishes (beta is then 0). */
+bool medium_sample_within(const Medium* m, float t_max, float2 u, float3* beta, float* t) {
+    const float3 sigma = m->sigma_t, pc = medium_channel_pick(*beta);
+    const float s = u.x < pc.x || pc.y + pc.z == 0.0f ? sigma.x : u.x < pc.x + pc.y || pc.z == 0.0f ? sigma.y : sigma.z;
+    *t = fmin(s > 0.0f ? -log1p(u.y * expm1(-s * t_max)) / s : u.y * t_max, t_max);
+    const float pdf = pc.x * truncated_distance_pdf(sigma.x, t_max, *t) +
+                      pc.y * truncated_distance_pdf(sigma.y, t_max, *t) +
+                      pc.z * truncated_distance_pdf(sigma.z, t_max, *t);
+    *beta = pdf > 0.0f ? *beta * (sigma * medium_transmittance(sigma, *t)) / pdf : (float3)(0.0f);
+    return pdf > 0.0f;
+}
+
 /* One free-flight distance along a segment of length t_max (INFINITY: to the end of the world)
  * in the medium m, from the uniforms u (x: the channel, y: the distance). Returns true with the
  * collision's distance in *t and *beta times sigma_t T / pdf (the albedo, which a scattering there

@@ -234,7 +234,12 @@ typedef struct {
  * A volume hit point, where the eye path scattered in a participating medium (kernels/medium.cl),
  * has alpha HITPOINT_VOLUME_ALPHA, the medium's sigma_t in color, its Henyey-Greenstein g in f90,
  * weight the throughput times sigma_s T / pdf of the free flight, and wo_oct; it gathers the
- * photons stored in media within a sphere (kernels/gather.cl). */
+ * photons stored in media within a sphere (kernels/gather.cl).
+ * A beam (alpha HITPOINT_BEAM_ALPHA; SPPM and PPPM in media, one per pixel after the pixels' hit
+ * points) is a camera ray's segment through a medium, o + t d for t in [0, t_max]: pos o, f0 d,
+ * dielectric t_max, color sigma_t, sheen the single-scattering albedo, f90 g, weight the throughput
+ * at o, wo_oct -d; it gathers the photons stored in media within a cylinder around the segment
+ * (kernels/beam.cl, the beam radiance estimate). */
 typedef struct {
     float pos[3];
     u32 pixel;       /* y * width + x; HITPOINT_NONE marks an unused slot */
@@ -268,6 +273,7 @@ typedef struct {
 
 #define HITPOINT_NONE 0xffffffffu
 #define HITPOINT_VOLUME_ALPHA (-1.0f)
+#define HITPOINT_BEAM_ALPHA (-2.0f)
 
 /* What one pass's gather found for one hit point: M and the sum of photon flux, in fixed point
  * (FLUX_FIXED_SCALE) so that the sum does not depend on the order photons are visited in. */

@@ -11,3 +11,6 @@
 #include "ppm_update.cl"
 #include "sppm.cl"
 #include "error_estimate.cl"
+#if HAS_MEDIUM
+#include "beam.cl"
+#endif

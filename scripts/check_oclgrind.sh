@@ -50,6 +50,7 @@ cases=(
   "fog-sppm|$here/tests/data/fog_room.gltf --integrator sppm"
   "wax-pppm|$here/tests/data/wax_block.gltf --integrator pppm"
   "wax-sppm|$here/tests/data/wax_block.gltf --integrator sppm --direct photons"
+  "fog-beams|$here/tests/data/fog_room.gltf --integrator pppm --volume-gather beams"
 )
 status=0
 for c in "${cases[@]}"; do

@@ -11,24 +11,16 @@
 #include <random>
 
 #include "device/kernel_program.h"
+#include "device_grid.h"
+#include "octahedral.h"
 #include "shared_types.h"
 #include "test_util.h"
 
 using namespace clppm;
+using clppm::test::oct;
+using clppm::test::unoct;
 
 namespace {
-
-// Octahedral encoding as in kernels/sampling.cl (the grid test needs encoded photon normals).
-uint32_t oct(float x, float y, float z) {
-    float l1 = std::fabs(x) + std::fabs(y) + std::fabs(z);
-    float px = x / l1, py = y / l1;
-    if (z < 0) {
-        float ox = (1 - std::fabs(py)) * (px >= 0 ? 1.f : -1.f), oy = (1 - std::fabs(px)) * (py >= 0 ? 1.f : -1.f);
-        px = ox, py = oy;
-    }
-    auto q = [](float v) { return uint32_t(std::lround(std::clamp((v * 0.5f + 0.5f) * 65535.f, 0.f, 65535.f))); };
-    return q(px) | (q(py) << 16);
-}
 
 struct GatherCase {
     std::vector<dev::Photon> photons;
@@ -119,32 +111,16 @@ std::vector<dev::PassFlux> device_gather(const GatherCase& c) {
     cl::Program program(dc.context, assemble_kernel_source("gather.cl"));
     program.build({dc.info.device}, "-cl-std=CL1.2");
     const cl::Context& ctx = dc.context;
-    auto buf = [&](const void* data, size_t bytes) {
-        return cl::Buffer(ctx, CL_MEM_READ_WRITE | CL_MEM_COPY_HOST_PTR, bytes, const_cast<void*>(data));
-    };
-    cl::Buffer grid = buf(&c.grid, sizeof c.grid);
-    cl::Buffer photons = buf(c.photons.data(), c.photons.size() * sizeof(dev::Photon));
-    cl::Buffer sorted(ctx, CL_MEM_READ_WRITE, c.photons.size() * sizeof(dev::Photon));
-    std::vector<cl_uint> zeros(c.grid.table_size, 0);
-    cl::Buffer counts = buf(zeros.data(), zeros.size() * sizeof(cl_uint));
-    cl::Buffer starts(ctx, CL_MEM_READ_WRITE, (zeros.size() + 1) * sizeof(cl_uint));
-    cl::Buffer hps = buf(c.hitpoints.data(), c.hitpoints.size() * sizeof(dev::HitPoint));
-    cl::Buffer stats = buf(c.stats.data(), c.stats.size() * sizeof(dev::HitStats));
+    const test::DeviceGrid grid = test::build_device_grid(dc, program, c.grid, c.photons);
+    cl::Buffer hps = test::copy_buffer(ctx, c.hitpoints.data(), c.hitpoints.size() * sizeof(dev::HitPoint));
+    cl::Buffer stats = test::copy_buffer(ctx, c.stats.data(), c.stats.size() * sizeof(dev::HitStats));
     cl::Buffer out(ctx, CL_MEM_READ_WRITE, c.hitpoints.size() * sizeof(dev::PassFlux));
-    cl::Buffer coverage = buf(c.coverage.data(), c.coverage.size() * sizeof(cl_float2));
-    cl::Kernel count(program, "grid_count"), scan(program, "grid_scan"), scatter(program, "grid_scatter"),
-        gather(program, "gather");
-    count.setArg(0, grid), count.setArg(1, photons), count.setArg(2, counts);
-    scan.setArg(0, counts), scan.setArg(1, starts), scan.setArg(2, cl_uint(c.grid.table_size));
-    scatter.setArg(0, grid), scatter.setArg(1, photons), scatter.setArg(2, starts), scatter.setArg(3, counts);
-    scatter.setArg(4, sorted);
-    gather.setArg(0, grid), gather.setArg(1, sorted), gather.setArg(2, starts), gather.setArg(3, hps);
+    cl::Buffer coverage = test::copy_buffer(ctx, c.coverage.data(), c.coverage.size() * sizeof(cl_float2));
+    cl::Kernel gather(program, "gather");
+    gather.setArg(0, grid.info), gather.setArg(1, grid.sorted), gather.setArg(2, grid.starts), gather.setArg(3, hps);
     gather.setArg(4, stats), gather.setArg(5, cl_uint(c.hitpoints.size())), gather.setArg(6, cl_float(0));
     gather.setArg(7, cl_float(c.volume_r2)), gather.setArg(8, cl_uint(0)), gather.setArg(9, out);
     gather.setArg(10, cl_ulong(1)), gather.setArg(11, cl_ulong(1)), gather.setArg(12, coverage);
-    dc.queue.enqueueNDRangeKernel(count, cl::NullRange, cl::NDRange(c.photons.size()));
-    dc.queue.enqueueNDRangeKernel(scan, cl::NullRange, cl::NDRange(256), cl::NDRange(256));
-    dc.queue.enqueueNDRangeKernel(scatter, cl::NullRange, cl::NDRange(c.photons.size()));
     dc.queue.enqueueNDRangeKernel(gather, cl::NullRange, cl::NDRange(c.hitpoints.size()));
     std::vector<dev::PassFlux> result(c.hitpoints.size());
     dc.queue.enqueueReadBuffer(out, CL_TRUE, 0, result.size() * sizeof(dev::PassFlux), result.data());
@@ -185,20 +161,6 @@ TEST(Gather, CrowdedHashTableStillCountsEachPhotonOnce) {
     c.grid.table_size = 1024;
     expect_same(c, "crowded table");
 }
-
-namespace {
-
-// Octahedral decoding as in kernels/sampling.cl, in double.
-void unoct(uint32_t e, double w[3]) {
-    double x = double(e & 0xffffu) * (2.0 / 65535.0) - 1, y = double(e >> 16) * (2.0 / 65535.0) - 1;
-    double z = 1 - std::fabs(x) - std::fabs(y), t = std::max(-z, 0.0);
-    x += x >= 0 ? -t : t;
-    y += y >= 0 ? -t : t;
-    const double l = std::sqrt(x * x + y * y + z * z);
-    w[0] = x / l, w[1] = y / l, w[2] = z / l;
-}
-
-} // namespace
 
 // make_case's plane with as many photons again stored in media through the cube around it (half
 // of them lying on the plane, arriving from above on an upward normal, as surface photons the

@@ -1,11 +1,14 @@
 // Photons in participating media: SPPM and PPPM store photons where their free flights collide
 // (kernels/photon_trace.cl), make volume hit points where the eye paths' do (kernels/eye_pass.cl),
 // gather them within a sphere (kernels/gather.cl) and add each pass's estimate to the pixel
-// (kernels/sppm.cl volume_accumulate), with explicit direct light at the volume hit points
-// (kernels/direct_light.cl). Held to the closed forms the path tracer is held to
+// (kernels/sppm.cl volume_accumulate), with explicit direct light at the volume hit points (a
+// light sample and a phase sample under MIS, kernels/direct_light.cl); with --volume-gather beams
+// each pixel's first scattering segment gathers them along its length instead (kernels/beam.cl).
+// Held to the closed forms the path tracer is held to
 // (medium_test.cpp), and to the path tracer where there is none:
 // - the scattering furnace (walls glowing 1, albedo 0.5, a medium that absorbs nothing: radiance 2
-//   everywhere), in the world's medium and in a closed mesh's;
+//   everywhere), in the world's medium (volume hit points, and --volume-gather beams) and in a
+//   closed mesh's;
 // - single scattering from a point light against the host quadrature, by light samples at the
 //   volume hit points (--direct sample) and by the photons themselves (--direct photons);
 // - the translucent block (tests/data/wax_block.gltf: diffuse transmission into a scattering
@@ -34,16 +37,21 @@ RenderSettings photon_settings(const char* integrator, unsigned size, unsigned m
 } // namespace
 
 TEST(MediumPhotons, ScatteringFurnaceKeepsItsRadiance) {
-    for (const char* integrator : {"sppm", "pppm"}) {
-        SCOPED_TRACE(integrator);
-        Scene scene = glowing_box(0.5f, 1.f);
-        set_medium(scene, {0.5f, 1.f, 2.f}, {1.f, 1.f, 1.f}, 0.6f);
-        IntegratorStats stats;
-        const Image img = render_passes(scene, photon_settings(integrator, 16, 1024, 20000), 64, &stats);
-        expect_clean(img);
-        EXPECT_GT(stats.initial_volume_radius, 0.0);
-        EXPECT_LT(stats.volume_radius, stats.initial_volume_radius) << "the volume radius shrinks";
-        for (int c = 0; c < 3; ++c) EXPECT_NEAR(region_mean(img, 0, 0, 16, 16, c), 2.0, 0.04) << "channel " << c;
+    for (const bool beams : {true, false}) {
+        for (const char* integrator : {"sppm", "pppm"}) {
+            SCOPED_TRACE(std::string(integrator) + (beams ? ", --volume-gather beams" : ", points"));
+            Scene scene = glowing_box(0.5f, 1.f);
+            set_medium(scene, {0.5f, 1.f, 2.f}, {1.f, 1.f, 1.f}, 0.6f);
+            IntegratorStats stats;
+            RenderSettings s = photon_settings(integrator, 16, 1024, 20000);
+            s.volume_gather = beams ? VolumeGather::Beams : VolumeGather::Points;
+            const Image img = render_passes(scene, s, 64, &stats);
+            expect_clean(img);
+            EXPECT_EQ(stats.phase_seconds.count("beam_gather"), beams ? 1u : 0u) << "beams gathered or not";
+            EXPECT_GT(stats.initial_volume_radius, 0.0);
+            EXPECT_LT(stats.volume_radius, stats.initial_volume_radius) << "the volume radius shrinks";
+            for (int c = 0; c < 3; ++c) EXPECT_NEAR(region_mean(img, 0, 0, 16, 16, c), 2.0, 0.04) << "channel " << c;
+        }
     }
 }
 

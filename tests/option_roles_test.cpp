@@ -50,6 +50,7 @@ const std::map<std::string, std::string>& samples() {
                                                          {"--radius", "0.05"},
                                                          {"--spp", "2"},
                                                          {"--disc-coverage", "on"},
+                                                         {"--volume-gather", "beams"},
                                                          {"--direct", "photons"},
                                                          {"--max-bounces", "3"},
                                                          {"--sampler", "independent"},

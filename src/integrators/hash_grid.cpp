@@ -15,11 +15,12 @@ uint32_t hash_grid_table_size(uint64_t n) {
 
 size_t HashGrid::bytes_for(uint64_t n) { return (2 * size_t(hash_grid_table_size(n)) + 1) * sizeof(cl_uint); }
 
-HashGrid::HashGrid(const DeviceContext& dc, const cl::Program& program, IntegratorStats& stats)
+HashGrid::HashGrid(const DeviceContext& dc, const cl::Program& program, IntegratorStats& stats,
+                   const std::string& kernels)
     : dc_(dc), stats_(stats) {
-    k_count_ = cl::Kernel(program, "grid_count");
+    k_count_ = cl::Kernel(program, (kernels + "grid_count").c_str());
     k_scan_ = cl::Kernel(program, "grid_scan");
-    k_scatter_ = cl::Kernel(program, "grid_scatter");
+    k_scatter_ = cl::Kernel(program, (kernels + "grid_scatter").c_str());
     info_ = make_buffer(dc.context, CL_MEM_READ_ONLY, sizeof(dev::GridInfo));
 }
 

@@ -5,6 +5,7 @@
 #pragma once
 #include <cstddef>
 #include <cstdint>
+#include <string>
 
 #include "device/cl.h"
 #include "device/device.h"
@@ -15,7 +16,10 @@ namespace clppm {
 
 class HashGrid {
 public:
-    HashGrid(const DeviceContext& dc, const cl::Program& program, IntegratorStats& stats);
+    // kernels: the prefix of the program's count and scatter kernels ("": grid_count and
+    // grid_scatter, every element; "beam_": kernels/beam.cl's, the photons stored in media only).
+    HashGrid(const DeviceContext& dc, const cl::Program& program, IntegratorStats& stats,
+             const std::string& kernels = "");
 
     // Sorts elements [0, n) of `elements` into `sorted` by cubic cells of side `cell` from `origin`
     // (timed as "grid_build").

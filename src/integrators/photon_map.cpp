@@ -17,7 +17,7 @@ uint64_t paths_per_item(const RenderSettings& settings) { return settings.visual
 
 PhotonMap::PhotonMap(const DeviceContext& dc, const DeviceScene& scene, const RenderSettings& settings,
                      const cl::Program& program, IntegratorStats& stats, uint64_t max_batch_photons)
-    : dc_(dc), scene_(scene), settings_(settings), stats_(stats), grid_(dc, program, stats),
+    : dc_(dc), scene_(scene), settings_(settings), stats_(stats), grid_(dc, program, stats), program_(program),
       trace_(dc, sizeof(dev::Photon), kStoredPerEmitted * paths_per_item(settings),
              std::min<uint64_t>({(settings.photons + paths_per_item(settings) - 1) / paths_per_item(settings),
                                  kMaxBatchPhotons / paths_per_item(settings),
@@ -45,7 +45,8 @@ size_t PhotonMap::memory_needed(const RenderSettings& settings, const DeviceInfo
 }
 
 size_t PhotonMap::device_bytes() const {
-    return trace_.device_bytes() + grid_.device_bytes() + (chains_ ? chains_->device_bytes() : 0);
+    return trace_.device_bytes() + grid_.device_bytes() + (chains_ ? chains_->device_bytes() : 0) +
+           (beam_grid_ ? beam_grid_->device_bytes() + beam_sorted_bytes_ : 0);
 }
 
 void PhotonMap::run_pass(uint64_t pass, uint32_t first_photon, uint32_t count_photons, const cl::Buffer& hitpoints,
@@ -72,6 +73,7 @@ void PhotonMap::run_pass(uint64_t pass, uint32_t first_photon, uint32_t count_ph
             if (chains_) chains_->commit_batch();
             build_grid(stored, radii);
             gather(pass, hitpoints, stats, n, radii, batches_ > 0, out);
+            if (radii.beam_r2 > 0) beam_gather(stored, pass, hitpoints, n, radii.beam_r2, batches_ > 0, out);
             stats_.photons_stored += stored;
             ++batches_;
         });
@@ -102,6 +104,30 @@ void PhotonMap::gather(uint64_t pass, const cl::Buffer& hitpoints, const cl::Buf
     enqueue_gather(k_gather_, pass, hitpoints, stats, n, radii, accumulate, out, "gather");
     if (k_second_())
         enqueue_gather(k_second_, pass, hitpoints, stats, n, radii, accumulate, second_out_, second_phase_);
+}
+
+// The beams' gather (kernels/beam.cl) over its own grid of the photons stored in media, after
+// gather wrote the other slots: cells of side 2 r (side r ran half the passes in the volumetric
+// caustic: more cells for each step along a beam; bench/RESULTS.md).
+void PhotonMap::beam_gather(uint32_t stored, uint64_t pass, const cl::Buffer& hitpoints, uint32_t n, float beam_r2,
+                            bool accumulate, const cl::Buffer& out) {
+    if (n == 0) return;
+    if (!beam_grid_) {
+        k_beam_ = cl::Kernel(program_, "beam_gather");
+        beam_grid_ = std::make_unique<HashGrid>(dc_, program_, stats_, "beam_");
+    }
+    const size_t bytes = std::max<size_t>(1, stored) * sizeof(dev::Photon);
+    if (bytes > beam_sorted_bytes_) {
+        beam_sorted_ = make_buffer(dc_.context, CL_MEM_READ_WRITE, bytes);
+        beam_sorted_bytes_ = bytes;
+    }
+    const double cell = std::max(2.0 * std::sqrt(double(beam_r2)), 2.0 * scene_.info.radius / double(1 << 20));
+    beam_grid_->build(trace_.records(), beam_sorted_, stored, scene_.bounds_min, cell);
+    set_args(k_beam_, 0, beam_grid_->info(), beam_sorted_, beam_grid_->starts(), hitpoints, cl_uint(n),
+             cl_float(beam_r2), cl_uint(accumulate ? 1 : 0), out, cl_ulong(settings_.seed), cl_ulong(pass));
+    cl::Event ev;
+    enqueue_1d(dc_.queue, k_beam_, n, &ev);
+    add_event_time(stats_, "beam_gather", ev);
 }
 
 // gather and the second gather take the same arguments, each with its own output; the seed and

@@ -22,13 +22,15 @@ namespace clppm {
 // Stored photons per emitted photon a buffer starts out sized for; it grows if a scene stores more.
 constexpr uint32_t kStoredPerEmitted = 3;
 // The radii of one pass's gathers: PPPM's one radius for every surface hit point (global_r2 > 0;
-// else each its own, HitStats.r2), the volume hit points' one radius (volume_r2), and the sizes
-// the grid's cells are made for (typical, and max, which covers every sphere of the pass).
+// else each its own, HitStats.r2), the volume hit points' one radius (volume_r2), the sizes the
+// grid's cells are made for (typical, and max, which covers every sphere of the pass), and the
+// beams' radius (beam_r2 > 0: kernels/beam.cl gathers for them on a grid of its own).
 struct PassRadii {
     float global_r2 = 0;
     float volume_r2 = 0;
     double typical = 0;
     double max = 0;
+    float beam_r2 = 0;
 };
 
 // Photons traced at once at most: memory stays bounded whatever --photons says, and Ctrl-C is
@@ -70,6 +72,8 @@ public:
 private:
     void trace(uint64_t pass, uint32_t first, uint32_t count);
     void build_grid(uint32_t stored, const PassRadii& radii);
+    void beam_gather(uint32_t stored, uint64_t pass, const cl::Buffer& hitpoints, uint32_t n, float beam_r2,
+                     bool accumulate, const cl::Buffer& out);
     void gather(uint64_t pass, const cl::Buffer& hitpoints, const cl::Buffer& stats, uint32_t n, const PassRadii& radii,
                 bool accumulate, const cl::Buffer& out);
     void enqueue_gather(cl::Kernel& kernel, uint64_t pass, const cl::Buffer& hitpoints, const cl::Buffer& stats,
@@ -87,6 +91,12 @@ private:
     uint32_t coverage_capacity_ = 0;
     cl::Buffer open_edges_; // per triangle: its open edges (scene/open_edges.h), made when first measured
     HashGrid grid_;
+    // Beams (PassRadii.beam_r2 > 0): the photons sorted again into cells of twice the beams' radius.
+    const cl::Program program_;
+    cl::Kernel k_beam_;
+    std::unique_ptr<HashGrid> beam_grid_;
+    cl::Buffer beam_sorted_;
+    size_t beam_sorted_bytes_ = 0;
     cl::Kernel k_second_;
     cl::Buffer second_out_;
     std::string second_phase_;

@@ -12,6 +12,7 @@ enum class DirectLighting { Photons, Sample };     // --direct
 enum class PixelFilter { Box, Tent };              // --filter
 enum class Sampler { Sobol, ZSobol, Independent }; // --sampler (the path tracer's)
 enum class DiscCoverage { Auto, On, Off };         // --disc-coverage
+enum class VolumeGather { Points, Beams };         // --volume-gather
 
 // Their names, spelled here alone (util/enum_names.h): the options parse them, to_string prints them.
 constexpr EnumName<DirectLighting> kDirectLightingNames[] = {{DirectLighting::Photons, "photons"},
@@ -21,10 +22,13 @@ constexpr EnumName<Sampler> kSamplerNames[] = {
     {Sampler::Sobol, "sobol"}, {Sampler::ZSobol, "zsobol"}, {Sampler::Independent, "independent"}};
 constexpr EnumName<DiscCoverage> kDiscCoverageNames[] = {
     {DiscCoverage::Auto, "auto"}, {DiscCoverage::On, "on"}, {DiscCoverage::Off, "off"}};
+constexpr EnumName<VolumeGather> kVolumeGatherNames[] = {{VolumeGather::Points, "points"},
+                                                         {VolumeGather::Beams, "beams"}};
 constexpr const auto& enum_names(DirectLighting) { return kDirectLightingNames; }
 constexpr const auto& enum_names(PixelFilter) { return kPixelFilterNames; }
 constexpr const auto& enum_names(Sampler) { return kSamplerNames; }
 constexpr const auto& enum_names(DiscCoverage) { return kDiscCoverageNames; }
+constexpr const auto& enum_names(VolumeGather) { return kVolumeGatherNames; }
 
 // The one set of defaults for what shapes an image, whichever front end asks (the command line,
 // the Python module, the tests). The scene's part (camera, resolution, lens, path length) is the
@@ -55,6 +59,12 @@ struct RenderSettings : SceneSettings {
     // whole: auto measures it where the hit points number at most twice the photons traced
     // (disc_coverage_wanted).
     DiscCoverage disc_coverage = DiscCoverage::Auto;
+    // SPPM and PPPM in media: what estimates the light the camera rays' segments in media scatter
+    // towards the eye. points: a volume hit point where the eye path's free flight collides,
+    // gathering in a sphere (kernels/gather.cl); beams: each pixel's first scattering segment
+    // gathers along its whole length in a cylinder (kernels/beam.cl, the beam radiance estimate),
+    // far less noise a pass for far more gather time on this grid (docs/scenes.md, media).
+    VolumeGather volume_gather = VolumeGather::Points;
     // VCM and BPT: one technique alone (VCM_MODE_* of kernels/vcm_mis.h), for the tests that
     // compare the techniques; -1: the integrator's own.
     int vcm_techniques = -1;

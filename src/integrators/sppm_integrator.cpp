@@ -20,6 +20,11 @@ SppmIntegrator::SppmIntegrator(const DeviceContext& dc, const DeviceScene& scene
     k_accumulate_ = cl::Kernel(program, "pppm_accumulate");
     k_film_ = cl::Kernel(program, probabilistic_ ? "pppm_film" : "sppm_film");
     if (scene.media) k_volume_ = cl::Kernel(program, "volume_accumulate");
+    beams_ = scene.media && settings.volume_gather == VolumeGather::Beams;
+    if (beams_) {
+        k_beam_accumulate_ = cl::Kernel(program, "beam_accumulate");
+        k_beam_direct_ = cl::Kernel(program, "beam_direct_light");
+    }
 }
 
 IntegratorMemory SppmIntegrator::memory_needed(size_t pixels, bool error_estimation) {
@@ -38,14 +43,15 @@ IntegratorMemory SppmIntegrator::memory_needed(size_t pixels, bool error_estimat
 
 void SppmIntegrator::prepare() {
     const size_t n = num_pixels_;
+    slots_ = beams_ ? 2 * num_pixels_ : num_pixels_;
     auto make = [&](size_t bytes) {
         stats_.device_bytes += bytes;
         return make_buffer(dc_.context, CL_MEM_READ_WRITE, bytes);
     };
-    hitpoints_ = make(n * sizeof(dev::HitPoint));
+    hitpoints_ = make(slots_ * sizeof(dev::HitPoint));
     sample_emission_ = make(n * sizeof(cl_float4));
-    stats_buf_ = make(n * sizeof(dev::HitStats));
-    passflux_ = make(n * sizeof(dev::PassFlux));
+    stats_buf_ = make(slots_ * sizeof(dev::HitStats));
+    passflux_ = make(slots_ * sizeof(dev::PassFlux));
     image_buf_ = make(n * kFilmBytesPerPixel);
     radius_partials_ = make(radius_partials_bytes(num_pixels_));
     stats_.hitpoints = n;
@@ -53,12 +59,12 @@ void SppmIntegrator::prepare() {
 
     // The first pass's visible points decide the initial radius, as PPM's hit points do.
     eye_pass(1);
-    std::vector<dev::HitPoint> hps(n);
-    dc_.queue.enqueueReadBuffer(hitpoints_, CL_TRUE, 0, n * sizeof(dev::HitPoint), hps.data());
+    std::vector<dev::HitPoint> hps(slots_);
+    dc_.queue.enqueueReadBuffer(hitpoints_, CL_TRUE, 0, slots_ * sizeof(dev::HitPoint), hps.data());
     std::vector<float> footprints, volume_footprints;
     for (const dev::HitPoint& hp : hps) {
         if (hp.pixel == HITPOINT_NONE) continue;
-        (hp.alpha == HITPOINT_VOLUME_ALPHA ? volume_footprints : footprints).push_back(std::fabs(hp.footprint));
+        (hp.alpha < 0 ? volume_footprints : footprints).push_back(std::fabs(hp.footprint));
     }
     const double r0 =
         settings_.radius > 0 ? settings_.radius : initial_radius_heuristic(footprints, scene_.info.radius);
@@ -70,21 +76,25 @@ void SppmIntegrator::prepare() {
     stats_.initial_radius = stats_.mean_radius = typical_radius_ = max_radius_ = r0;
     r2_ = r0 * r0;
     const dev::HitStats init{r0 * r0, 0.0, {0, 0, 0}, {0, 0, 0}};
-    fill_buffer(dc_.queue, stats_buf_, init, 0, n * sizeof(dev::HitStats));
+    fill_buffer(dc_.queue, stats_buf_, init, 0, slots_ * sizeof(dev::HitStats));
     if (errors_) errors_->reset(stats_buf_);
 }
 
 void SppmIntegrator::enable_error_estimation() {
     if (errors_) return;
-    errors_ = std::make_unique<ErrorEstimator>(dc_, program_, num_pixels_, stats_);
+    PixelHitpoints layout;
+    layout.num_hitpoints = slots_; // the second gather writes every slot; a beam's is 0
+    errors_ = std::make_unique<ErrorEstimator>(dc_, program_, num_pixels_, stats_, layout);
     photons_->set_second_gather(errors_->gather_kernel(), errors_->laplacian(), "error_estimate");
     if (stats_buf_()) errors_->reset(stats_buf_); // after prepare(): the estimate starts here
 }
 
 // New visible points for every pixel; their seen emission joins the per-pixel running sum.
 void SppmIntegrator::eye_pass(uint64_t pass) {
-    set_args(k_eye_, scene_.set_scene_args(k_eye_), scene_.camera_buf, cl_ulong(settings_.seed), cl_ulong(pass),
-             cl_uint(0), cl_uint(num_pixels_), cl_uint(1), hitpoints_, sample_emission_);
+    const int a = set_args(k_eye_, scene_.set_scene_args(k_eye_), scene_.camera_buf, cl_ulong(settings_.seed),
+                           cl_ulong(pass), cl_uint(0), cl_uint(num_pixels_), cl_uint(1), hitpoints_, sample_emission_);
+    // A program with media takes whether the buffer has the beams' slots (kernels/eye_pass.cl EYE_BEAMS).
+    if (k_eye_.getInfo<CL_KERNEL_NUM_ARGS>() > cl_uint(a)) k_eye_.setArg(a, cl_uint(beams_ ? 1 : 0));
     cl::Event ev;
     enqueue_1d(dc_.queue, k_eye_, num_pixels_, &ev);
     add_event_time(stats_, "eye_pass", ev);
@@ -107,8 +117,9 @@ void SppmIntegrator::run_pass() {
         const double rv = volume_radius();
         radii.volume_r2 = float(rv * rv);
         radii.max = std::max(radii.max, rv);
+        if (beams_) radii.beam_r2 = float(beam_radius() * beam_radius());
     }
-    photons_->run_pass(pass, hitpoints_, stats_buf_, num_pixels_, radii, passflux_);
+    photons_->run_pass(pass, hitpoints_, stats_buf_, slots_, radii, passflux_);
     set_args(k_emission_, 0, sample_emission_, stats_buf_, cl_uint(num_pixels_));
     enqueue_1d(dc_.queue, k_emission_, num_pixels_);
     direct_light(pass, num_pixels_);
@@ -122,6 +133,8 @@ void SppmIntegrator::run_pass() {
 
 double SppmIntegrator::volume_radius() const { return volume_r0_ * std::cbrt(volume_shrink_); }
 
+double SppmIntegrator::beam_radius() const { return kBeamRadiusScale * volume_r0_ * std::sqrt(volume_shrink_); }
+
 // Before the error estimate's update, which reads the pixels' direct sums.
 void SppmIntegrator::volume_update(uint64_t pass) {
     const double rv = volume_radius();
@@ -130,6 +143,19 @@ void SppmIntegrator::volume_update(uint64_t pass) {
     cl::Event ev;
     enqueue_1d(dc_.queue, k_volume_, num_pixels_, &ev);
     add_event_time(stats_, "volume", ev);
+    if (beams_) {
+        const double rb = beam_radius();
+        set_args(k_beam_accumulate_, 0, passflux_, hitpoints_, stats_buf_, cl_uint(num_pixels_),
+                 cl_double(power_per_photon() / (M_PI * rb * rb)));
+        enqueue_1d(dc_.queue, k_beam_accumulate_, num_pixels_, &ev);
+        add_event_time(stats_, "volume", ev);
+        if (settings_.direct == DirectLighting::Sample) {
+            set_args(k_beam_direct_, scene_.set_scene_args(k_beam_direct_), cl_ulong(settings_.seed), cl_ulong(pass),
+                     hitpoints_, stats_buf_, cl_uint(num_pixels_));
+            enqueue_1d(dc_.queue, k_beam_direct_, num_pixels_, &ev);
+            add_event_time(stats_, "direct_light", ev);
+        }
+    }
     volume_shrink_ = next_pppm_radius2(volume_shrink_, pass, settings_.alpha);
     stats_.volume_radius = volume_radius();
 }

@@ -30,13 +30,19 @@ private:
     // (kernels/sppm.cl volume_accumulate), and their radius shrinks.
     void volume_update(uint64_t pass);
     double volume_radius() const;
+    double beam_radius() const;
 
     bool probabilistic_;
-    cl::Kernel k_emission_, k_accumulate_, k_volume_;
+    // --volume-gather beams: each pixel's first scattering segment is a beam (kernels/beam.cl), in
+    // slot num_pixels_ + i of the hit point buffers.
+    bool beams_ = false;
+    uint32_t slots_ = 0; // entries of the hit point, statistics and pass flux buffers
+    cl::Kernel k_emission_, k_accumulate_, k_volume_, k_beam_accumulate_, k_beam_direct_;
     cl::Buffer sample_emission_;
     double r2_ = 0; // PPPM: this pass's radius squared
     // Media: the volume hit points' radius is volume_r0_ times volume_shrink_^(1/3), the product
-    // over the passes so far of (i + alpha) / (i + 1) (Knaus and Zwicker 2011, in 3-D).
+    // over the passes so far of (i + alpha) / (i + 1) (Knaus and Zwicker 2011, in 3-D); the beams'
+    // is kBeamRadiusScale volume_r0_ times volume_shrink_^(1/2) (a 2-D kernel).
     double volume_r0_ = 0, volume_shrink_ = 1;
 };
 
