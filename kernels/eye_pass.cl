@@ -221,8 +221,9 @@ __kernel SCALAR_WORK_ITEMS void eye_pass(SCENE_PARAMS, __constant Camera* cam, u
              * no free flight: its transmittance is exact. */
             const float3 d = normalize(r.dir);
             const float t_seg = found ? hit.t * length(r.dir) : INFINITY;
-            float ta = t_seg, tb = t_seg, t;
+            float ta = t_seg, t;
 #if EYE_BEAMS
+            float tb = t_seg;
             if (!(beam_free && max3(med.albedo) > 0.0f && beam_span(info, cam, r.org, d, t_seg, &ta, &tb)))
                 ta = tb = t_seg;
 #endif
