@@ -127,6 +127,11 @@ float3 medium_channel_pick(float3 beta) {
     return sum > 0.0f ? b / sum : (float3)(1.0f / 3.0f);
 }
 
+/* The extinction of the channel the uniform u picks with probabilities pc (medium_channel_pick). */
+float medium_picked_sigma(float3 sigma, float3 pc, float u) {
+    return u < pc.x || pc.y + pc.z == 0.0f ? sigma.x : u < pc.x + pc.y || pc.z == 0.0f ? sigma.y : sigma.z;
+}
+
 /* The density of a free flight from a path of throughput beta scattering at distance t:
  * sum over the channels of their pick times sigma_t T(t). */
 float medium_distance_pdf(const Medium* m, float3 beta, float t) {
@@ -178,7 +183,7 @@ float truncated_distance_pdf(float sigma, float t_max, float t) {
  * sigma_t T / pdf; false where the pdf vanishes (beta is then 0). */
 bool medium_sample_within(const Medium* m, float t_max, float2 u, float3* beta, float* t) {
     const float3 sigma = m->sigma_t, pc = medium_channel_pick(*beta);
-    const float s = u.x < pc.x || pc.y + pc.z == 0.0f ? sigma.x : u.x < pc.x + pc.y || pc.z == 0.0f ? sigma.y : sigma.z;
+    const float s = medium_picked_sigma(sigma, pc, u.x);
     *t = fmin(s > 0.0f ? -log1p(u.y * expm1(-s * t_max)) / s : u.y * t_max, t_max);
     const float pdf = pc.x * truncated_distance_pdf(sigma.x, t_max, *t) +
                       pc.y * truncated_distance_pdf(sigma.y, t_max, *t) +
@@ -195,7 +200,7 @@ bool medium_sample_within(const Medium* m, float t_max, float2 u, float3* beta, 
 bool medium_sample_distance(const Medium* m, float t_max, float2 u, float3* beta, float* t) {
     float3 sigma = m->sigma_t;
     float3 pc = medium_channel_pick(*beta);
-    float s = u.x < pc.x || pc.y + pc.z == 0.0f ? sigma.x : u.x < pc.x + pc.y || pc.z == 0.0f ? sigma.y : sigma.z;
+    float s = medium_picked_sigma(sigma, pc, u.x);
     float ts = s > 0.0f ? -log1p(-u.y) / s : INFINITY;
     if (ts < t_max) {
         float3 T = medium_transmittance(sigma, ts);

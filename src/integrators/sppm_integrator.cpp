@@ -21,6 +21,7 @@ SppmIntegrator::SppmIntegrator(const DeviceContext& dc, const DeviceScene& scene
     k_film_ = cl::Kernel(program, probabilistic_ ? "pppm_film" : "sppm_film");
     if (scene.media) k_volume_ = cl::Kernel(program, "volume_accumulate");
     beams_ = scene.media && settings.volume_gather == VolumeGather::Beams;
+    eye_args_ = k_eye_.getInfo<CL_KERNEL_NUM_ARGS>();
     if (beams_) {
         k_beam_accumulate_ = cl::Kernel(program, "beam_accumulate");
         k_beam_direct_ = cl::Kernel(program, "beam_direct_light");
@@ -94,7 +95,7 @@ void SppmIntegrator::eye_pass(uint64_t pass) {
     const int a = set_args(k_eye_, scene_.set_scene_args(k_eye_), scene_.camera_buf, cl_ulong(settings_.seed),
                            cl_ulong(pass), cl_uint(0), cl_uint(num_pixels_), cl_uint(1), hitpoints_, sample_emission_);
     // A program with media takes whether the buffer has the beams' slots (kernels/eye_pass.cl EYE_BEAMS).
-    if (k_eye_.getInfo<CL_KERNEL_NUM_ARGS>() > cl_uint(a)) k_eye_.setArg(a, cl_uint(beams_ ? 1 : 0));
+    if (eye_args_ > cl_uint(a)) k_eye_.setArg(a, cl_uint(beams_ ? 1 : 0));
     cl::Event ev;
     enqueue_1d(dc_.queue, k_eye_, num_pixels_, &ev);
     add_event_time(stats_, "eye_pass", ev);

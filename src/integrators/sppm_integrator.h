@@ -36,7 +36,8 @@ private:
     // --volume-gather beams: each pixel's first scattering segment is a beam (kernels/beam.cl), in
     // slot num_pixels_ + i of the hit point buffers.
     bool beams_ = false;
-    uint32_t slots_ = 0; // entries of the hit point, statistics and pass flux buffers
+    uint32_t slots_ = 0;   // entries of the hit point, statistics and pass flux buffers
+    cl_uint eye_args_ = 0; // eye_pass's parameters: one more (`beams`) in a program with media
     cl::Kernel k_emission_, k_accumulate_, k_volume_, k_beam_accumulate_, k_beam_direct_;
     cl::Buffer sample_emission_;
     double r2_ = 0; // PPPM: this pass's radius squared
