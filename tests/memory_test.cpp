@@ -4,6 +4,7 @@
 
 #include "integrators/memory_estimate.h"
 #include "integrators/photon_map.h"
+#include "medium_scenes.h"
 #include "scene_builders.h"
 #include "test_util.h"
 #include "util/error.h"
@@ -54,6 +55,31 @@ TEST(Memory, EstimateMatchesWhatARenderAllocates) {
         }
         if (integ != "pt") {
             EXPECT_LE(st.photon_bytes, m.photons) << integ;
+        }
+    }
+}
+
+// Beams along the camera rays take a second hit point slot per pixel and a second grid of the
+// photons in media: the estimate counts both.
+TEST(Memory, BeamsAreCountedInTheEstimate) {
+    Scene fog = diffuse_box();
+    set_medium(fog, {0.3f, 0.3f, 0.3f}, {0.8f, 0.8f, 0.8f}, 0.f);
+    for (VolumeGather gather : {VolumeGather::Points, VolumeGather::Beams}) {
+        RenderSettings s;
+        s.integrator = "sppm";
+        s.volume_gather = gather;
+        s.width = s.height = 40;
+        s.photons = 20000;
+        IntegratorStats st;
+        render_passes(fog, s, 1, &st);
+        MemoryEstimate m = estimate_memory(fog, s, 40, 40, test_device());
+        const bool beams = gather == VolumeGather::Beams;
+        EXPECT_NEAR(double(st.device_bytes) / double(m.integrator), 1.0, 0.02) << beams;
+        EXPECT_LE(st.photon_bytes, m.photons) << beams;
+        if (beams) {
+            RenderSettings points = s;
+            points.volume_gather = VolumeGather::Points;
+            EXPECT_GT(m.total(), estimate_memory(fog, points, 40, 40, test_device()).total());
         }
     }
 }

@@ -20,8 +20,8 @@ std::unique_ptr<IntegratorBase> make(const DeviceContext& dc, const DeviceScene&
     return std::make_unique<T>(dc, scene, settings, program, secondaries);
 }
 
-IntegratorMemory sppm_memory(const RenderSettings&, size_t pixels, bool errors) {
-    return SppmIntegrator::memory_needed(pixels, errors);
+IntegratorMemory sppm_memory(const RenderSettings& settings, size_t pixels, bool errors) {
+    return SppmIntegrator::memory_needed(pixels, errors, settings.volume_gather == VolumeGather::Beams);
 }
 IntegratorMemory pt_memory(const RenderSettings&, size_t pixels, bool errors) {
     return PtIntegrator::memory_needed(pixels, errors);

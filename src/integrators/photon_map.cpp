@@ -37,7 +37,12 @@ PhotonMap::PhotonMap(const DeviceContext& dc, const DeviceScene& scene, const Re
 size_t PhotonMap::memory_needed(const RenderSettings& settings, const DeviceInfo& device, uint64_t hitpoints) {
     const uint64_t capacity = BatchedTrace::initial_capacity(std::min<uint64_t>(settings.photons, kMaxBatchPhotons),
                                                              kStoredPerEmitted, sizeof(dev::Photon), device);
-    return 2 * size_t(capacity) * sizeof(dev::Photon) + HashGrid::bytes_for(capacity) +
+    // With beams, a second grid and sorted copy of the photons stored in media (beam_gather: at most
+    // all of them).
+    const size_t beams = settings.volume_gather == VolumeGather::Beams
+                             ? size_t(capacity) * sizeof(dev::Photon) + HashGrid::bytes_for(capacity)
+                             : 0;
+    return 2 * size_t(capacity) * sizeof(dev::Photon) + HashGrid::bytes_for(capacity) + beams +
            (settings.visual_importance
                 ? PhotonChains::memory_needed((settings.photons + PHOTON_CHAIN_STEPS - 1) / PHOTON_CHAIN_STEPS,
                                               hitpoints)

@@ -28,13 +28,16 @@ SppmIntegrator::SppmIntegrator(const DeviceContext& dc, const DeviceScene& scene
     }
 }
 
-IntegratorMemory SppmIntegrator::memory_needed(size_t pixels, bool error_estimation) {
-    // Visible point, seen emission, statistics, pass flux and film per pixel, the radius partials.
+IntegratorMemory SppmIntegrator::memory_needed(size_t pixels, bool error_estimation, bool beams) {
+    // Visible point, seen emission, statistics, pass flux and film per pixel, the radius partials;
+    // with beams (--volume-gather beams in a scene with media) a second slot of the first three per
+    // pixel, as prepare() makes them (counted whenever beams are asked for: a scene without media
+    // is then over-estimated, never under).
+    const size_t slots = beams ? 2 * pixels : pixels;
     IntegratorMemory m;
-    m.bytes = pixels * (sizeof(dev::HitPoint) + sizeof(cl_float4) + sizeof(dev::HitStats) + sizeof(dev::PassFlux) +
-                        kFilmBytesPerPixel) +
-              radius_partials_bytes(uint32_t(pixels));
-    m.largest_buffer = pixels * std::max(sizeof(dev::HitPoint), sizeof(dev::HitStats));
+    m.bytes = slots * (sizeof(dev::HitPoint) + sizeof(dev::HitStats) + sizeof(dev::PassFlux)) +
+              pixels * (sizeof(cl_float4) + kFilmBytesPerPixel) + radius_partials_bytes(uint32_t(pixels));
+    m.largest_buffer = slots * std::max(sizeof(dev::HitPoint), sizeof(dev::HitStats));
     if (error_estimation) {
         m.bytes += ErrorEstimator::bytes_per_pixel() * pixels;
         m.largest_buffer = std::max(m.largest_buffer, pixels * sizeof(dev::ErrorStats));

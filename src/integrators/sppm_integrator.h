@@ -11,7 +11,7 @@ public:
     SppmIntegrator(const DeviceContext& dc, const DeviceScene& scene, const RenderSettings& settings,
                    const cl::Program& program, const SecondaryDevices& secondaries = {});
     // The buffers prepare() (and enable_error_estimation()) allocate for `pixels` pixels.
-    static IntegratorMemory memory_needed(size_t pixels, bool error_estimation);
+    static IntegratorMemory memory_needed(size_t pixels, bool error_estimation, bool beams = false);
 
     void prepare() override;
     void run_pass() override;
