@@ -30,7 +30,9 @@ class ClppmSceneSettings(bpy.types.PropertyGroup):
     target_error: bpy.props.FloatProperty(name="Target error", min=0.0, max=1.0, default=0.0, precision=3,
                                           description="Stop once the estimated error (90th percentile of the "
                                                       "per-pixel relative error) is at most this (0: off)")
-    photons: bpy.props.IntProperty(name="Photons per pass", min=1, max=2147483647, default=200000)
+    photons: bpy.props.IntProperty(name="Photons per pass", min=0, max=2147483647, default=0,
+                                   description="Photons traced per pass (0: the library's default, 200000, and "
+                                               "50000 in participating media, where each collision stores one)")
     alpha: bpy.props.FloatProperty(name="Alpha", min=0.01, max=1.0, default=0.7,
                                    description="Fraction of new photons kept per pass (radius reduction)")
     visual_importance: bpy.props.BoolProperty(
@@ -48,7 +50,9 @@ class ClppmSceneSettings(bpy.types.PropertyGroup):
 
     def options(self):
         """The settings as clppm options (keyword arguments of clppm.Renderer)."""
-        o = {"integrator": self.integrator, "photons": self.photons, "alpha": self.alpha, "seed": self.seed}
+        o = {"integrator": self.integrator, "alpha": self.alpha, "seed": self.seed}
+        if self.photons > 0:
+            o["photons"] = self.photons
         if self.passes > 0:
             o["passes"] = self.passes
         if self.time > 0:

@@ -275,16 +275,21 @@ def test_the_settings_have_the_librarys_defaults_and_integrators():
     import clppm
     table = clppm.options()
     settings = bpy.context.scene.clppm
-    for name in ("photons", "alpha", "seed", "integrator"):
+    for name in ("alpha", "seed", "integrator"):
         value = settings.bl_rna.properties[name].default  # the panel's default (earlier tests changed the values)
         assert str(value) == table[name]["default"] or value == pytest.approx(float(table[name]["default"])), name
+    # Photons: 0, the library's choice (its default, and fewer in participating media).
+    assert settings.bl_rna.properties["photons"].default == 0
     names = {i[0] for i in properties.INTEGRATORS}
     assert table["integrator"]["range"] == "auto, ppm, sppm, pppm, pt, vcm or bpt"
     assert names == {"auto", "ppm", "sppm", "pppm", "pt", "vcm", "bpt"}
     # Where the library has no value (0 in the panel), the option is not passed.
-    for name in ("passes", "time", "target_error", "device", "visual_importance"):
+    for name in ("passes", "time", "target_error", "device", "visual_importance", "photons"):
         settings.property_unset(name)
-    assert set(settings.options()) == {"integrator", "photons", "alpha", "seed"}
+    assert set(settings.options()) == {"integrator", "alpha", "seed"}
+    settings.photons = 20000
+    assert settings.options()["photons"] == 20000
+    settings.property_unset("photons")
     # A switch the library takes as a flag: passed only when on.
     assert not settings.bl_rna.properties["visual_importance"].default and table["visual_importance"]["flag"]
     settings.visual_importance = True

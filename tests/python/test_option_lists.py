@@ -56,7 +56,7 @@ def addon_assignments():
             for item in node.body:
                 if isinstance(item, ast.AnnAssign) and isinstance(item.annotation, ast.Call):
                     props[item.target.id] = {k.arg: ast.literal_eval(k.value) for k in item.annotation.keywords
-                                             if k.arg in ("default", "min", "max", "items")
+                                             if k.arg in ("default", "min", "max", "items", "description")
                                              and not isinstance(k.value, ast.Name)}
     return constants, props
 
@@ -76,7 +76,12 @@ def test_the_blender_addon_offers_the_librarys_integrators():
 def test_the_blender_addons_defaults_are_the_librarys():
     _, props = addon_assignments()
     options = clppm.options()
-    for key in ("photons", "alpha", "seed"):
+    for key in ("alpha", "seed"):
         assert str(props[key]["default"]) == options[key]["default"], key
-    assert props["photons"]["max"] == 2147483647 and props["photons"]["min"] == 1
+    # Photons: 0 leaves the choice to the library (its default, and its own in media), which the
+    # description names.
+    assert props["photons"]["default"] == 0 and props["photons"]["min"] == 0
+    assert props["photons"]["max"] == 2147483647
+    assert "0: the library's default, %s," % options["photons"]["default"] in props["photons"]["description"]
+    assert "50000 in participating media" in options["photons"]["help"], options["photons"]
     assert props["alpha"]["max"] == 1.0
