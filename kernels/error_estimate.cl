@@ -28,7 +28,8 @@ __kernel SCALAR_WORK_ITEMS void error_gather(GATHER_KERNEL_PARAMS(long)) {
     __global const HitPoint* hp = &hitpoints[i];
     long acc = accumulate ? out[i] : 0;
     /* A volume hit point's light joins its pixel's direct sum (sppm.cl volume_accumulate), whose
-     * passes' spread error_update takes; no Laplacian is estimated for it. */
+     * passes' spread error_update takes, or, PPM's, its own statistics; no Laplacian is estimated
+     * for it (its bias is not in the bound). */
     if (hp->pixel != HITPOINT_NONE && !hitpoint_in_volume(hp)) {
         const GatherQuery q = gather_query(hp, stats, i, global_r2, seed, pass, coverage);
         /* The path throughput folded into the luminance weights: one scalar sum per hit point. */
@@ -89,11 +90,18 @@ __kernel void error_update(__global const PassFlux* pass, __global const long* l
     for (uint k = range.x; k < range.y; ++k) {
         __global const HitPoint* hp = &hitpoints[k];
         const double r2 = global_r2 > 0.0 ? global_r2 : stats[k].r2;
-        if (hp->pixel == HITPOINT_NONE || hitpoint_in_volume(hp) || !(r2 > 0.0)) continue;
+        /* SPPM's and PPPM's volume hit points are in the direct sum; PPM's (pixel_first) keep
+         * their own statistics, and their pass estimate is over the sphere's volume. */
+        const bool in_volume = hitpoint_in_volume(hp);
+        if (hp->pixel == HITPOINT_NONE || (in_volume && !pixel_first) || !(r2 > 0.0)) continue;
         __global const PassFlux* pf = &pass[k];
         double tau_y = error_luminance(hp->weight[0] * ((double)pf->flux[0] / FLUX_FIXED_SCALE),
                                        hp->weight[1] * ((double)pf->flux[1] / FLUX_FIXED_SCALE),
                                        hp->weight[2] * ((double)pf->flux[2] / FLUX_FIXED_SCALE));
+        if (in_volume) {
+            L += tau_y * power_per_photon / (4.0 / 3.0 * M_PI * r2 * sqrt(r2));
+            continue;
+        }
         L += tau_y * power_per_photon / (M_PI * r2);
         /* R^2 / 8 times the Laplacian 24 / (pi R^4) sum: 3 / (pi R^2) sum. */
         bias_j += (3.0 / M_PI) * ((double)lap[k] / FLUX_FIXED_SCALE) * power_per_photon / r2;
@@ -117,9 +125,10 @@ __kernel void error_update(__global const PassFlux* pass, __global const long* l
  * estimate). Sample s of pixel p: its seen emission sample_y[p spp + s] plus, for each of its
  * hit points (hit_sample[k] == s, in sample order within the pixel's range), the film's
  * radiance (ppm_film). Out: sqrt(variance / spp), 0 for spp = 1. */
-__kernel void error_sample_spread(__global const HitStats* stats, __global const uint* pixel_first,
-                                  __global const uint* hit_sample, __global const float* sample_y, uint n, uint spp,
-                                  double total_power, double photons_emitted, double passes, __global float* out) {
+__kernel void error_sample_spread(__global const HitPoint* hitpoints, __global const HitStats* stats,
+                                  __global const uint* pixel_first, __global const uint* hit_sample,
+                                  __global const float* sample_y, uint n, uint spp, double total_power,
+                                  double photons_emitted, double passes, __global float* out) {
     uint p = get_global_id(0);
     if (p >= n) return;
     if (spp < 2) {
@@ -133,7 +142,7 @@ __kernel void error_sample_spread(__global const HitStats* stats, __global const
         double y = sample_y[(ulong)p * spp + s];
         for (; k < end && hit_sample[k] == s; ++k) {
             __global const HitStats* st = &stats[k];
-            double3 L = photon_radiance(st, total_power, photons_emitted);
+            double3 L = hitpoint_photon_radiance(&hitpoints[k], st, total_power, photons_emitted);
             if (passes > 0.0) L += (double3)(st->direct[0], st->direct[1], st->direct[2]) / passes;
             y += error_luminance(L.x, L.y, L.z);
         }

@@ -12,7 +12,7 @@
 /* The parameters of both gather kernels (gather.cl, error_estimate.cl's error_gather) in the order
  * PhotonMap::enqueue_gather sets them, one call for either: the grid, the photons sorted by cell and
  * each cell's first, the hit points and their statistics, PPPM's radius (global_r2 > 0), the
- * volume hit points' radius (volume_r2, the same for all of a pass: SppmIntegrator), whether
+ * volume hit points' radius (volume_r2 > 0: the same for all of a pass, SppmIntegrator), whether
  * to add to `out` (a pass in several photon batches), the pass's wavelength and disc coverage. */
 #define GATHER_KERNEL_PARAMS(out_type)                                                                                 \
     __constant GridInfo *g, __global const Photon *sorted, __global const uint *starts,                                \
@@ -91,7 +91,8 @@ bool photon_in_volume(__global const Photon* ph) {
  *   L_s(x, wo) ~ sum_p p(-wi_p . wo) Phi_p / (sigma_t V),  V = 4/3 pi r^3
  * (Jensen and Christensen 1998, Eq. 10, with the photons' flux times sigma_t T / pdf of their
  * free flights: Photon); the hit point's weight brings sigma_s T / pdf of the eye path's. The
- * gather sums p Phi_p / sigma_t; the volume is SppmIntegrator's to divide by. */
+ * gather sums p Phi_p / sigma_t; the volume is the film's to divide by (SPPM's and PPPM's one
+ * radius a pass: SppmIntegrator::volume_update; PPM's own per hit point: radiance_estimate.cl). */
 typedef struct {
     float3 x, wo, inv_sigma_t;
     float g, r2;
@@ -99,7 +100,10 @@ typedef struct {
     bool dispersed;
 } VolumeQuery;
 
-VolumeQuery volume_query(__global const HitPoint* hp, float volume_r2, ulong seed, ulong pass) {
+/* Volume hit point i of a pass: volume_r2 the pass's radius for all (SPPM, PPPM), or 0 for its own
+ * R(x)^2 (PPM's fixed volume hit points, ppm_update.cl). */
+VolumeQuery volume_query(__global const HitPoint* hp, __global const HitStats* stats, uint i, float volume_r2,
+                         ulong seed, ulong pass) {
     VolumeQuery q;
     q.x = load3g(hp->pos);
     q.wo = oct_decode(hp->wo_oct);
@@ -107,7 +111,7 @@ VolumeQuery volume_query(__global const HitPoint* hp, float volume_r2, ulong see
     q.inv_sigma_t =
         (float3)(s.x > 0.0f ? 1.0f / s.x : 0.0f, s.y > 0.0f ? 1.0f / s.y : 0.0f, s.z > 0.0f ? 1.0f / s.z : 0.0f);
     q.g = hp->f90;
-    q.r2 = volume_r2;
+    q.r2 = volume_r2 > 0.0f ? volume_r2 : (float)stats[i].r2;
     q.pw = pass_wavelength(seed, pass);
     q.dispersed = hitpoint_dispersed(hp);
     return q;

@@ -1,5 +1,6 @@
 #include "integrators/checkpoint_checks.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "util/error.h"
@@ -33,9 +34,14 @@ void check_photon_counters(const Checkpoint& ck, const IntegratorStats& stats, u
                                  std::to_string(stats.passes) + " passes of " + std::to_string(photons_per_pass));
     const double r0 = stats.initial_radius;
     require_checkpoint_field(ck, std::isfinite(r0) && r0 > 0 && r0 <= 2 * scene_radius, "initial_radius");
+    const double r_max = largest_initial_radius(stats);
     require_checkpoint_field(
-        ck, std::isfinite(stats.mean_radius) && stats.mean_radius >= 0 && stats.mean_radius <= r0 * (1 + 1e-9),
+        ck, std::isfinite(stats.mean_radius) && stats.mean_radius >= 0 && stats.mean_radius <= r_max * (1 + 1e-9),
         "mean_radius");
+}
+
+double largest_initial_radius(const IntegratorStats& stats) {
+    return std::max(stats.initial_radius, stats.initial_volume_radius);
 }
 
 void check_hit_stats(const Checkpoint& ck, const std::vector<dev::HitStats>& stats, double r2_max) {

@@ -20,8 +20,13 @@ void require_checkpoint_field(const Checkpoint& ck, bool ok, const std::string& 
 // A header number that is finite and within [lo, hi].
 double checkpoint_number(const Checkpoint& ck, const char* key, double lo, double hi);
 
+// The largest radius a hit point starts from: R_0, or PPM's volume hit points' in media (the
+// radii only shrink from theirs).
+double largest_initial_radius(const IntegratorStats& stats);
+
 // The photon integrators' counters after IntegratorBase::restore: every pass emitted
-// photons_per_pass photons, R_0 lies in (0, the scene's diameter] and the mean radius in [0, R_0].
+// photons_per_pass photons, R_0 lies in (0, the scene's diameter] and the mean radius in [0, the
+// largest initial radius].
 void check_photon_counters(const Checkpoint& ck, const IntegratorStats& stats, uint64_t photons_per_pass,
                            double scene_radius);
 

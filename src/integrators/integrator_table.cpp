@@ -46,7 +46,7 @@ constexpr uint64_t kPhotonPasses = 64, kPixelPasses = 512, kConnectionPasses = 1
 const std::vector<IntegratorRow> kTable = {
     {"ppm", nullptr, "progressive photon mapping (fixed hit points, Hachisuka et al. 2008)", "ppm_program.cl",
      PPM_EYE_SLOTS, WorkUnit::Photons, kPhotonPasses, true, true, true, "", PpmIntegrator::memory_needed, photon_memory,
-     make<PpmIntegrator>, nullptr, true, kProgressiveRadii, false},
+     make<PpmIntegrator>, nullptr, true, kProgressiveRadii, true},
     {"sppm", nullptr, "stochastic PPM (a new eye sample per pixel every pass)", "sppm_program.cl", SPPM_EYE_SLOTS,
      WorkUnit::Photons, kPhotonPasses, true, true, true, "", sppm_memory, photon_memory, make<SppmIntegrator>, nullptr,
      true, kProgressiveRadii, true},

@@ -37,7 +37,7 @@ void PhotonMappingIntegrator::progressive_update(uint32_t n) {
     if (errors_) errors_->update(passflux_, hitpoints_, stats_buf_, 0.0, error_power_per_photon());
     states_before_pass_ = stats_.chain_counts[CHAIN_STATES];
     auto [mean, mx] = enqueue_ppm_update(dc_, k_update_, passflux_, hitpoints_, stats_buf_, n, settings_.alpha,
-                                         radius_partials_, stats_);
+                                         volume_stats_, radius_partials_, stats_);
     if (n > 0) stats_.mean_radius = typical_radius_ = mean, max_radius_ = mx;
 }
 
@@ -79,7 +79,7 @@ void PhotonMappingIntegrator::save(Checkpoint& ck) {
 void PhotonMappingIntegrator::restore(const Checkpoint& ck) {
     IntegratorBase::restore(ck);
     check_photon_counters(ck, stats_, settings_.photons, scene_.info.radius);
-    const double r0 = stats_.initial_radius; // the radii only shrink from it
+    const double r0 = largest_initial_radius(stats_); // the radii only shrink from it
     std::vector<dev::HitStats> hstats = ck.get<dev::HitStats>("stats", hit_slots_);
     if (stats_.hitpoints > 0) check_hit_stats(ck, hstats, r0 * r0 * (1 + 1e-9));
     write_buffer(dc_.queue, stats_buf_, hstats);

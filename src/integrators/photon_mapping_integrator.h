@@ -52,6 +52,9 @@ protected:
     double typical_radius_ = 0; // mean R over hit points: sizes the next grid's cells
     double max_radius_ = 0;
     uint64_t states_before_pass_ = 0; // the chains' deposited states before this pass (error_power_per_photon)
+    // Volume hit points keep statistics of their own, shrinking in 3-D (PPM's fixed ones); SPPM's
+    // and PPPM's take one radius a pass instead (SppmIntegrator::volume_update).
+    bool volume_stats_ = false;
 };
 
 } // namespace clppm

@@ -46,6 +46,7 @@ PpmIntegrator::PpmIntegrator(const DeviceContext& dc, const DeviceScene& scene, 
                              const cl::Program& program, const SecondaryDevices& secondaries)
     : PhotonMappingIntegrator(dc, scene, settings, program, secondaries) {
     photons_->set_hitpoints_fixed(true);
+    volume_stats_ = true;
     k_film_ = cl::Kernel(program, "ppm_film");
 }
 
@@ -75,7 +76,7 @@ void PpmIntegrator::make_error_estimator() {
 
 ErrorImage PpmIntegrator::error_estimate(double confidence) {
     if (!errors_) throw Error("error estimation is not enabled");
-    set_args(k_spread_, 0, stats_buf_, pixel_first_, hit_sample_, sample_y_, cl_uint(num_pixels_),
+    set_args(k_spread_, 0, hitpoints_, stats_buf_, pixel_first_, hit_sample_, sample_y_, cl_uint(num_pixels_),
              cl_uint(settings_.spp), cl_double(scene_.info.total_power), cl_double(film_photons()),
              cl_double(double(settings_.direct == DirectLighting::Sample ? stats_.passes : 0)), spread_);
     enqueue_1d(dc_.queue, k_spread_, num_pixels_);
@@ -137,16 +138,26 @@ void PpmIntegrator::eye_pass() {
     stats_.hitpoints = num_hitpoints_;
     hit_slots_ = std::max<uint32_t>(1, num_hitpoints_); // buffers are never empty
 
-    std::vector<float> footprints;
+    // Surface and volume hit points (participating media) start from radii of their own, as
+    // SPPM's do (SppmIntegrator::prepare).
+    std::vector<float> footprints, volume_footprints;
     footprints.reserve(hitpoints.size());
-    for (const dev::HitPoint& hp : hitpoints) footprints.push_back(std::fabs(hp.footprint));
+    for (const dev::HitPoint& hp : hitpoints)
+        (hp.alpha < 0 ? volume_footprints : footprints).push_back(std::fabs(hp.footprint));
     const double r0 =
         settings_.radius > 0 ? settings_.radius : initial_radius_heuristic(footprints, scene_.info.radius);
+    const double rv = scene_.media ? initial_volume_radius(volume_footprints.empty() ? footprints : volume_footprints,
+                                                           scene_.info.radius)
+                                   : r0;
+    if (scene_.media) stats_.initial_volume_radius = rv;
     stats_.initial_radius = stats_.mean_radius = r0;
-    typical_radius_ = max_radius_ = r0;
+    typical_radius_ = r0;
+    max_radius_ = volume_footprints.empty() ? r0 : std::max(r0, rv);
 
     std::vector<dev::HitStats> hstats(std::max<size_t>(1, hitpoints.size()),
                                       dev::HitStats{r0 * r0, 0.0, {0, 0, 0}, {0, 0, 0}});
+    for (size_t k = 0; k < hitpoints.size(); ++k)
+        if (hitpoints[k].alpha < 0) hstats[k].r2 = rv * rv;
     if (hitpoints.empty()) hitpoints.resize(1); // buffers must not be empty; num_hitpoints_ stays 0
     auto make = [&](cl_mem_flags f, size_t bytes, const void* src) {
         stats_.device_bytes += bytes;
@@ -189,7 +200,7 @@ void PpmIntegrator::restore_state(const Checkpoint& ck) {
 }
 
 Image PpmIntegrator::image() {
-    set_args(k_film_, 0, stats_buf_, pixel_first_, emitted_, cl_uint(num_pixels_), cl_uint(settings_.spp),
+    set_args(k_film_, 0, hitpoints_, stats_buf_, pixel_first_, emitted_, cl_uint(num_pixels_), cl_uint(settings_.spp),
              cl_double(scene_.info.total_power), cl_double(film_photons()),
              cl_double(double(settings_.direct == DirectLighting::Sample ? stats_.passes : 0)), image_buf_);
     enqueue_1d(dc_.queue, k_film_, num_pixels_);

@@ -14,9 +14,11 @@ size_t radius_partials_bytes(uint32_t n) {
 
 std::pair<double, double> enqueue_ppm_update(const DeviceContext& dc, cl::Kernel& kernel, const cl::Buffer& passflux,
                                              const cl::Buffer& hitpoints, const cl::Buffer& stats, uint32_t n,
-                                             double alpha, const cl::Buffer& radius_partials, IntegratorStats& istats) {
+                                             double alpha, bool volume_stats, const cl::Buffer& radius_partials,
+                                             IntegratorStats& istats) {
     if (n == 0) return {0.0, 0.0};
-    set_args(kernel, 0, passflux, hitpoints, stats, cl_uint(n), cl_double(alpha), radius_partials);
+    set_args(kernel, 0, passflux, hitpoints, stats, cl_uint(n), cl_double(alpha), cl_uint(volume_stats ? 1 : 0),
+             radius_partials);
     const size_t groups = (n + PPM_UPDATE_WG - 1) / PPM_UPDATE_WG;
     cl::Event ev;
     dc.queue.enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(groups * PPM_UPDATE_WG),

@@ -12,10 +12,12 @@
 
 namespace clppm {
 
-// Runs ppm_update over n hit points and returns (mean, max) of R after it.
+// Runs ppm_update over n hit points and returns (mean, max) of R after it. volume_stats: volume
+// hit points keep statistics of their own (PPM's fixed ones), else they are left alone.
 std::pair<double, double> enqueue_ppm_update(const DeviceContext& dc, cl::Kernel& kernel, const cl::Buffer& passflux,
                                              const cl::Buffer& hitpoints, const cl::Buffer& stats, uint32_t n,
-                                             double alpha, const cl::Buffer& radius_partials, IntegratorStats& istats);
+                                             double alpha, bool volume_stats, const cl::Buffer& radius_partials,
+                                             IntegratorStats& istats);
 
 // Bytes of the per-group radius partials enqueue_ppm_update needs for n hit points.
 size_t radius_partials_bytes(uint32_t n);
