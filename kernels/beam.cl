@@ -67,6 +67,7 @@ __kernel SCALAR_WORK_ITEMS void beam_gather(__constant GridInfo* g, __global con
     const float t_max = hp->dielectric, hg_g = hp->f90, r = sqrt(beam_r2);
     const PassWavelength pw = pass_wavelength(seed, pass);
     const bool dispersed = hitpoint_dispersed(hp);
+    const uint medium = hitpoint_medium(hp);
     const float steps_f = ceil(t_max * g->inv_cell);
     const uint steps = steps_f >= (float)BEAM_MAX_STEPS ? BEAM_MAX_STEPS : max(1u, (uint)steps_f);
     const float h = t_max / (float)steps, side = 1.0f / g->inv_cell;
@@ -82,7 +83,8 @@ __kernel SCALAR_WORK_ITEMS void beam_gather(__constant GridInfo* g, __global con
                                    const float3 p = load3g(ph->pos);
                                    const int3 pc = grid_cell(g, p);
                                    if (pc.x != cell.x || pc.y != cell.y || pc.z != cell.z)
-                                       continue; /* another cell's, same bucket */
+                                       continue;                              /* another cell's, same bucket */
+                                   if (photon_medium(ph) != medium) continue; /* across a boundary */
                                    const float tp = dot(p - o, d);
                                    if (!(tp >= t0 && (tp < t1 || (last && tp <= t_max)))) continue;
                                    const float3 v = p - (o + d * tp);
@@ -126,6 +128,7 @@ __kernel SCALAR_WORK_ITEMS void beam_direct_light(SCENE_PARAMS, ulong seed, ulon
     m.sigma_t = load3g(hp->color);
     m.albedo = load3g(hp->sheen);
     m.g = hp->f90;
+    m.id = hitpoint_medium(hp);
     float3 w = load3g(hp->weight);
     float t;
     const float u0 = rng_float(&rng), u1 = rng_float(&rng);

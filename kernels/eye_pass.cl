@@ -231,7 +231,7 @@ __kernel SCALAR_WORK_ITEMS void eye_pass(SCENE_PARAMS, __constant Camera* cam, u
 #if EYE_BEAMS
             if (!collided && tb > ta) {
                 store_beam(&hitpoints[num_samples + i], pixel, r.org + d * ta, d, tb - ta, r.weight, med.sigma_t,
-                           med.albedo, med.g,
+                           med.albedo, med.g, med.id,
                            with_dispersed(camera_footprint(cam, r.path_length + 0.5f * (ta + tb)), r.dispersed));
                 beam_free = false;
                 r.weight *= medium_transmittance(med.sigma_t, tb - ta);
@@ -240,7 +240,8 @@ __kernel SCALAR_WORK_ITEMS void eye_pass(SCENE_PARAMS, __constant Camera* cam, u
 #endif
             if (collided) {
                 store_volume_hitpoint(&out[stored++], pixel, r.org + d * t, -d, r.weight * med.albedo, med.sigma_t,
-                                      med.g, with_dispersed(camera_footprint(cam, r.path_length + t), r.dispersed));
+                                      med.g, med.id,
+                                      with_dispersed(camera_footprint(cam, r.path_length + t), r.dispersed));
                 continue;
             }
             if (!(max3(r.weight) > 0.0f)) continue;

@@ -25,7 +25,7 @@ __kernel SCALAR_WORK_ITEMS void gather(GATHER_KERNEL_PARAMS(PassFlux)) {
         /* A volume hit point: the photons stored in media within its sphere (gather_query.cl). */
         const VolumeQuery q = volume_query(hp, stats, i, volume_r2, seed, pass);
         GRID_FOR_EACH_NEAR(g, sorted, starts, q.x, q.r2, {
-            if (!photon_in_volume(ph)) continue;
+            if (!photon_in_volume(ph) || photon_medium(ph) != q.medium) continue;
             add_fixed_point(gather_volume_photon(&q, ph), &acc0, &acc1, &acc2);
             ++m;
         });

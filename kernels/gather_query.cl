@@ -73,6 +73,11 @@ float3 gather_photon(const GatherQuery* q, __global const Photon* ph, float3 wi)
     return f * phi;
 }
 
+/* Which medium volume photon ph was stored in, and the medium of volume hit point or beam hp
+ * (kernels/medium.cl Medium.id). */
+uint photon_medium(__global const Photon* ph) { return ph->normal_oct; }
+uint hitpoint_medium(__global const HitPoint* hp) { return hp->t_oct; }
+
 /* Whether ph was stored in a medium (shared_types.h PHOTON_VOLUME_FLAG). */
 bool photon_in_volume(__global const Photon* ph) {
     return HAS_MEDIUM && (as_uint(ph->flux[1]) & PHOTON_VOLUME_FLAG) != 0u;
@@ -96,6 +101,7 @@ bool photon_in_volume(__global const Photon* ph) {
 typedef struct {
     float3 x, wo, inv_sigma_t;
     float g, r2;
+    uint medium; /* the photons of this medium alone */
     PassWavelength pw;
     bool dispersed;
 } VolumeQuery;
@@ -111,6 +117,7 @@ VolumeQuery volume_query(__global const HitPoint* hp, __global const HitStats* s
     q.inv_sigma_t =
         (float3)(s.x > 0.0f ? 1.0f / s.x : 0.0f, s.y > 0.0f ? 1.0f / s.y : 0.0f, s.z > 0.0f ? 1.0f / s.z : 0.0f);
     q.g = hp->f90;
+    q.medium = hitpoint_medium(hp);
     q.r2 = volume_r2 > 0.0f ? volume_r2 : (float)stats[i].r2;
     q.pw = pass_wavelength(seed, pass);
     q.dispersed = hitpoint_dispersed(hp);

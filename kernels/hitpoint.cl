@@ -56,10 +56,11 @@ bool hitpoint_in_volume(__global const HitPoint* hp) { return HAS_MEDIUM && hp->
 /* Whether hp is a beam (shared_types.h), which kernels/beam.cl gathers for. */
 bool hitpoint_is_beam(__global const HitPoint* hp) { return HAS_MEDIUM && hp->alpha == HITPOINT_BEAM_ALPHA; }
 
-/* A volume hit point at p, seen from wo, in a medium of extinction sigma_t and phase g; weight is
- * the eye path's throughput times sigma_s T / pdf of its free flight. Every field written. */
+/* A volume hit point at p, seen from wo, in medium `medium` (Medium.id, in t_oct) of extinction
+ * sigma_t and phase g; weight is the eye path's throughput times sigma_s T / pdf of its free
+ * flight. Every field written. */
 void store_volume_hitpoint(__global HitPoint* hp, uint pixel, float3 p, float3 wo, float3 weight, float3 sigma_t,
-                           float g, float footprint) {
+                           float g, uint medium, float footprint) {
     HitPoint v;
     v.pos[0] = p.x;
     v.pos[1] = p.y;
@@ -81,17 +82,17 @@ void store_volume_hitpoint(__global HitPoint* hp, uint pixel, float3 p, float3 w
     v.coat = v.coat_alpha = 0.0f;
     v.sheen[0] = v.sheen[1] = v.sheen[2] = v.sheen_r = 0.0f;
     v.irid = v.irid_ior = v.irid_d = 0.0f;
-    v.t_oct = 0u;
+    v.t_oct = medium;
     v.alpha_t = 0.0f;
     v.translucent[0] = v.translucent[1] = v.translucent[2] = v.dt = 0.0f;
     *hp = v;
 }
 
 /* A beam (shared_types.h): the segment o + t d, t in [0, t_max], of a camera ray of throughput
- * weight at o through the medium m (sigma_t, albedo, g). Every field written. */
+ * weight at o through the medium `medium` (sigma_t, albedo, g). Every field written. */
 void store_beam(__global HitPoint* hp, uint pixel, float3 o, float3 d, float t_max, float3 weight, float3 sigma_t,
-                float3 albedo, float g, float footprint) {
-    store_volume_hitpoint(hp, pixel, o, -d, weight, sigma_t, g, footprint);
+                float3 albedo, float g, uint medium, float footprint) {
+    store_volume_hitpoint(hp, pixel, o, -d, weight, sigma_t, g, medium, footprint);
     hp->alpha = HITPOINT_BEAM_ALPHA;
     hp->f0[0] = d.x;
     hp->f0[1] = d.y;

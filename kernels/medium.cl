@@ -22,11 +22,17 @@
 
 #include "scene.cl"
 
-/* A homogeneous medium: extinction, single-scattering albedo, Henyey-Greenstein g. */
+/* A homogeneous medium: extinction, single-scattering albedo, Henyey-Greenstein g, and which it
+ * is (MEDIUM_WORLD, or the enclosing mesh's material index plus one): photons stored in one medium
+ * are gathered only by volume hit points and beams in the same (gather_query.cl), so that a
+ * radius does not blur one medium's light into its neighbour's across their boundary. */
 typedef struct {
     float3 sigma_t, albedo;
     float g;
+    uint id;
 } Medium;
+
+#define MEDIUM_WORLD 0u
 
 /* Whether the scene has a world medium (a program built for scenes without one says no at once). */
 bool world_has_medium(__constant SceneInfo* info) { return HAS_MEDIUM && info->medium_sigma_t[3] != 0.0f; }
@@ -38,6 +44,7 @@ Medium world_medium(__constant SceneInfo* info) {
     m.sigma_t = load3c(info->medium_sigma_t);
     m.albedo = load3c(info->medium_albedo);
     m.g = info->medium_albedo[3];
+    m.id = MEDIUM_WORLD;
     return m;
 }
 
@@ -46,12 +53,13 @@ bool material_scatters(__global const Material* m) {
     return HAS_MEDIUM && (m->scatter[0] > 0.0f || m->scatter[1] > 0.0f || m->scatter[2] > 0.0f);
 }
 
-/* The medium inside a mesh of material m: its attenuation is the extinction. */
-Medium material_medium(__global const Material* m) {
+/* The medium inside a mesh of material `index`, m: its attenuation is the extinction. */
+Medium material_medium(__global const Material* m, uint index) {
     Medium r;
     r.sigma_t = load3g(m->attenuation);
     r.albedo = load3g(m->scatter);
     r.g = m->scatter[3];
+    r.id = index + 1u;
     return r;
 }
 
@@ -85,9 +93,10 @@ bool segment_medium(SCENE_PARAMS, bool found, float3 dir, const Hit* h, Medium* 
         *m = world_medium(info);
         return true;
     }
-    __global const Material* mat = &materials[shading[h->prim].material];
+    const uint index = shading[h->prim].material;
+    __global const Material* mat = &materials[index];
     if (!material_scatters(mat)) return false;
-    *m = material_medium(mat);
+    *m = material_medium(mat, index);
     *inside = true;
     return true;
 }

@@ -29,10 +29,12 @@ Photon make_photon(float3 p, float3 n, float3 flux, float3 wi, bool dispersed) {
     return ph;
 }
 
-/* A photon stored at a collision in a medium (PHOTON_VOLUME_FLAG): flux times sigma_t T / pdf. */
-Photon make_volume_photon(float3 p, float3 flux, float3 wi, bool dispersed) {
+/* A photon stored at a collision in medium `medium` (Medium.id, in normal_oct; PHOTON_VOLUME_FLAG):
+ * flux times sigma_t T / pdf. */
+Photon make_volume_photon(float3 p, float3 flux, float3 wi, bool dispersed, uint medium) {
     Photon ph = make_photon(p, wi, flux, wi, dispersed);
     ph.flux[1] = as_float(as_uint(ph.flux[1]) | PHOTON_VOLUME_FLAG);
+    ph.normal_oct = medium;
     return ph;
 }
 
@@ -103,7 +105,7 @@ uint photon_path(SCENE_PARAMS, Rng* rng, const PassWavelength* pw, uint skip_dir
             if (medium_sample_distance(&med, found ? hit.t * length(dir) : INFINITY, (float2)(u0, u1), &flux, &t)) {
                 const float3 p = org + d * t;
                 if (!(skip_direct && bounce == 0)) {
-                    const Photon ph = make_volume_photon(p, flux, -d, dispersed);
+                    const Photon ph = make_volume_photon(p, flux, -d, dispersed, med.id);
                     stored += keep_photon(&ph, p, photons, capacity, counter SEEN_ARGS);
                 }
                 /* after PHOTON_MEDIUM_RR_DEPTH events at most PHOTON_MEDIUM_RR_SURVIVAL survive: in an

@@ -29,8 +29,9 @@ struct BeamCase {
     float r2 = 0;
 };
 
-// 60000 photons in the cube [-1, 1]^3, two in three stored in media; 200 beams from inside and
-// outside the cube, 0.02 to 4 long, in chromatic media with g of either sign.
+// 60000 photons in the cube [-1, 1]^3, two in three stored in media (the world's, a few a mesh's);
+// 200 beams from inside and outside the cube, 0.02 to 4 long, in chromatic media with g of either
+// sign, a fifth in the mesh's medium, whose photons alone they gather.
 BeamCase make_case(float cell, float radius, uint32_t table_size, uint32_t seed) {
     std::mt19937 rng(seed);
     std::uniform_real_distribution<double> u(-1, 1), u01(0, 1);
@@ -47,6 +48,7 @@ BeamCase make_case(float cell, float radius, uint32_t table_size, uint32_t seed)
             std::memcpy(&bits, &p.flux[1], sizeof bits);
             bits |= PHOTON_VOLUME_FLAG;
             std::memcpy(&p.flux[1], &bits, sizeof bits);
+            p.normal_oct = i % 7 == 1 ? 2 : 0; // its medium (kernels/medium.cl Medium.id)
         }
         c.photons.push_back(p);
     }
@@ -61,6 +63,7 @@ BeamCase make_case(float cell, float radius, uint32_t table_size, uint32_t seed)
         for (int k = 0; k < 3; ++k) h.color[k] = float(k == 2 && i % 4 == 0 ? 0 : 0.2 + 2 * u01(rng)), h.weight[k] = 1;
         h.alpha = HITPOINT_BEAM_ALPHA;
         h.f90 = gs[i % 3];
+        h.t_oct = i % 5 == 0 ? 2 : 0; // its medium
         h.pixel = i;
         c.slots.push_back(h);
     }
@@ -104,7 +107,7 @@ void brute_force(const BeamCase& c, const dev::HitPoint& h, uint32_t* m, uint32_
     for (const dev::Photon& p : c.photons) {
         uint32_t bits;
         std::memcpy(&bits, &p.flux[1], sizeof bits);
-        if (!(bits & PHOTON_VOLUME_FLAG)) continue;
+        if (!(bits & PHOTON_VOLUME_FLAG) || p.normal_oct != h.t_oct) continue; // another medium's stay there
         const double v[3] = {p.pos[0] - o[0], p.pos[1] - o[1], p.pos[2] - o[2]};
         const double tp = v[0] * d[0] + v[1] * d[1] + v[2] * d[2];
         const double e[3] = {v[0] - tp * d[0], v[1] - tp * d[1], v[2] - tp * d[2]};

@@ -166,7 +166,7 @@ TEST(Gather, CrowdedHashTableStillCountsEachPhotonOnce) {
 // of them lying on the plane, arriving from above on an upward normal, as surface photons the
 // plane's hit points would take), and volume hit points through the cube: the surface sums are
 // still the plane's photons' to the last unit, and each volume hit point sums, over the volume
-// photons within its sphere, flux / sigma_t times the Henyey-Greenstein phase function of the
+// photons of its own medium (the world's, or a fifth of them a mesh's) within its sphere, flux / sigma_t times the Henyey-Greenstein phase function of the
 // angle between the photon's direction and the way to the eye (relative 1e-5 of the sum: the
 // kernel's float against double here).
 TEST(Gather, VolumeHitPointsTakeTheMediaPhotonsInTheirSphere) {
@@ -188,6 +188,7 @@ TEST(Gather, VolumeHitPointsTakeTheMediaPhotonsInTheirSphere) {
         std::memcpy(&bits, &p.flux[1], sizeof bits);
         bits |= PHOTON_VOLUME_FLAG;
         std::memcpy(&p.flux[1], &bits, sizeof bits);
+        p.normal_oct = i % 5 == 0 ? 3 : 0; // its medium (kernels/medium.cl Medium.id): a mesh's, or the world's
         c.photons.push_back(p);
     }
     c.grid.num_photons = uint32_t(c.photons.size());
@@ -202,6 +203,7 @@ TEST(Gather, VolumeHitPointsTakeTheMediaPhotonsInTheirSphere) {
         for (int k = 0; k < 3; ++k) h.color[k] = 0.5f + 1.5f * u01(rng), h.weight[k] = 1;
         h.alpha = HITPOINT_VOLUME_ALPHA;
         h.f90 = gs[i % 3];
+        h.t_oct = i % 4 == 0 ? 3 : 0; // its medium
         h.pixel = uint32_t(surfaces + i);
         c.hitpoints.push_back(h);
         c.stats.push_back(dev::HitStats{0.01, 0, {0, 0, 0}, {0, 0, 0}});
@@ -220,7 +222,8 @@ TEST(Gather, VolumeHitPointsTakeTheMediaPhotonsInTheirSphere) {
         uint32_t m = 0;
         for (const dev::Photon& p : c.photons) {
             const float dx = p.pos[0] - h.pos[0], dy = p.pos[1] - h.pos[1], dz = p.pos[2] - h.pos[2];
-            if (!photon_in_volume(p) || dx * dx + dy * dy + dz * dz > c.volume_r2) continue;
+            if (!photon_in_volume(p) || p.normal_oct != h.t_oct || dx * dx + dy * dy + dz * dz > c.volume_r2)
+                continue; // another medium's photons stay there
             double wi[3];
             unoct(p.wi_oct, wi);
             const double g = h.f90, cos_t = -(wi[0] * wo[0] + wi[1] * wo[1] + wi[2] * wo[2]);
