@@ -315,6 +315,24 @@ TEST(Medium, CommandLineRendersAndRefusesWhatCannot) {
         run_clppm(scene + " --no-medium --integrator sppm --width 16 --height 16 --passes 1 --no-png -o " + out, &log),
         0)
         << log;
+    // Beams are SPPM's and PPPM's: another integrator says so rather than gather at points unasked.
+    for (const char* integrator : {"pt", "ppm"}) {
+        EXPECT_NE(run_clppm(scene + " --width 16 --height 16 --passes 1 --volume-gather beams --integrator " +
+                                integrator + " -o " + out,
+                            &log),
+                  0);
+        EXPECT_NE(log.find(std::string("--volume-gather beams: --integrator ") + integrator +
+                           " gathers the medium at points; only sppm or pppm gather along beams"),
+                  std::string::npos)
+            << log;
+    }
+    ASSERT_EQ(run_clppm(scene +
+                            " --no-medium --integrator pt --volume-gather beams --width 16 --height 16 --passes 1 "
+                            "--no-png -o " +
+                            out,
+                        &log),
+              0)
+        << "without a medium there is nothing to gather: " << log;
     EXPECT_NE(run_clppm(data("rough_volume_clear.gltf") + " --medium-albedo 0.5 -o " + out, &log), 0);
     EXPECT_NE(log.find("give --medium-density"), std::string::npos) << log;
     EXPECT_NE(run_clppm(data("rough_volume_clear.gltf") + " --medium-albedo 1.5 -o " + out, &log), 0);

@@ -46,22 +46,22 @@ constexpr uint64_t kPhotonPasses = 64, kPixelPasses = 512, kConnectionPasses = 1
 const std::vector<IntegratorRow> kTable = {
     {"ppm", nullptr, "progressive photon mapping (fixed hit points, Hachisuka et al. 2008)", "ppm_program.cl",
      PPM_EYE_SLOTS, WorkUnit::Photons, kPhotonPasses, true, true, true, "", PpmIntegrator::memory_needed, photon_memory,
-     make<PpmIntegrator>, nullptr, true, kProgressiveRadii, true},
+     make<PpmIntegrator>, nullptr, true, kProgressiveRadii, true, false},
     {"sppm", nullptr, "stochastic PPM (a new eye sample per pixel every pass)", "sppm_program.cl", SPPM_EYE_SLOTS,
      WorkUnit::Photons, kPhotonPasses, true, true, true, "", sppm_memory, photon_memory, make<SppmIntegrator>, nullptr,
-     true, kProgressiveRadii, true},
+     true, kProgressiveRadii, true, true},
     {"pppm", nullptr, "probabilistic PPM (independent passes, Knaus and Zwicker 2011)", "sppm_program.cl",
      SPPM_EYE_SLOTS, WorkUnit::Photons, kPhotonPasses, true, true, true, "", sppm_memory, photon_memory,
-     make<SppmIntegrator>, nullptr, false, kProbabilisticRadii, true},
+     make<SppmIntegrator>, nullptr, false, kProbabilisticRadii, true, true},
     {"pt", nullptr, "path tracing", "path_trace.cl", PPM_EYE_SLOTS, WorkUnit::Pixels, kPixelPasses, false, true, true,
-     "", pt_memory, no_transport_memory, make<PtIntegrator>, PtIntegrator::warnings, false, 0, true},
+     "", pt_memory, no_transport_memory, make<PtIntegrator>, PtIntegrator::warnings, false, 0, true, false},
     {"vcm", nullptr, "vertex connection and merging (bidirectional path tracing and photon merging under MIS)",
      "vcm_program.cl", PPM_EYE_SLOTS, WorkUnit::Pixels, kConnectionPasses, true, false, true,
      " (every process traces all light sub-paths)", vcm_memory, light_vertex_memory, make<VcmIntegrator>, nullptr,
-     false, VCM_MODE_VCM, false},
+     false, VCM_MODE_VCM, false, false},
     {"bpt", "bdpt", "bidirectional path tracing", "vcm_program.cl", PPM_EYE_SLOTS, WorkUnit::Pixels, kConnectionPasses,
      true, false, true, " (every process traces all light sub-paths)", vcm_memory, light_vertex_memory,
-     make<VcmIntegrator>, nullptr, false, VCM_MODE_BPT, false},
+     make<VcmIntegrator>, nullptr, false, VCM_MODE_BPT, false, false},
 };
 
 } // namespace
@@ -95,19 +95,27 @@ std::string media_integrators() {
     return either(names);
 }
 
-void require_media_support(const IntegratorRow& row, bool scene_has_medium) {
-    if (scene_has_medium && !row.media)
+void require_media_support(const IntegratorRow& row, bool scene_has_medium, VolumeGather gather) {
+    if (!scene_has_medium) return;
+    if (!row.media)
         throw Error(std::string("--integrator ") + row.name +
                     ": the scene has a participating medium (extras.clppm_medium, --medium-density or "
                     "KHR_materials_volume_scatter), which only " +
                     media_integrators() + " can render so far; pick one, or --no-medium for the world's");
+    if (gather == VolumeGather::Beams && !row.volume_beams) {
+        std::vector<std::string> names;
+        for (const IntegratorRow& r : kTable)
+            if (r.volume_beams) names.push_back(r.name);
+        throw Error(std::string("--volume-gather beams: --integrator ") + row.name +
+                    " gathers the medium at points; only " + either(names) + " gather along beams");
+    }
 }
 
 std::unique_ptr<IntegratorBase> make_integrator(const DeviceContext& dc, const DeviceScene& scene,
                                                 const RenderSettings& settings, const cl::Program& program,
                                                 const SecondaryDevices& secondaries) {
     const IntegratorRow& row = integrator_row(settings.integrator);
-    require_media_support(row, scene.media);
+    require_media_support(row, scene.media, settings.volume_gather);
     RenderSettings canonical = settings; // the integrators compare names as the table spells them
     canonical.integrator = row.name;
     return row.make(dc, scene, canonical, program, secondaries);

@@ -45,6 +45,7 @@ struct IntegratorRow {
     bool visual_importance; // takes --visual-importance: photon paths that Markov chains guide
     uint32_t mode;          // which variant of its class: kProbabilisticRadii (PPPM), VCM_MODE_* (VCM, BPT), or 0
     bool media;             // renders the world's participating medium (kernels/medium.cl)
+    bool volume_beams;      // gathers media along the camera rays with --volume-gather beams (kernels/beam.cl)
 };
 
 // IntegratorRow::mode of the photon mappers: SPPM's shrinking radii, PPPM's independent passes.
@@ -67,7 +68,9 @@ std::string integrator_names();
 std::string media_integrators();
 
 // Throws Error, naming --integrator, when the scene has a medium that row does not render.
-void require_media_support(const IntegratorRow& row, bool scene_has_medium);
+// Throws Error where the scene has a medium that the integrator cannot render, or asks for beams
+// (--volume-gather beams) that it does not gather.
+void require_media_support(const IntegratorRow& row, bool scene_has_medium, VolumeGather gather);
 
 // The integrator of settings.integrator for a scene on the device. Throws Error for a scene with a
 // medium that it does not render.

@@ -97,7 +97,7 @@ void RenderJob::choose_integrator(size_t devices) {
     }
     row_ = &integrator_row(s.integrator);
     s.integrator = row_->name;
-    require_media_support(*row_, scene_has_media(scene_));
+    require_media_support(*row_, scene_has_media(scene_), s.volume_gather);
     if (row_->unit == WorkUnit::Photons && scene_has_media(scene_) && !options_.photons_given) {
         s.photons = kMediaPhotonsPerPass;
         photons_note_ = "photons: " + std::to_string(s.photons) +
