@@ -27,6 +27,6 @@ def test_volumetric_caustic_writes_its_plot(tmp_path):
     p = subprocess.run([sys.executable, example, "--seconds", "1", "--size", "24", "--photons", "5000",
                         "--reference-passes", "10", "--out", str(out)], capture_output=True, text=True, timeout=300)
     assert p.returncode == 0, p.stderr
-    for integrator in ("sppm", "pppm", "pt"):
+    for integrator in ("sppm", "pppm", "ppm", "pt"):
         assert integrator + ":" in p.stdout, p.stdout
     assert out.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
