@@ -81,19 +81,21 @@ std::string integrator_names() {
     return either(names);
 }
 
-std::string visual_importance_integrators() {
+namespace {
+
+// "a, b or c": the integrators whose row has `column` set.
+std::string integrators_with(bool IntegratorRow::*column) {
     std::vector<std::string> names;
     for (const IntegratorRow& row : kTable)
-        if (row.visual_importance) names.push_back(row.name);
+        if (row.*column) names.push_back(row.name);
     return either(names);
 }
 
-std::string media_integrators() {
-    std::vector<std::string> names;
-    for (const IntegratorRow& row : kTable)
-        if (row.media) names.push_back(row.name);
-    return either(names);
-}
+} // namespace
+
+std::string visual_importance_integrators() { return integrators_with(&IntegratorRow::visual_importance); }
+
+std::string media_integrators() { return integrators_with(&IntegratorRow::media); }
 
 void require_media_support(const IntegratorRow& row, bool scene_has_medium, VolumeGather gather) {
     if (!scene_has_medium) return;
@@ -102,13 +104,10 @@ void require_media_support(const IntegratorRow& row, bool scene_has_medium, Volu
                     ": the scene has a participating medium (extras.clppm_medium, --medium-density or "
                     "KHR_materials_volume_scatter), which only " +
                     media_integrators() + " can render so far; pick one, or --no-medium for the world's");
-    if (gather == VolumeGather::Beams && !row.volume_beams) {
-        std::vector<std::string> names;
-        for (const IntegratorRow& r : kTable)
-            if (r.volume_beams) names.push_back(r.name);
+    if (gather == VolumeGather::Beams && !row.volume_beams)
         throw Error(std::string("--volume-gather beams: --integrator ") + row.name +
-                    " gathers the medium at points; only " + either(names) + " gather along beams");
-    }
+                    " gathers the medium at points; only " + integrators_with(&IntegratorRow::volume_beams) +
+                    " gather along beams");
 }
 
 std::unique_ptr<IntegratorBase> make_integrator(const DeviceContext& dc, const DeviceScene& scene,

@@ -64,11 +64,10 @@ const IntegratorRow& integrator_row(const std::string& name);
 // "ppm, sppm, pppm, pt, vcm or bpt".
 std::string integrator_names();
 
-// "pt": the integrators that render participating media.
+// "ppm, sppm, pppm or pt": the integrators that render participating media.
 std::string media_integrators();
 
-// Throws Error, naming --integrator, when the scene has a medium that row does not render.
-// Throws Error where the scene has a medium that the integrator cannot render, or asks for beams
+// Throws Error, naming --integrator, where the scene has a medium that the integrator cannot render, or asks for beams
 // (--volume-gather beams) that it does not gather.
 void require_media_support(const IntegratorRow& row, bool scene_has_medium, VolumeGather gather);
 

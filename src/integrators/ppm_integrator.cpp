@@ -139,25 +139,20 @@ void PpmIntegrator::eye_pass() {
     hit_slots_ = std::max<uint32_t>(1, num_hitpoints_); // buffers are never empty
 
     // Surface and volume hit points (participating media) start from radii of their own, as
-    // SPPM's do (SppmIntegrator::prepare).
-    std::vector<float> footprints, volume_footprints;
-    footprints.reserve(hitpoints.size());
-    for (const dev::HitPoint& hp : hitpoints)
-        (hp.alpha < 0 ? volume_footprints : footprints).push_back(std::fabs(hp.footprint));
-    const double r0 =
-        settings_.radius > 0 ? settings_.radius : initial_radius_heuristic(footprints, scene_.info.radius);
-    const double rv = scene_.media ? initial_volume_radius(volume_footprints.empty() ? footprints : volume_footprints,
-                                                           scene_.info.radius)
-                                   : r0;
-    if (scene_.media) stats_.initial_volume_radius = rv;
+    // SPPM's do.
+    const InitialRadii radii = initial_radii(hitpoints, settings_.radius, scene_.info.radius, scene_.media);
+    const double r0 = radii.surface, rv = radii.volume;
+    stats_.initial_volume_radius = rv;
     stats_.initial_radius = stats_.mean_radius = r0;
-    typical_radius_ = r0;
-    max_radius_ = volume_footprints.empty() ? r0 : std::max(r0, rv);
+    typical_radius_ = max_radius_ = r0;
 
     std::vector<dev::HitStats> hstats(std::max<size_t>(1, hitpoints.size()),
                                       dev::HitStats{r0 * r0, 0.0, {0, 0, 0}, {0, 0, 0}});
-    for (size_t k = 0; k < hitpoints.size(); ++k)
-        if (hitpoints[k].alpha < 0) hstats[k].r2 = rv * rv;
+    for (size_t k = 0; k < hitpoints.size(); ++k) {
+        if (hitpoints[k].alpha >= 0) continue;
+        hstats[k].r2 = rv * rv;
+        max_radius_ = std::max(max_radius_, rv);
+    }
     if (hitpoints.empty()) hitpoints.resize(1); // buffers must not be empty; num_hitpoints_ stays 0
     auto make = [&](cl_mem_flags f, size_t bytes, const void* src) {
         stats_.device_bytes += bytes;

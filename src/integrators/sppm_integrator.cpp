@@ -65,18 +65,9 @@ void SppmIntegrator::prepare() {
     eye_pass(1);
     std::vector<dev::HitPoint> hps(slots_);
     dc_.queue.enqueueReadBuffer(hitpoints_, CL_TRUE, 0, slots_ * sizeof(dev::HitPoint), hps.data());
-    std::vector<float> footprints, volume_footprints;
-    for (const dev::HitPoint& hp : hps) {
-        if (hp.pixel == HITPOINT_NONE) continue;
-        (hp.alpha < 0 ? volume_footprints : footprints).push_back(std::fabs(hp.footprint));
-    }
-    const double r0 =
-        settings_.radius > 0 ? settings_.radius : initial_radius_heuristic(footprints, scene_.info.radius);
-    if (scene_.media) {
-        volume_r0_ =
-            initial_volume_radius(volume_footprints.empty() ? footprints : volume_footprints, scene_.info.radius);
-        stats_.initial_volume_radius = volume_r0_;
-    }
+    const InitialRadii radii = initial_radii(hps, settings_.radius, scene_.info.radius, scene_.media);
+    const double r0 = radii.surface;
+    volume_r0_ = stats_.initial_volume_radius = radii.volume;
     stats_.initial_radius = stats_.mean_radius = typical_radius_ = max_radius_ = r0;
     r2_ = r0 * r0;
     const dev::HitStats init{r0 * r0, 0.0, {0, 0, 0}, {0, 0, 0}};
