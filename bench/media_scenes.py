@@ -9,15 +9,20 @@
     spot_caustic.gltf scenes/caustic.gltf in fog: the glass sphere focuses the spot light into a
                       caustic cone in the fog, which no path tracer finds (a delta light through
                       smooth glass)
+    fog_cube.gltf     the Cornell box in a fog cube mesh instead of the world's medium (the Blender
+                      way: an index-matched cube whose KHR_materials_volume_scatter volume holds
+                      the walls, the spheres and the light; media nesting, volume_nesting.h)
 
 The fog is the world's medium (extras.clppm_medium, docs/scenes.md "The world's medium"). The
 translucent solid is tests/data/wax_block.gltf (KHR_materials_volume_scatter).
 
     bench/media_scenes.py OUT_DIR
 """
+import base64
 import json
 import math
 import os
+import struct
 import subprocess
 import sys
 
@@ -35,6 +40,65 @@ def with_medium(doc, medium):
 def write(doc, path):
     with open(path, "w") as f:
         json.dump(doc, f)
+
+
+def add_box(doc, name, lo, hi, material):
+    """Appends a node with an axis-aligned box mesh [lo, hi] (24 vertices, flat normals outwards,
+    counter-clockwise from outside) in a buffer of its own (a data URI) to doc's scene."""
+    positions, normals, indices = [], [], []
+    for axis in range(3):
+        for sign in (-1, 1):
+            u, v = (axis + 1) % 3, (axis + 2) % 3
+            if sign < 0:
+                u, v = v, u  # keep (u, v, normal) right-handed
+            base = len(positions)
+            for a, b in ((0, 0), (1, 0), (1, 1), (0, 1)):
+                p = [0.0, 0.0, 0.0]
+                p[axis] = hi[axis] if sign > 0 else lo[axis]
+                p[u] = hi[u] if a else lo[u]
+                p[v] = hi[v] if b else lo[v]
+                n = [0.0, 0.0, 0.0]
+                n[axis] = float(sign)
+                positions.append(p)
+                normals.append(n)
+            indices += [base, base + 1, base + 2, base, base + 2, base + 3]
+    blob = b"".join(struct.pack("<3f", *p) for p in positions) + \
+        b"".join(struct.pack("<3f", *n) for n in normals) + b"".join(struct.pack("<H", i) for i in indices)
+    buf = len(doc["buffers"])
+    doc["buffers"].append({"byteLength": len(blob),
+                           "uri": "data:application/octet-stream;base64," + base64.b64encode(blob).decode()})
+    views = len(doc["bufferViews"])
+    doc["bufferViews"] += [{"buffer": buf, "byteOffset": 0, "byteLength": 288, "target": 34962},
+                           {"buffer": buf, "byteOffset": 288, "byteLength": 288, "target": 34962},
+                           {"buffer": buf, "byteOffset": 576, "byteLength": 72, "target": 34963}]
+    acc = len(doc["accessors"])
+    doc["accessors"] += [{"bufferView": views, "componentType": 5126, "count": 24, "type": "VEC3",
+                          "min": list(lo), "max": list(hi)},
+                         {"bufferView": views + 1, "componentType": 5126, "count": 24, "type": "VEC3"},
+                         {"bufferView": views + 2, "componentType": 5123, "count": 36, "type": "SCALAR"}]
+    doc["meshes"].append({"name": name, "primitives": [
+        {"attributes": {"POSITION": acc, "NORMAL": acc + 1}, "indices": acc + 2, "material": material}]})
+    doc["nodes"].append({"name": name, "mesh": len(doc["meshes"]) - 1})
+    doc["scenes"][doc.get("scene", 0)]["nodes"].append(len(doc["nodes"]) - 1)
+
+
+def fog_cube(doc):
+    """doc with a fog cube mesh just outside its walls, around everything but the camera (see the header)."""
+    doc["materials"].append({"name": "fog", "pbrMetallicRoughness": {"baseColorFactor": [1, 1, 1, 1],
+                                                                     "metallicFactor": 0.0, "roughnessFactor": 0.0},
+                             "extensions": {
+                                 "KHR_materials_transmission": {"transmissionFactor": 1.0},
+                                 "KHR_materials_ior": {"ior": 1.0},
+                                 "KHR_materials_volume": {"thicknessFactor": 1.0, "attenuationDistance": 4.0,
+                                                          "attenuationColor": [0.37, 0.37, 0.37]},
+                                 "KHR_materials_volume_scatter": {"multiscatterColor": [0.8, 0.8, 0.8],
+                                                                  "scatterAnisotropy": 0.5}}})
+    for ext in ("KHR_materials_transmission", "KHR_materials_ior", "KHR_materials_volume",
+                "KHR_materials_volume_scatter"):
+        if ext not in doc.setdefault("extensionsUsed", []):
+            doc["extensionsUsed"].append(ext)
+    add_box(doc, "fog_cube", (-1.001, -1.001, -1.001), (1.001, 1.001, 1.001), len(doc["materials"]) - 1)
+    return doc
 
 
 def spot_rotation(direction):
@@ -76,6 +140,7 @@ def main():
     write(with_medium(json.load(open(os.path.join(ROOT, "scenes", "caustic.gltf"))),
                       {"density": 0.08, "albedo": 0.9, "anisotropy": 0.3}),
           os.path.join(out, "spot_caustic.gltf"))
+    write(fog_cube(json.load(open(os.path.join(ROOT, "scenes", "cornell_box.gltf")))), os.path.join(out, "fog_cube.gltf"))
 
 
 if __name__ == "__main__":

@@ -69,8 +69,11 @@ __kernel SCALAR_WORK_ITEMS void direct_light(SCENE_PARAMS, ulong seed, ulong pas
         float3 org = offset_origin(SCENE_ARGS, x, cos_x < 0.0f ? -ng : ng);
         if (trace_occluded(SCENE_ARGS, org, s.wi, s.dist)) return;
         L = load3g(hp->weight) * hitpoint_brdf(&brdf, s.wi) * s.contrib * fabs(cos_x);
-        /* hit points lie in the world's medium (a mesh's inside is reached through glass) */
-        if (world_has_medium(info)) L *= light_sample_transmittance(SCENE_ARGS, world_sigma_t(info), &s);
+        /* through the medium of the side the sample leaves on (kernels/medium.cl) */
+        if (HAS_MEDIUM) {
+            const float3 sigma = volume_sigma_t(SCENE_ARGS, cos_x < 0.0f ? hp->volume_behind : hp->volume);
+            if (max3(sigma) > 0.0f) L *= light_sample_transmittance(SCENE_ARGS, sigma, &s);
+        }
     }
     stats[i].direct[0] += L.x;
     stats[i].direct[1] += L.y;

@@ -269,7 +269,7 @@ __kernel SCALAR_WORK_ITEMS void eye_pass(SCENE_PARAMS, __constant Camera* cam, u
                 LightSample ls;
                 const bool ok = sample_light_full(SCENE_ARGS, sf.p, &rng, &ls);
                 float3 ne = next_event_from(SCENE_ARGS, &bsdf, sf.p, -r.dir, followed, ok, &ls);
-                if (HAS_MEDIUM && ok) ne *= surface_light_transmittance(SCENE_ARGS, &sf, &ls);
+                if ((HAS_MEDIUM || HAS_VOLUME) && ok) ne *= surface_light_transmittance(SCENE_ARGS, &sf, &ls);
                 emitted += r.weight * ne;
             }
         }
@@ -307,7 +307,9 @@ __kernel SCALAR_WORK_ITEMS void eye_pass(SCENE_PARAMS, __constant Camera* cam, u
             Branch b = br[k];
             if (b.hitpoint) {
                 store_hitpoint(&out[stored++], pixel, sf.p, -r.dir, b.weight, &bsdf,
-                               with_dispersed(camera_footprint(cam, plen), r.dispersed));
+                               with_dispersed(camera_footprint(cam, plen), r.dispersed),
+                               HAS_MEDIUM ? surface_arrival_volume(SCENE_ARGS, &sf) : 0u,
+                               HAS_MEDIUM ? leaving_volume(SCENE_ARGS, &sf, r.dir) : 0u);
             } else {
                 EyeRay nr = {offset_origin(SCENE_ARGS, sf.p, b.below ? -sf.ng : sf.ng),
                              b.dir,

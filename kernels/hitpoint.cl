@@ -8,7 +8,7 @@
 #include "bsdf.cl"
 
 void store_hitpoint(__global HitPoint* hp, uint pixel, float3 p, float3 wo, float3 weight, const Bsdf* b,
-                    float footprint) {
+                    float footprint, uint volume, uint volume_behind) {
     hp->pos[0] = p.x;
     hp->pos[1] = p.y;
     hp->pos[2] = p.z;
@@ -46,6 +46,8 @@ void store_hitpoint(__global HitPoint* hp, uint pixel, float3 p, float3 wo, floa
     hp->translucent[1] = HAS_DIFFUSE_TRANSMISSION ? b->translucent.y : 0.0f;
     hp->translucent[2] = HAS_DIFFUSE_TRANSMISSION ? b->translucent.z : 0.0f;
     hp->dt = HAS_DIFFUSE_TRANSMISSION ? b->dt : 0.0f;
+    hp->volume = volume;
+    hp->volume_behind = volume_behind;
     hp->pixel = pixel;
 }
 
@@ -85,6 +87,7 @@ void store_volume_hitpoint(__global HitPoint* hp, uint pixel, float3 p, float3 w
     v.t_oct = medium;
     v.alpha_t = 0.0f;
     v.translucent[0] = v.translucent[1] = v.translucent[2] = v.dt = 0.0f;
+    v.volume = v.volume_behind = medium;
     *hp = v;
 }
 

@@ -7,11 +7,13 @@
  * segment that reaches the back face of a mesh whose material encloses a volume
  * (MATERIAL_FLAG_ENCLOSES_VOLUME: transmission with KHR_materials_volume) ran inside that mesh, in
  * the mesh's own medium where KHR_materials_volume_scatter makes it scatter (material_medium) and
- * through its absorption alone elsewhere (scene.cl volume_transmittance); every other segment, and
- * one that leaves the scene, ran in the world's medium. A light sample
+ * through its absorption alone elsewhere (scene.cl volume_transmittance); every other segment ran
+ * in the volume the mesh it ends on lies in (Material.outside, found on the host by
+ * src/scene/volume_nesting.h), and one that leaves the scene in the world's medium. A light sample
  * or a connection from a surface runs inside the mesh when it leaves through the face towards
- * the inside (as bsdf_segment_transmittance takes it). So a glass sphere in fog, and an absorbing
- * mesh in fog, hold their own volumes; meshes are taken as closed and not nested in each other.
+ * the inside, else in the volume the mesh lies in (leaving_volume). So a glass sphere in fog, an
+ * absorbing mesh in fog, a fog cube with objects and lights in it and a medium inside a medium
+ * each hold their own volumes; meshes are taken as closed, and crossing meshes are not nested.
  *
  * Distances are sampled in proportion to sigma_t T with one channel picked in proportion to the
  * path's throughput, and weighted by the one-sample balance heuristic over the three channels
@@ -69,36 +71,56 @@ float3 medium_transmittance(float3 sigma, float t) {
                     sigma.z > 0.0f ? exp(-sigma.z * t) : 1.0f);
 }
 
-/* Whether the segment traced along dir that ended at the hit h ran in the world's medium (see the
- * header): from the hit alone, so that a path that scatters before the surface never builds it. */
-bool segment_in_world_medium(SCENE_PARAMS, float3 dir, const Hit* h) {
-    if (!(materials[shading[h->prim].material].flags & MATERIAL_FLAG_ENCLOSES_VOLUME)) return true;
-    return dot(cross(tris[3 * h->prim + 1].xyz, tris[3 * h->prim + 2].xyz), dir) < 0.0f; /* its front face */
+/* Which closed volume a segment along dir that ends at the hit h ran in: the mesh's own (its
+ * material's index + 1) where it ends on the back face of a mesh that encloses a volume, else the
+ * one that mesh lies in (Material.outside, src/scene/volume_nesting.h; MEDIUM_WORLD: the world's).
+ * From the hit alone, so that a path that scatters before the surface never builds it. */
+uint segment_volume(SCENE_PARAMS, float3 dir, const Hit* h) {
+    const uint index = shading[h->prim].material;
+    __global const Material* m = &materials[index];
+    if ((m->flags & MATERIAL_FLAG_ENCLOSES_VOLUME) &&
+        dot(cross(tris[3 * h->prim + 1].xyz, tris[3 * h->prim + 2].xyz), dir) >= 0.0f) /* its back face */
+        return index + 1u;
+    return m->outside;
 }
 
-/* Whether a straight segment that leaves the surface sf along w runs in the world's medium. */
-bool leaving_in_world_medium(SCENE_PARAMS, const Surface* sf, float3 w) {
-    if (!(materials[sf->material].flags & MATERIAL_FLAG_ENCLOSES_VOLUME)) return true;
-    return sf->front ? dot(w, sf->ng) >= 0.0f : dot(w, sf->ng) <= 0.0f;
+/* Which closed volume a straight segment that leaves the surface sf along w runs in (as
+ * segment_volume tells it). */
+uint leaving_volume(SCENE_PARAMS, const Surface* sf, float3 w) {
+    __global const Material* m = &materials[sf->material];
+    if ((m->flags & MATERIAL_FLAG_ENCLOSES_VOLUME) && (sf->front ? dot(w, sf->ng) < 0.0f : dot(w, sf->ng) > 0.0f))
+        return sf->material + 1u;
+    return m->outside;
 }
 
-/* The medium a segment along dir ran in, ending at the hit h (found) or leaving the scene: the
- * world's, or the scattering medium of the closed mesh it ends inside (*inside). False where the
- * segment runs in no medium to sample: a clear world, or a mesh that only absorbs (its toll is
- * taken at the surface, scene.cl volume_transmittance). The one rule of every path (the header). */
-bool segment_medium(SCENE_PARAMS, bool found, float3 dir, const Hit* h, Medium* m, bool* inside) {
+/* The medium of volume v (segment_volume): the world's, or the scattering medium of a closed mesh
+ * (*inside). False where there is none to sample: a clear world, or a mesh that only absorbs (its
+ * toll is taken at the surface, scene.cl volume_transmittance). */
+bool volume_medium(SCENE_PARAMS, uint v, Medium* m, bool* inside) {
     *inside = false;
-    if (!found || segment_in_world_medium(SCENE_ARGS, dir, h)) {
+    if (v == MEDIUM_WORLD) {
         if (!world_has_medium(info)) return false;
         *m = world_medium(info);
         return true;
     }
-    const uint index = shading[h->prim].material;
-    __global const Material* mat = &materials[index];
+    __global const Material* mat = &materials[v - 1u];
     if (!material_scatters(mat)) return false;
-    *m = material_medium(mat, index);
+    *m = material_medium(mat, v - 1u);
     *inside = true;
     return true;
+}
+
+/* The medium a segment along dir ran in, ending at the hit h (found) or leaving the scene (the
+ * world's): volume_medium of its segment_volume. The one rule of every path (the header). */
+bool segment_medium(SCENE_PARAMS, bool found, float3 dir, const Hit* h, Medium* m, bool* inside) {
+    return volume_medium(SCENE_ARGS, found ? segment_volume(SCENE_ARGS, dir, h) : MEDIUM_WORLD, m, inside);
+}
+
+/* The extinction along a straight segment in volume v: the world's medium's, or a mesh's
+ * attenuation (absorbing or scattering); 0 where v is clear. */
+float3 volume_sigma_t(SCENE_PARAMS, uint v) {
+    if (v == MEDIUM_WORLD) return world_has_medium(info) ? world_sigma_t(info) : (float3)(0.0f);
+    return load3g(materials[v - 1u].attenuation);
 }
 
 /* The Henyey-Greenstein phase function (Henyey and Greenstein 1941; pbrt-v4 Sec. 11.3.1) at the

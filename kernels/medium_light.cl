@@ -23,11 +23,15 @@ float3 light_sample_transmittance(SCENE_PARAMS, float3 sigma, const LightSample*
     return medium_transmittance(sigma, medium_light_distance(SCENE_ARGS, s));
 }
 
-/* The world's medium's transmittance along the light sample s that leaves the surface sf: 1 where
- * the world is clear or the shadow ray runs inside a mesh (kernels/medium.cl). */
+/* The transmittance along the light sample s that leaves the surface sf, through the volume it
+ * leaves into (leaving_volume): the world's medium, or the mesh the surface lies in; 1 where that
+ * is clear, and into the surface's own mesh, whose absorption bsdf_segment_transmittance takes. */
 float3 surface_light_transmittance(SCENE_PARAMS, const Surface* sf, const LightSample* s) {
-    if (!world_has_medium(info) || !leaving_in_world_medium(SCENE_ARGS, sf, s->wi)) return (float3)(1.0f);
-    return light_sample_transmittance(SCENE_ARGS, world_sigma_t(info), s);
+    const uint v = leaving_volume(SCENE_ARGS, sf, s->wi);
+    if (v == sf->material + 1u) return (float3)(1.0f);
+    const float3 sigma = volume_sigma_t(SCENE_ARGS, v);
+    if (!(max3(sigma) > 0.0f)) return (float3)(1.0f);
+    return light_sample_transmittance(SCENE_ARGS, sigma, s);
 }
 
 /* Photons from a light at infinity (directional, environment) cross the world's medium from

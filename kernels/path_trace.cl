@@ -164,12 +164,13 @@ float3 path_sample(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong pass,
         if (HAS_MEDIUM && segment_medium(SCENE_ARGS, found, dir, &hit, &med, &inside)) {
             /* A free flight, and a scattering there with a light sample and a direction from the
              * phase function, or the segment's transmittance. Inside a closed mesh no shadow ray
-             * leaves (its surface stops them): light arrives through the surface's own vertices,
-             * and what a scattered ray finds counts in full. */
+             * leaves (its surface stops them): unless the mesh holds a light, light arrives
+             * through the surface's own vertices, and what a scattered ray finds counts in full. */
             const float3 d = normalize(dir);
             const float t_max = found ? hit.t * length(dir) : INFINITY;
             const float2 u_flight = path_2d(&ps);
-            const bool light_samples = pick_share > 0.0f && !inside;
+            const bool light_samples =
+                pick_share > 0.0f && (!inside || (materials[med.id - 1u].flags & MATERIAL_FLAG_HOLDS_LIGHTS) != 0u);
 #if HAS_POINT_LIGHTS || HAS_SPOT_LIGHTS
             const float3 beta_seg = beta;
             const float2 u_eq = path_2d(&ps);
@@ -201,7 +202,7 @@ float3 path_sample(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong pass,
                     if (!(path_1d(&ps) < q)) break;
                     beta /= q;
                 }
-                prev_delta = inside; /* no light sample inside: what the ray finds counts in full */
+                prev_delta = inside && !light_samples; /* no light sample inside: what the ray finds counts in full */
                 chain = false;
                 prev_pdf = pdf;
                 org = p;
@@ -231,7 +232,7 @@ float3 path_sample(SCENE_PARAMS, __constant Camera* cam, ulong seed, ulong pass,
             LightSample ls;
             bool ok = path_light_sample(SCENE_ARGS, &ps, sf.p, world_by_bsdf, pick_share, &ls);
             float3 ne = next_event_from(SCENE_ARGS, &b, sf.p, wo, LOBE_ALL, ok, &ls);
-            if (HAS_MEDIUM && ok) ne *= surface_light_transmittance(SCENE_ARGS, &sf, &ls);
+            if ((HAS_MEDIUM || HAS_VOLUME) && ok) ne *= surface_light_transmittance(SCENE_ARGS, &sf, &ls);
             L += beta * ne;
         }
         BsdfSample s;

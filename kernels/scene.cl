@@ -184,12 +184,23 @@ float3 surface_unlit(SCENE_PARAMS, const Surface* s) {
     return surface_is_unlit(SCENE_ARGS, s) ? surface_base_color(SCENE_ARGS, s) : (float3)(0.0f);
 }
 
+/* Which closed volume the ray that found the surface s arrived through: the mesh's own (its
+ * material's index + 1) on the back face of a mesh that encloses a volume
+ * (MATERIAL_FLAG_ENCLOSES_VOLUME), else the one the mesh lies in (Material.outside, 0: the world's;
+ * src/scene/volume_nesting.h). kernels/medium.cl tells segments so. */
+uint surface_arrival_volume(SCENE_PARAMS, const Surface* s) {
+    __global const Material* m = &materials[s->material];
+    return (m->flags & MATERIAL_FLAG_ENCLOSES_VOLUME) && !s->front ? s->material + 1u : m->outside;
+}
+
 /* KHR_materials_volume: the fraction of light that survives the segment of length dist a ray
- * travelled to reach s from inside (s's back face) a mesh of an absorbing material, by
- * Beer-Lambert's law exp(-sigma dist). 1 elsewhere. Meshes are taken as closed and not nested. */
+ * travelled inside a closed mesh of an absorbing material to reach s (surface_arrival_volume), by
+ * Beer-Lambert's law exp(-sigma dist). 1 elsewhere. */
 float3 volume_transmittance(SCENE_PARAMS, const Surface* s, float dist) {
-    if (!HAS_VOLUME || s->front) return (float3)(1.0f);
-    float3 sigma = load3g(materials[s->material].attenuation);
+    if (!HAS_VOLUME) return (float3)(1.0f);
+    const uint v = surface_arrival_volume(SCENE_ARGS, s);
+    if (v == 0u) return (float3)(1.0f);
+    float3 sigma = load3g(materials[v - 1u].attenuation);
     if (!(max3(sigma) > 0.0f)) return (float3)(1.0f);
     return exp(-sigma * dist);
 }

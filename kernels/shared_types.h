@@ -81,6 +81,8 @@ typedef struct {
 /* KHR_materials_volume with thicknessFactor > 0 on a transmitting material: the closed mesh holds a
  * volume of its own, so the world's medium (kernels/medium.cl) stops at its surface */
 #define MATERIAL_FLAG_ENCLOSES_VOLUME 8u
+/* Its closed volume holds a light (src/scene/volume_nesting.h): paths sample lights from its medium. */
+#define MATERIAL_FLAG_HOLDS_LIGHTS 16u
 
 /* glTF alphaMode */
 #define ALPHA_OPAQUE 0u
@@ -91,7 +93,9 @@ typedef struct {
  * _transmission and _emissive_strength; kernels/bsdf.cl is its scattering model. */
 typedef struct {
     float base_color[4];     /* linear RGB; [3] alpha (unused) */
-    float emission[4];       /* emitted radiance, emissiveFactor * emissive_strength; [3] unused */
+    float emission[3];       /* emitted radiance, emissiveFactor * emissive_strength */
+    u32 outside;             /* the closed volume the mesh lies in (src/scene/volume_nesting.h): 0 the
+                              * world's, k + 1 material k's (kernels/medium.cl) */
     float specular_color[4]; /* KHR_materials_specular: specularColorFactor, [3] specularFactor */
     float metallic, roughness, transmission, ior;
     i32 base_color_tex;         /* index into Texture array (sRGB decoded), -1 when none */
@@ -269,7 +273,11 @@ typedef struct {
     float alpha_t;        /* GGX alpha along it (= alpha when isotropic) */
     float translucent[3]; /* KHR_materials_diffuse_transmission: its colour times its weight (0: none) */
     float dt;             /* and that weight, which the diffuse reflection loses */
-} HitPoint;               /* 152 bytes */
+    /* The closed volumes on the surface's two sides (kernels/medium.cl; 0 the world's, k + 1
+     * material k's): the one the eye path arrived through, and the one behind the surface, which
+     * light samples through a translucent surface cross. Media only (0 elsewhere). */
+    u32 volume, volume_behind;
+} HitPoint; /* 160 bytes */
 
 #define HITPOINT_NONE 0xffffffffu
 #define HITPOINT_VOLUME_ALPHA (-1.0f)

@@ -52,6 +52,7 @@ cases=(
   "wax-sppm|$here/tests/data/wax_block.gltf --integrator sppm --direct photons"
   "fog-beams|$here/tests/data/fog_room.gltf --integrator pppm --volume-gather beams"
   "fog-ppm|$here/tests/data/fog_room.gltf --integrator ppm --spp 2 --target-error 0.01"
+  "fog-cube-sppm|$here/tests/data/fog_cube_room.gltf --integrator sppm"
 )
 status=0
 for c in "${cases[@]}"; do

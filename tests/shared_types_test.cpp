@@ -21,7 +21,7 @@ namespace {
     X(sizeof(TriShading)) X(offsetof(TriShading, uv0)) X(offsetof(TriShading, material))            \
     X(sizeof(BvhNode)) X(offsetof(BvhNode, bmax_x)) X(offsetof(BvhNode, child)) X(offsetof(BvhNode, count)) \
     X(sizeof(BvhTriBlock)) X(offsetof(BvhTriBlock, prim))                                            \
-    X(sizeof(Material)) X(offsetof(Material, emission)) X(offsetof(Material, metallic))                \
+    X(sizeof(Material)) X(offsetof(Material, emission)) X(offsetof(Material, outside)) X(offsetof(Material, metallic))                \
     X(offsetof(Material, base_color_tex)) X(offsetof(Material, specular_color)) X(offsetof(Material, normal_tex))                                 \
     X(sizeof(Texture)) X(offsetof(Texture, wrap)) X(offsetof(Texture, texcoord))                                                     \
     X(sizeof(Light)) X(offsetof(Light, power)) X(offsetof(Light, position)) X(offsetof(Light, radiance)) \
@@ -31,6 +31,7 @@ namespace {
     X(offsetof(SceneInfo, max_bounces))                                                               \
     X(sizeof(HitPoint)) X(offsetof(HitPoint, weight)) X(offsetof(HitPoint, footprint)) X(offsetof(HitPoint, alpha)) \
     X(offsetof(HitPoint, normal_oct)) X(offsetof(HitPoint, wo_oct)) X(offsetof(HitPoint, f0)) X(offsetof(HitPoint, metal)) \
+    X(offsetof(HitPoint, volume)) X(offsetof(HitPoint, volume_behind)) \
     X(sizeof(PassFlux)) X(offsetof(PassFlux, m))                                                      \
     X(sizeof(HitStats)) X(offsetof(HitStats, n)) X(offsetof(HitStats, tau)) X(offsetof(HitStats, direct)) \
     X(sizeof(Photon)) X(offsetof(Photon, flux)) X(offsetof(Photon, wi_oct))                           \

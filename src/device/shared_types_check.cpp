@@ -22,6 +22,7 @@ CLPPM_CHECK_OFFSET(BvhTriBlock, prim, 36 * BVH_TRI_BLOCK);
 static_assert(BVH_WIDTH == 4 || BVH_WIDTH == 8, "bvh_traverse.cl has float4 and float8 node tests");
 
 CLPPM_CHECK_SIZE(Material, 256);
+CLPPM_CHECK_OFFSET(Material, outside, 28);
 CLPPM_CHECK_OFFSET(Material, scatter, 240);
 CLPPM_CHECK_OFFSET(Material, diffuse_transmission, 212);
 CLPPM_CHECK_OFFSET(Material, diffuse_transmission_color, 224);
@@ -72,9 +73,10 @@ CLPPM_CHECK_OFFSET(SceneInfo, max_bounces, 40);
 CLPPM_CHECK_OFFSET(SceneInfo, vertex_colors, 44);
 CLPPM_CHECK_OFFSET(SceneInfo, texcoord1, 48);
 
-CLPPM_CHECK_SIZE(HitPoint, 152);
+CLPPM_CHECK_SIZE(HitPoint, 160);
 CLPPM_CHECK_OFFSET(HitPoint, translucent, 136);
 CLPPM_CHECK_OFFSET(HitPoint, dt, 148);
+CLPPM_CHECK_OFFSET(HitPoint, volume_behind, 156);
 CLPPM_CHECK_OFFSET(HitPoint, t_oct, 128);
 CLPPM_CHECK_OFFSET(HitPoint, irid, 116);
 CLPPM_CHECK_OFFSET(HitPoint, sheen, 100);

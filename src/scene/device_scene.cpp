@@ -11,6 +11,7 @@
 #include "scene/environment.h"
 #include "scene/light_power.h"
 #include "scene/medium.h"
+#include "scene/volume_nesting.h"
 #include "util/error.h"
 #include "util/narrow_to_float.h"
 
@@ -248,6 +249,8 @@ int DeviceScene::set_scene_args(cl::Kernel& k, int a) const {
 
 DeviceScene upload_scene(const DeviceContext& dc, Scene& scene, const SceneSettings& settings) {
     DeviceScene ds;
+    if (!scene.volumes_nested) nest_volumes(scene); // which volume each surface lies in (kernels/medium.cl)
+    scene.volumes_nested = true;
     BvhBuildResult bvh = build_bvh(scene.positions);
     permute_triangles(scene, bvh.tri_order);
     ds.bvh_build_seconds = bvh.build_seconds;

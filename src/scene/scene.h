@@ -96,7 +96,8 @@ struct Scene {
     size_t degenerate_triangles_skipped = 0;
     size_t meshes_without_normals = 0;
     std::vector<std::string> warnings;
-    std::string source; // file name or "<default scene>"
+    std::string source;          // file name or "<default scene>"
+    bool volumes_nested = false; // nest_volumes (volume_nesting.h) has set Material::outside
 
     size_t num_triangles() const { return shading.size(); }
 };

@@ -1360,6 +1360,33 @@ def media():
     b.world(color=(0.0, 0.0, 0.0))
     b.medium(density=(0.3, 0.4, 0.6), albedo=(0.9, 0.8, 0.7), anisotropy=0.4)
     b.write_embedded(out("fog_room.gltf"))
+    # fog_cube_room.gltf: the same room with its fog in a mesh instead of the world: an
+    # index-matched cube [-2.005, 2.005]^3 whose KHR_materials_volume_scatter volume (the same
+    # extinction, multiscatterColor 0.9, 0.8, 0.7) holds the room, the glass cube, both lights and the camera
+    # (media nesting, src/scene/volume_nesting.h).
+    b = GltfBuilder("clppm tests/data/make_test_gltf.py")
+    white = b.material("white", (0.7, 0.7, 0.7), specular=0.0)
+    glass = b.material("glass", (1.0, 1.0, 1.0), roughness=0.0, transmission=1.0, ior=1.5, thickness=1.0,
+                       extensions={"KHR_materials_volume": {"thicknessFactor": 1.0, "attenuationDistance": 1.0,
+                                                            "attenuationColor": [0.9, 0.6, 0.3]}})
+    fog = b.material("fog", (1.0, 1.0, 1.0), roughness=0.0, transmission=1.0, ior=1.0, thickness=1.0,
+                     extensions={"KHR_materials_volume": {"thicknessFactor": 1.0, "attenuationDistance": 1.0,
+                                                          "attenuationColor": [math.exp(-0.3), math.exp(-0.4),
+                                                                               math.exp(-0.6)]},
+                                 "KHR_materials_volume_scatter": {"multiscatterColor": [0.9, 0.8, 0.7],
+                                                                  "scatterAnisotropy": 0.4}})
+    lamp = b.material("lamp", (0.0, 0.0, 0.0), emissive=(1.0, 1.0, 1.0), emissive_strength=8.0, specular=0.0)
+    room = box_primitive(b, (-2.0, -2.0, -2.0), (2.0, 2.0, 2.0), white)
+    cube = box_primitive(b, (-0.5, -2.0, -1.0), (0.5, -1.0, 0.0), glass)
+    fog_cube = box_primitive(b, (-2.005, -2.005, -2.005), (2.005, 2.005, 2.005), fog)
+    light = b.primitive(lpos, lidx, lnrm, material=lamp)
+    point = b.light({"name": "point", "type": "point", "color": [1.0, 0.9, 0.8], "intensity": 3.0})
+    cam = b.camera(1.2, 1.0)
+    b.scene([b.node(name="room", mesh=b.mesh([room, cube, fog_cube, light])),
+             b.node(name="point", light=point, translation=[1.0, 0.5, -1.0]),
+             b.node(name="camera", camera=cam, translation=[0.0, 0.0, 1.5])])
+    b.world(color=(0.0, 0.0, 0.0))
+    b.write_embedded(out("fog_cube_room.gltf"))
     # wax_block.gltf: a translucent solid (KHR_materials_volume_scatter): a block 1 x 1 x 1 on a
     # white floor whose surface transmits diffusely (diffuseTransmissionFactor 1, colour white)
     # into a volume of attenuationColor (0.5, 0.3, 0.2) at attenuationDistance 0.2 that scatters
