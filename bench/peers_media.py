@@ -13,7 +13,7 @@ fraction of Mitsuba's (the targets: at most 0.5 in the fog box for the best of c
 for the default on the caustic). clppm's CPU time includes loading and kernel compilation;
 Mitsuba's is its render's alone, compiled beforehand (peers_diffuse_box.py). Every integrator
 that renders media runs (INTEGRATORS, default auto,sppm,sppm@10000:beams,pppm,pt; NAME@M: --photons M,
-NAME:beams: --volume-gather beams; in media the photon integrators take 50000 a pass unless given).
+NAME:beams: --volume-gather beams; in media the photon integrators take 10000 a pass unless given).
 SCENES=caustic runs that scene alone.
 
     DRJIT_LIBLLVM_PATH=/usr/lib/x86_64-linux-gnu/libLLVM-19.so /tmp/mi/bin/python \\

@@ -32,7 +32,7 @@ def curves(scene, integrators, seconds, size, reference_passes, photons):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    add_common_arguments(ap, photons=50000, out="volumetric_caustic.png")
+    add_common_arguments(ap, photons=10000, out="volumetric_caustic.png")
     ap.add_argument("--integrators", default="sppm,pppm,ppm,pt")
     ap.add_argument("--seconds", type=float, default=20.0, help="render time per integrator")
     a = ap.parse_args()

@@ -32,7 +32,7 @@ class ClppmSceneSettings(bpy.types.PropertyGroup):
                                                       "per-pixel relative error) is at most this (0: off)")
     photons: bpy.props.IntProperty(name="Photons per pass", min=0, max=2147483647, default=0,
                                    description="Photons traced per pass (0: the library's default, 200000, and "
-                                               "50000 in participating media, where each collision stores one)")
+                                               "10000 in participating media, where each collision stores one)")
     alpha: bpy.props.FloatProperty(name="Alpha", min=0.01, max=1.0, default=0.7,
                                    description="Fraction of new photons kept per pass (radius reduction)")
     visual_importance: bpy.props.BoolProperty(

@@ -14,10 +14,12 @@
 namespace clppm {
 
 // Photons per pass in a scene with participating media where --photons is not given: a photon is
-// stored at each collision there (five per photon in the fogged Cornell boxes), and the grid's
-// sort of a million a pass left SPPM 5.6 times Mitsuba's CPU time to equal error in the fog box
-// against 1.17 with 50000 (bench/RESULTS.md, "Photons in participating media").
-constexpr uint64_t kMediaPhotonsPerPass = 50000;
+// stored at each collision there (five per photon in the fogged Cornell boxes), so a pass of the
+// surfaces' 200000 stores a million, whose sort left SPPM 5.6 times Mitsuba's CPU time to equal
+// error in the fog box; 50000 did better, and 10000 (more passes, whose radii shrink) better still,
+// on the fog box and the volumetric caustic at 64 x 64 and 128 x 128 (bench/RESULTS.md, "Photons
+// in participating media" and "Nested media, and photons per pass in media").
+constexpr uint64_t kMediaPhotonsPerPass = 10000;
 
 struct IntegratorChoice {
     std::string integrator;         // a row of integrators/integrator_table.h

@@ -153,7 +153,7 @@ const std::vector<RenderOptionSpec>& render_option_table() {
          "none",
          [](RenderOptions& o, const OptionArg& a) { o.time_limit = parse_real(a, [](double x) { return x > 0; }); },
          OptionRole::Run, [](const RenderOptions& o) -> Json { return o.time_limit; }},
-        {"Integrator", "--photons", nullptr, "N", "Photons traced per pass (50000 in participating media unless given)",
+        {"Integrator", "--photons", nullptr, "N", "Photons traced per pass (10000 in participating media unless given)",
          "an integer in 1..2147483647", "200000",
          [](RenderOptions& o, const OptionArg& a) {
              o.settings.photons = uint64_t(parse_int(a, 1, INT32_MAX));

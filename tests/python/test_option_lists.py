@@ -83,5 +83,5 @@ def test_the_blender_addons_defaults_are_the_librarys():
     assert props["photons"]["default"] == 0 and props["photons"]["min"] == 0
     assert props["photons"]["max"] == 2147483647
     assert "0: the library's default, %s," % options["photons"]["default"] in props["photons"]["description"]
-    assert "50000 in participating media" in options["photons"]["help"], options["photons"]
+    assert "10000 in participating media" in options["photons"]["help"], options["photons"]
     assert props["alpha"]["max"] == 1.0
