@@ -10,7 +10,7 @@ enum class StopReason { None, Passes, Time, TargetError, Interrupt, Viewer };
 
 struct StopPolicy {
     uint64_t pass_limit = 0; // 0: none
-    double time_limit = 0;   // seconds of rendering; 0: none
+    double time_limit = 0;   // seconds of rendering, after at least one pass; 0: none
 
     // Why the render must stop now, or None to go on. `passes` counts from the start of the
     // original render (a resumed one included), `seconds` this run only.
